@@ -1,0 +1,19 @@
+//! A Rust port of the ray tracer of TR-88-036 (Institute of Information
+//! Science, Academia Sinica, 1989), *Generating motion-blurred images of
+//! deforming objects*: sweep objects after van Wijk 1984, motion blur by
+//! Cook's distributed ray tracing, and key-frame deformation with bicubic
+//! Hermite patches.
+//!
+//! One module per unit of the original: [`raytrace`] (the main program),
+//! [`proc`], and (with later work) `drt` and `paper`; beside them the
+//! reconstructed base program ([`trace`], [`shapes`], [`deck`], [`raster`])
+//! and the PS 390 display emulation [`psout`].
+
+pub mod deck;
+pub mod proc;
+pub mod psout;
+pub mod raster;
+pub mod raytrace;
+pub mod shapes;
+pub mod trace;
+pub mod types;

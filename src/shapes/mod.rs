@@ -1,0 +1,2 @@
+//! Reconstructed base: the primitive intersections (being written).
+pub mod sweep;

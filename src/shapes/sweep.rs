@@ -1,0 +1,1 @@
+//! The sweep intersection driver (being written).

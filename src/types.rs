@@ -1,0 +1,496 @@
+//! The records of Fig. 4.3 (Ch. 4 (b) "Create scene" and (e)), in Rust.
+//!
+//! The thesis prints the record types of the base program `Raytrace`:
+//! `surfacerecord`, `points`, `coeff`, `objectrecord`, `ray` and
+//! `intersectionrecord`. They are kept here with their Pascal field names.
+//! Pascal pointers (`surfaceptr`, `objectptr`, `matrix = ^dualarray`) become
+//! indices into the [`Scene`]'s vectors or plain values; the variant part of
+//! `objectrecord` becomes the enum [`Shape`].
+//!
+//! Records the thesis does not print (the view, the image, lights, motion and
+//! key frames) are reconstructed from Ch. 4 and the main program, and say so.
+
+pub use glam::{DMat4, DVec3};
+
+/// `stringlength`: the Pascal `string` is `packed array [1..10] of char`.
+pub const STRINGLENGTH: usize = 10;
+
+/// The bound of `u, v : array [1..60] of coeff` in `objectrecord`.
+pub const MAXSEGMENTS: usize = 60;
+
+/// Which of two behaviours to follow where the printed listings and the
+/// thesis text disagree (legacy_pascal/DEVIATIONS.md lists every place).
+///
+/// Only the code of an erratum branches on this; each branch quotes both
+/// formulas.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Fidelity {
+    /// Reproduce the printed listings, quirks included.
+    Listing,
+    /// Follow the thesis text where the listing disagrees.
+    #[default]
+    Thesis,
+}
+
+/// `axis = (xaxis, yaxis, zaxis)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Axis {
+    /// `xaxis`
+    X,
+    /// `yaxis`
+    Y,
+    /// `zaxis`
+    #[default]
+    Z,
+}
+
+impl Axis {
+    /// The unit vector of the axis.
+    pub fn unit(self) -> DVec3 {
+        match self {
+            Axis::X => DVec3::X,
+            Axis::Y => DVec3::Y,
+            Axis::Z => DVec3::Z,
+        }
+    }
+}
+
+/// `primitiveclass = (block, cylinder, sphere, prism, translation, conic, rotation)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PrimitiveClass {
+    Block,
+    Cylinder,
+    Sphere,
+    Prism,
+    /// A translation sweep (§2.3).
+    Translation,
+    /// A conic sweep: a translation sweep whose contour scales linearly (§2.3).
+    Conic,
+    /// A rotation sweep (§2.3).
+    Rotation,
+}
+
+/// `surfaceattribute = (transparent, mirrored, opaque, background, light, crystal)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SurfaceAttribute {
+    Transparent,
+    Mirrored,
+    Opaque,
+    Background,
+    Light,
+    Crystal,
+}
+
+/// `intensity = array [red .. blue] of real`, each 0–1 (`x` red, `y` green,
+/// `z` blue).
+pub type Intensity = DVec3;
+
+/// `points = record x, y, z : real end`.
+pub type Points = DVec3;
+
+/// What `floortest`, `startest` and `floorstar` (unit `proc`) set the global
+/// `painting` to; the main program resets it to `normal1` after each pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Painting {
+    /// `normal1`: the surface's own `color`.
+    #[default]
+    Normal1,
+    /// `floor1`: the pattern colour of a `floortest` square.
+    Floor1,
+    /// `star1`: the pattern colour of a star.
+    Star1,
+}
+
+/// Which pattern procedure of unit `proc` paints a surface (deck `paint`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PaintKind {
+    /// `floortest`: a checker floor on a block.
+    Floor,
+    /// `startest`: a star on a sphere.
+    Star,
+    /// `floorstar`: stars on a block.
+    Floorstar,
+}
+
+/// A pattern painted on a surface (deck `paint`). Reconstructed: the listing
+/// reads `lengthx`, `lengthy` as globals and the pattern colours are not
+/// printed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Paint {
+    pub kind: PaintKind,
+    /// `lengthx`: pattern cells per unit length along the first face axis.
+    pub lengthx: f64,
+    /// `lengthy`: pattern cells per unit length along the second face axis.
+    pub lengthy: f64,
+    /// The colour where the pattern procedure sets `floor1` or `star1`.
+    pub color: Intensity,
+}
+
+/// A raster picture pasted on a surface (deck `texture`, Fig. 5.3–5.4):
+/// texels row-major, row 0 at the top, colours 0–1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    pub width: usize,
+    pub height: usize,
+    pub texels: Vec<Intensity>,
+}
+
+impl Texture {
+    /// The texel under (s, t) ∈ [0,1]², s to the right, t upward; nearest
+    /// texel, as a 1989 frame-buffer paste would take it.
+    pub fn texel(&self, s: f64, t: f64) -> Intensity {
+        let col = ((s.clamp(0.0, 1.0) * self.width as f64) as usize).min(self.width - 1);
+        let row_up = ((t.clamp(0.0, 1.0) * self.height as f64) as usize).min(self.height - 1);
+        self.texels[(self.height - 1 - row_up) * self.width + col]
+    }
+}
+
+/// `surfacerecord` of Fig. 4.3, with the fields the deck's `surface`,
+/// `paint` and `texture` records fill.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SurfaceRecord {
+    /// The surface's name in the deck (not a field of the printed record:
+    /// the Pascal kept it in its symbol table).
+    pub name: String,
+    /// `color`: colour of the object under diffuse light.
+    pub color: Intensity,
+    /// `ka, kd, ks, kt`: the "tweaking constants" of Whitted's model,
+    /// I = Ia + Kd Σ(N·Lj) + Ks Is + Kt It (Ch. 4 (f)).
+    pub ka: f64,
+    pub kd: f64,
+    pub ks: f64,
+    pub kt: f64,
+    /// `Iobject`: ambient reflection colour of the object.
+    pub iobject: Intensity,
+    /// `surface`: the kind of surface.
+    pub surface: SurfaceAttribute,
+    /// `prcntrfl`: the share of the reflected ray a `mirrored` surface keeps.
+    pub prcntrfl: f64,
+    /// Refractive index for `transparent` and `crystal` (the base program's;
+    /// not printed in Fig. 4.3).
+    pub index: f64,
+    pub paint: Option<Paint>,
+    pub texture: Option<Texture>,
+}
+
+/// `coeff = record a, b, c, d, max, min, first, last : real end`: one
+/// coordinate of one cubic segment, x(t) = a t³ + b t² + c t + d for t in
+/// [first, last], with min/max the bounds of its control points (`spline`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Coeff {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+    pub d: f64,
+    pub max: f64,
+    pub min: f64,
+    pub first: f64,
+    pub last: f64,
+}
+
+/// The curve kind of a sweep contour (`spline`'s `Bezier` argument:
+/// 0 is the uniform cubic B-spline, 1 the composite cubic Bezier).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CurveKind {
+    Bspline,
+    Bezier,
+}
+
+/// `boundingbox = record xmin, xmax, ymin, ymax, zmin, zmax : real end`,
+/// in the object's local frame (`spline` fills it: `tbox`, `cbox`, `rbox`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BoundingBox {
+    pub xmin: f64,
+    pub xmax: f64,
+    pub ymin: f64,
+    pub ymax: f64,
+    pub zmin: f64,
+    pub zmax: f64,
+}
+
+/// The sweep variant of `objectrecord`: `orientt`, `segment`, `u`, `v`, and
+/// what the deck gives besides (the control points, `length`, `scale`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepShape {
+    /// `orientt`: the world axis the local z axis is mapped onto.
+    pub orientt: Axis,
+    pub curve: CurveKind,
+    /// The contour's control points (U, V) in the local x–y plane
+    /// (for `rotation`: U the radius, V the height).
+    pub points: Vec<[f64; 2]>,
+    /// `segment`: the number of cubic segments of the contour.
+    pub segment: usize,
+    /// `u[1..segment]`: the U (local x, or radius) coordinate of each segment.
+    pub u: Vec<Coeff>,
+    /// `v[1..segment]`: the V (local y, or height) coordinate of each segment.
+    pub v: Vec<Coeff>,
+    /// Extent of a translation or conic sweep along local +z.
+    pub length: f64,
+    /// Contour scale at z = `length` of a conic sweep (1 at z = 0).
+    pub scale: f64,
+    /// The bounding box of the contour (`spline`): one per object in
+    /// `thesis` fidelity, the class's shared `tbox`/`cbox`/`rbox` in
+    /// `listing` fidelity (erratum 9).
+    pub bbox: BoundingBox,
+}
+
+/// The variant part of `objectrecord`, in local coordinates (the local
+/// origin is the object's `sphereo`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere of the record's `radius` about the local origin.
+    Sphere,
+    /// A box centred on the local origin with edge lengths `lengths`.
+    Block { lengths: DVec3 },
+    /// `cylinder : (cylradius, orient, top, bottom, …)`: radius `cylradius`
+    /// about local z from `bottom` to `top`, closed by two caps.
+    Cylinder {
+        cylradius: f64,
+        orient: Axis,
+        top: f64,
+        bottom: f64,
+    },
+    /// `polyhydra : (orientp, vnu, …)`: a right prism over a convex polygon
+    /// in the local x–y plane (counter-clockwise), from z = 0 to `height`.
+    Prism {
+        orientp: Axis,
+        height: f64,
+        vertex: Vec<[f64; 2]>,
+    },
+    /// `translation, conic, rotation : (orientt, segment, u, v)`.
+    Sweep(SweepShape),
+}
+
+/// `objectrecord` of Fig. 4.3.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectRecord {
+    /// `name`: 1–10 characters.
+    pub name: String,
+    pub class: PrimitiveClass,
+    /// `surface`: index into [`Scene::surfaces`] (the Pascal `surfaceptr`).
+    pub surface: usize,
+    /// `transfm`: local → world.
+    pub transfm: DMat4,
+    /// `inverse`: world → local.
+    pub inverse: DMat4,
+    /// `sphereo`: where the local origin stands in the world.
+    pub sphereo: Points,
+    /// `angle`: the degrees the object has been turned about x, y and z.
+    pub angle: Points,
+    /// `radius`: a sphere's radius; for the other classes the radius of a
+    /// sphere about `sphereo` that holds the whole object.
+    pub radius: f64,
+    pub shape: Shape,
+}
+
+/// `ray = record x0, x1, y0, y1, z0, z1 : real end`: the Pascal ray runs
+/// from (x0, y0, z0) through (x1, y1, z1); here `origin` is the first point
+/// and `dir` the difference (x1 − x0, y1 − y0, z1 − z0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    pub origin: DVec3,
+    pub dir: DVec3,
+}
+
+impl Ray {
+    pub fn new(origin: DVec3, dir: DVec3) -> Self {
+        Ray { origin, dir }
+    }
+
+    /// The point at parameter `t`.
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + self.dir * t
+    }
+
+    /// The ray carried by an affine transform (`transformray`).
+    pub fn transformed(&self, m: &DMat4) -> Ray {
+        Ray {
+            origin: m.transform_point3(self.origin),
+            dir: m.transform_vector3(self.dir),
+        }
+    }
+}
+
+/// `intersectionrecord` of Fig. 4.3 (the second "圖 4.3"): what a hit
+/// returns to shading. `status` is the `Option` around it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntersectionRecord {
+    /// `dx, dy, dz`: the unit outward normal, in world coordinates.
+    pub normal: DVec3,
+    /// `px, py, pz`: the fudged-out intersection point (just outside).
+    pub p: DVec3,
+    /// `insidepx, insidepy, insidepz`: the fudged-in point (just inside).
+    pub insidep: DVec3,
+    /// `surface`: index into [`Scene::surfaces`].
+    pub surface: usize,
+    /// `parameter`: the ray parameter of the hit (the `dir` is unit length
+    /// for every ray the port traces, so this is also the distance).
+    pub parameter: f64,
+    /// `distance`: from the ray's origin to the hit.
+    pub distance: f64,
+    /// The object hit (index into [`Scene::objects`]); not in Fig. 4.3.
+    pub object: usize,
+    /// The hit point in the object's local frame; not in Fig. 4.3: patterns
+    /// and textures are painted from it.
+    pub local: DVec3,
+    /// The local outward normal, before transforming (chooses the block face
+    /// a pattern or texture is painted on).
+    pub local_normal: DVec3,
+}
+
+/// A hit in an object's local frame, as a shape's intersection returns it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalHit {
+    /// Ray parameter of the hit (rays are rigidly transformed, so this is the
+    /// world parameter too).
+    pub t: f64,
+    /// The hit point, local frame.
+    pub point: DVec3,
+    /// Unit outward normal, local frame.
+    pub normal: DVec3,
+}
+
+/// The root solver of the sweep intersection (`--solver`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Solver {
+    /// `laguerre` as printed (§2.5): the thesis's method and the default.
+    #[default]
+    Laguerre,
+    /// Every real root in the interval, isolated and polished; not the
+    /// thesis's method.
+    Robust,
+}
+
+/// How to render: the choices that are not part of the scene.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Options {
+    pub fidelity: Fidelity,
+    pub solver: Solver,
+}
+
+/// A point light (the base program's, not printed): deck `light`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightRecord {
+    pub name: String,
+    pub position: DVec3,
+    pub color: Intensity,
+}
+
+/// The view (deck `view`; the Pascal read it from the file `fview`).
+/// Reconstructed from the main program: `eyept`, the look point, and
+/// `screensize`, `scrndistance` of the screen window.
+#[derive(Clone, Debug, PartialEq)]
+pub struct View {
+    pub eyept: DVec3,
+    pub lookpt: DVec3,
+    /// `screensize`: the width of the window on the screen plane.
+    pub screensize: f64,
+    /// `scrndistance`: the distance of the screen plane from the eye.
+    pub scrndistance: f64,
+}
+
+/// The image (deck `image`): the final raster size, `masksize`×`masksize`
+/// subpixels a pixel, and the `aliasing` jitter amplitude (0–1 of a subpixel).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageSpec {
+    pub width: usize,
+    pub height: usize,
+    /// `masksize`: each pixel is traced as masksize × masksize subpixels.
+    pub masksize: usize,
+    /// `aliasing`: scales the `noise2` jitter of each subpixel's position.
+    pub aliasing: f64,
+}
+
+/// Where a deck record stands, for errors raised after parsing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Pos {
+    pub line: u32,
+    pub column: u32,
+}
+
+/// LAW 1–4 of Fig. 3.2: how the fraction of the shutter maps onto the path.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Law {
+    /// LAW 1: constant speed, f.
+    #[default]
+    Constant,
+    /// LAW 2: accelerate, 1 − cos(πf/2).
+    Accelerate,
+    /// LAW 3: decelerate, sin(πf/2).
+    Decelerate,
+    /// LAW 4: accelerate then decelerate, (1 − cos πf)/2.
+    Smooth,
+}
+
+/// Deck `motion` (§3.2.2): the object's path over the shutter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionRecord {
+    pub pos: Pos,
+    /// Index into [`Scene::objects`].
+    pub object: usize,
+    /// Where `sphereo` stands at t = 1.
+    pub to: DVec3,
+    /// Degrees added about x, y, z over the shutter.
+    pub turn: DVec3,
+    /// The inner control points of a cubic Bezier path, if any.
+    pub via: Option<[DVec3; 2]>,
+    pub law: Law,
+}
+
+/// How the segment counts of two key shapes are made equal (§3.2.3).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Expander {
+    /// `expanding`/`more`: Burtnyk & Wein 1971.
+    Burtnyk,
+    /// `expanding2`/`more2`/`plus`: the thesis's arc-length method.
+    #[default]
+    Arclength,
+}
+
+/// Deck `keyframe` (§3.1–3.3): a chain of key shapes. FIRST stays in the
+/// scene as the in-between object; the later key shapes are removed from the
+/// scene (`delete` in `goahead`) and kept here.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KeyframeRecord {
+    pub pos: Pos,
+    /// FIRST: index into [`Scene::objects`].
+    pub first: usize,
+    /// The later key shapes, in order (LAST alone for a pair).
+    pub rest: Vec<ObjectRecord>,
+    pub expander: Expander,
+}
+
+/// Deck `pattern` (Fig. 2.33): the M×M table of subpixel times, values
+/// 0..M²−1, `pattern[row][col]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatternRecord {
+    pub pos: Pos,
+    pub m: usize,
+    pub values: Vec<Vec<u32>>,
+}
+
+/// Deck `blur N` (§2.6.5): the CLT normal is the sum of N uniforms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlurRecord {
+    pub pos: Pos,
+    pub n: u32,
+}
+
+/// The scene `initialize` builds from a deck, read-only while rendering.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub view: View,
+    pub image: ImageSpec,
+    /// `backgrnd`: the background colour.
+    pub backgrnd: Intensity,
+    pub lights: Vec<LightRecord>,
+    pub surfaces: Vec<SurfaceRecord>,
+    /// `table`: the objects still in the scene, in deck order.
+    pub objects: Vec<ObjectRecord>,
+    /// Where each object's defining record stands (same indices as `objects`).
+    pub object_pos: Vec<Pos>,
+    pub motions: Vec<MotionRecord>,
+    pub keyframes: Vec<KeyframeRecord>,
+    pub blur: Option<BlurRecord>,
+    pub pattern: Option<PatternRecord>,
+}
