@@ -1,1 +1,2 @@
 //! Unit `proc` (being written).
+pub mod sweep;

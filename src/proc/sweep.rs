@@ -1,0 +1,1 @@
+//! laguerre, sorting, spline, outrectp, roottesting (being written).
