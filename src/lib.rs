@@ -10,6 +10,7 @@
 //! and the PS 390 display emulation [`psout`].
 
 pub mod deck;
+pub mod drt;
 pub mod proc;
 pub mod psout;
 pub mod raster;

@@ -1,1 +1,289 @@
-//! (being written)
+//! The main program `raytrace` (OCR text, lines 3013–3229): `initialize`,
+//! `getangle`, `goahead` for each key-frame pair, the motion table, the
+//! scanline loop with `translookpt`, `motionblur` and `raytrace` for every
+//! subpixel, `antialias` of each block of `masksize` scanlines, and
+//! `outputframe`.
+//!
+//! The steps keep the listing's order; what changes is the sharing (see
+//! DESIGN, "State"): the scene is read-only while rendering, rows of
+//! pixels are traced in parallel, and every lookup-table cursor is a
+//! function of the subpixel's (scanline, scancol), so an image is the same
+//! for any number of threads and equal to the listing's sequential order.
+//!
+//! Reconstructed here, as the thesis does not print them: `getangle`,
+//! `translookpt`, `antialias`, and where on the screen a subpixel lies.
+
+use rayon::prelude::*;
+
+use crate::drt::{noise2_table, MAXINDEX};
+use crate::raster::{rgbtochars, Raster};
+use crate::trace::{raytrace, TraceStats};
+use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, View};
+
+/// A scene the renderer cannot draw yet or at all.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// A record whose rendering is not part of the port yet: named with
+    /// where it stands, never dropped silently.
+    #[error("line {}:{}: the '{record}' record is read and checked, but this version of the renderer cannot draw it yet", .pos.line, .pos.column)]
+    Unsupported { pos: Pos, record: &'static str },
+}
+
+/// Refuses the records whose rendering is still to come (motion blur and
+/// key-frame deformation), naming the first of each.
+pub fn check_supported(scene: &Scene) -> Result<(), RenderError> {
+    if let Some(m) = scene.motions.first() {
+        return Err(RenderError::Unsupported { pos: m.pos, record: "motion" });
+    }
+    if let Some(k) = scene.keyframes.first() {
+        return Err(RenderError::Unsupported { pos: k.pos, record: "keyframe" });
+    }
+    if let Some(b) = &scene.blur {
+        return Err(RenderError::Unsupported { pos: b.pos, record: "blur" });
+    }
+    if let Some(p) = &scene.pattern {
+        return Err(RenderError::Unsupported { pos: p.pos, record: "pattern" });
+    }
+    Ok(())
+}
+
+/// The set-up the main program does between `initialize` and the scanline
+/// loop: the sweeps' `spline` coefficients and boxes (then, with later
+/// work, `goahead` per key-frame pair and the motion table).
+pub fn prepare(scene: &mut Scene, opts: &Options) -> Result<(), RenderError> {
+    check_supported(scene)?;
+    crate::shapes::sweep::prepare_sweeps(scene, opts.fidelity);
+    Ok(())
+}
+
+/// `getangle(sinz, cosz, sinx, cosx)`: the angles of the world → view
+/// rotation. Reconstructed from the main program, which negates both sines
+/// "for inverse rotations in translookpt": the view frame has the eye at
+/// its origin, looks along −y (the screen plane is `ypt := -scrndistance`)
+/// with z up; the world → view rotation turns about z by −β (the azimuth of
+/// the line of sight), then about x by −α (its elevation).
+pub fn getangle(view: &View) -> (f64, f64, f64, f64) {
+    let f = (view.lookpt - view.eyept).normalize();
+    // f = Rz(β)·Rx(α)·(0, −1, 0) = (sinβ cosα, −cosβ cosα, −sinα).
+    let cos_a = (f.x * f.x + f.y * f.y).sqrt();
+    let (sin_a, sin_b, cos_b) = (-f.z, f.x / cos_a, -f.y / cos_a);
+    // The world → view angles are −β and −α.
+    (-sin_b, cos_b, -sin_a, cos_a)
+}
+
+/// `translookpt(xpt, ypt, zpt, sinz, cosz, sinx, cosx)`: a point of the
+/// view frame to the world, with the (already negated) sines of the main
+/// program: turn about x by α, about z by β, then move to the eye.
+/// Reconstructed.
+#[allow(clippy::too_many_arguments)]
+pub fn translookpt(xpt: f64, ypt: f64, zpt: f64, sinz: f64, cosz: f64, sinx: f64, cosx: f64, eyept: DVec3) -> DVec3 {
+    // About x by α.
+    let (y1, z1) = (ypt * cosx - zpt * sinx, ypt * sinx + zpt * cosx);
+    // About z by β.
+    let (x2, y2) = (xpt * cosz - y1 * sinz, xpt * sinz + y1 * cosz);
+    eyept + DVec3::new(x2, y2, z1)
+}
+
+/// The camera of the main program: the negated `getangle` sines, the
+/// screen window and the virtual (subpixel) raster.
+#[derive(Clone, Debug)]
+pub struct Camera {
+    eyept: DVec3,
+    sinz: f64,
+    cosz: f64,
+    sinx: f64,
+    cosx: f64,
+    scrndistance: f64,
+    /// Width and height of the window on the screen plane.
+    screen_w: f64,
+    screen_h: f64,
+    /// `virthighx`, `virthighy`: the subpixel raster, width·masksize by
+    /// height·masksize.
+    virthighx: usize,
+    virthighy: usize,
+}
+
+impl Camera {
+    pub fn new(scene: &Scene, fidelity: Fidelity) -> Camera {
+        let (sinz, cosz, sinx, cosx) = getangle(&scene.view);
+        let img = &scene.image;
+        let screen_w = scene.view.screensize;
+        let screen_h = match fidelity {
+            // Erratum 14, listing: `xpt` and `zpt` both span `screensize`,
+            // so a raster that is not square gets pixels that are not.
+            Fidelity::Listing => screen_w,
+            // Thesis: square pixels, the height follows the aspect.
+            Fidelity::Thesis => screen_w * img.height as f64 / img.width as f64,
+        };
+        Camera {
+            eyept: scene.view.eyept,
+            sinz: -sinz,
+            cosz,
+            sinx: -sinx,
+            cosx,
+            scrndistance: scene.view.scrndistance,
+            screen_w,
+            screen_h,
+            virthighx: img.width * img.masksize,
+            virthighy: img.height * img.masksize,
+        }
+    }
+
+    /// The primary ray through subpixel (`scancol`, `scanline`), both
+    /// 1-based as in the listing, scanline 1 at the top, moved by the jitter
+    /// (jx, jz) in subpixels. Reconstructed: the listing's `xpt`, `zpt`
+    /// measure from one corner of the window and `translookpt` is not
+    /// printed; here the window is centred on the line of sight and its
+    /// x runs to the viewer's right. The view frame's +x is the viewer's
+    /// left (it looks along −y with z up), hence the minus sign.
+    pub fn ray(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> Ray {
+        let right = ((scancol - 0.5 + jx) / self.virthighx as f64 - 0.5) * self.screen_w;
+        let up = (0.5 - (scanline - 0.5 + jz) / self.virthighy as f64) * self.screen_h;
+        let xpt = -right;
+        let ypt = -self.scrndistance;
+        let zpt = up;
+        let p = translookpt(xpt, ypt, zpt, self.sinz, self.cosz, self.sinx, self.cosx, self.eyept);
+        Ray::new(self.eyept, (p - self.eyept).normalize())
+    }
+}
+
+/// What a render returns: the raster and its counts.
+#[derive(Clone, Debug)]
+pub struct Render {
+    pub raster: Raster,
+    pub stats: TraceStats,
+    /// Primary rays traced, the listing's extra column included.
+    pub primary: u64,
+}
+
+/// The scanline loop of the main program over a prepared scene. `progress`
+/// is called once per finished row of final pixels (from worker threads).
+///
+/// Erratum 13: the listing's column loop runs `for scancol := quickx to
+/// quickx2` with `quickx = 0`, tracing one column more than the raster
+/// has; `listing` fidelity traces it (and `antialias` never reads it),
+/// `thesis` fidelity starts at 1.
+///
+/// Erratum 15 (the port's own reading): `aindex := aindex + 1` is commented
+/// out in the listing, so every subpixel moves by the same
+/// `noise2[aindex]*aliasing`, in x and z alike; `thesis` fidelity (§2.1.3
+/// (4), stochastic sampling) advances the cursor: subpixel k of the scan
+/// order takes entries 2k and 2k+1 (mod `maxindex`) for x and z.
+pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
+    let img = &scene.image;
+    let m = img.masksize;
+    let camera = Camera::new(scene, opts.fidelity);
+    let noise2 = noise2_table();
+    let first_col = match opts.fidelity {
+        Fidelity::Listing => 0,
+        Fidelity::Thesis => 1,
+    };
+    let jitter = |scanline: usize, scancol: usize| -> (f64, f64) {
+        match opts.fidelity {
+            Fidelity::Listing => {
+                let j = noise2[0] * img.aliasing;
+                (j, j)
+            }
+            Fidelity::Thesis => {
+                let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
+                let ax = (2 * k) % MAXINDEX;
+                let az = (2 * k + 1) % MAXINDEX;
+                (noise2[ax] * img.aliasing, noise2[az] * img.aliasing)
+            }
+        }
+    };
+
+    let mut pixels = vec![[0u8; 3]; img.width * img.height];
+    let per_row: Vec<(TraceStats, u64)> = pixels
+        .par_chunks_mut(img.width)
+        .enumerate()
+        .map(|(row, out)| {
+            let mut stats = TraceStats::default();
+            let mut primary = 0u64;
+            let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
+            for sub in 0..m {
+                let scanline = row * m + sub + 1;
+                for scancol in first_col..=camera.virthighx {
+                    let (jx, jz) = jitter(scanline, scancol);
+                    let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
+                    let acolor = raytrace(scene, &aray, 1.0, false, 1, opts, &mut stats);
+                    primary += 1;
+                    if scancol >= 1 {
+                        virtual_rows[sub * img.width + (scancol - 1) / m] += acolor;
+                    }
+                }
+            }
+            antialias(&virtual_rows, m, out);
+            progress();
+            (stats, primary)
+        })
+        .collect();
+    let mut stats = TraceStats::default();
+    let mut primary = 0;
+    for (s, p) in per_row {
+        stats += s;
+        primary += p;
+    }
+    Render { raster: Raster { width: img.width, height: img.height, pixels }, stats, primary }
+}
+
+/// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the
+/// `masksize` scanlines of subpixels above it. Reconstructed: the box
+/// filter, the mean of the masksize × masksize subpixels of each pixel
+/// (§2.1.3 (2), supersampling). `sums` holds, for each of the `m` subpixel
+/// rows, each pixel's sum over its `m` subpixel columns.
+fn antialias(sums: &[Intensity], m: usize, out: &mut [[u8; 3]]) {
+    let width = out.len();
+    for (x, px) in out.iter_mut().enumerate() {
+        let total: Intensity = (0..m).map(|sub| sums[sub * width + x]).sum();
+        *px = rgbtochars(total / (m * m) as f64);
+    }
+}
+
+/// The lines the listing writes to `debugf` for a frame: one per scanline
+/// of the subpixel raster, `kfTIRcnt`, and the frame's end.
+pub fn debug_log(scene: &Scene, render: &Render) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    for scanline in 1..=scene.image.height * scene.image.masksize {
+        let _ = writeln!(s, " scanline={scanline:5}");
+    }
+    let _ = writeln!(s, "kfTIRcnt={:9}", render.stats.kftircnt);
+    let _ = writeln!(s);
+    let _ = writeln!(s, "FRAME NUMBER{:4}---DONE", 1);
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn view(eye: [f64; 3], look: [f64; 3]) -> View {
+        View { eyept: DVec3::from_array(eye), lookpt: DVec3::from_array(look), screensize: 2.0, scrndistance: 1.0 }
+    }
+
+    /// The point straight ahead on the screen lies on the line of sight, for
+    /// eyes in every octant.
+    #[test]
+    fn translookpt_centre_is_on_the_line_of_sight() {
+        for eye in [[0.0, -5.0, 0.0], [3.0, 4.0, 2.0], [-2.0, 1.0, -3.0], [0.1, 0.0, 7.0]] {
+            let v = view(eye, [0.5, 0.25, 0.0]);
+            let (sz, cz, sx, cx) = getangle(&v);
+            let p = translookpt(0.0, -v.scrndistance, 0.0, -sz, cz, -sx, cx, v.eyept);
+            let want = v.eyept + (v.lookpt - v.eyept).normalize() * v.scrndistance;
+            assert!((p - want).length() < 1e-12, "eye {eye:?}: {p} vs {want}");
+        }
+    }
+
+    /// Right on the screen is the viewer's right, up is world up.
+    #[test]
+    fn screen_axes_are_right_and_up() {
+        let v = view([0.0, -5.0, 0.0], [0.0, 0.0, 0.0]); // looking along +y
+        let (sz, cz, sx, cx) = getangle(&v);
+        let right = translookpt(-1.0, -1.0, 0.0, -sz, cz, -sx, cx, v.eyept);
+        let up = translookpt(0.0, -1.0, 1.0, -sz, cz, -sx, cx, v.eyept);
+        // Looking along +y with z up, the right hand is +x.
+        assert!((right - DVec3::new(1.0, -4.0, 0.0)).length() < 1e-12);
+        assert!((up - DVec3::new(0.0, -4.0, 1.0)).length() < 1e-12);
+    }
+}

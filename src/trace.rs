@@ -1,1 +1,253 @@
-//! (being written)
+//! Reconstructed base: `raytrace`, the recursive shading of the base
+//! program (not printed in the thesis). It follows §2.1 (the four kinds of
+//! surface and their terms, Fig. 2.2–2.6) and Ch. 4 (f), Whitted's model
+//!
+//! I = Ia + Kd Σ(N·Lj) + Ks Is + Kt It,
+//!
+//! with the main program's call `raytrace(aray, 1.0, false, acolor, 1)`:
+//! a ray, its weight, whether it travels inside an object, and the depth.
+//!
+//! Choices the thesis leaves open, each written once here:
+//! - Ia = ka·Iobject; the diffuse term is kd·(N·L̂)·light colour·colour,
+//!   for each light that a shadow ray reaches.
+//! - `opaque`: Ia and Id only (§2.1 step 4(a): Is = It = 0). `mirrored`:
+//!   adds ks·prcntrfl·Is. `transparent` and `crystal`: add ks·Is and kt·It.
+//! - Shadow rays are stopped by every object but those of kind `light` and
+//!   `background`, and `crystal`, which lets kt·colour of the light through
+//!   (a transparent object casts a full shadow, as Whitted's first images
+//!   do).
+//! - `light` surfaces return their colour; `background` surfaces return the
+//!   background colour.
+//! - Recursion stops at depth [`MAXDEPTH`] or when a ray's weight falls
+//!   below [`MINWEIGHT`]; total internal reflection sends the transmitted
+//!   weight along the reflected direction and is counted (`kfTIRcnt`).
+
+use crate::shapes::{face_coords, intersect_object};
+use crate::types::{
+    DVec3, Intensity, IntersectionRecord, ObjectRecord, Options, PaintKind, Painting, Ray, Scene,
+    SurfaceAttribute, SurfaceRecord,
+};
+
+/// The deepest recursion `raytrace` makes (the main program calls it at
+/// depth 1). The base program's limit is not printed; 6 is the port's.
+pub const MAXDEPTH: u32 = 6;
+
+/// Rays whose weight would contribute less than this (about half a step of
+/// an 8-bit channel) are not traced.
+pub const MINWEIGHT: f64 = 0.002;
+
+/// How far the fudged-out and fudged-in points of an intersection stand
+/// off the surface, relative to the size of the coordinates.
+const FUDGE: f64 = 1e-7;
+
+/// Rays start this far along (relative) so that a ray leaving a fudged
+/// point does not meet the surface it left.
+const TMIN: f64 = 1e-9;
+
+/// Counts of what a render did: rays of each kind and `kfTIRcnt`, the
+/// main program's count of total internal reflections.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraceStats {
+    /// Every ray `raytrace` was called with (primary and secondary).
+    pub rays: u64,
+    /// Shadow rays to the lights.
+    pub shadow_rays: u64,
+    /// `kfTIRcnt`: total internal reflections.
+    pub kftircnt: u64,
+}
+
+impl std::ops::AddAssign for TraceStats {
+    fn add_assign(&mut self, o: Self) {
+        self.rays += o.rays;
+        self.shadow_rays += o.shadow_rays;
+        self.kftircnt += o.kftircnt;
+    }
+}
+
+/// The nearest hit of a ray with the scene's objects beyond the ray's
+/// origin, as an `intersectionrecord` (Fig. 4.3); `None` is `status =
+/// false`. `dir` must be unit length.
+pub fn intersect(scene: &Scene, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
+    let mut best: Option<(usize, crate::types::LocalHit)> = None;
+    for (i, obj) in scene.objects.iter().enumerate() {
+        if let Some(h) = intersect_object(obj, ray, TMIN, opts) {
+            if best.is_none_or(|(_, b)| h.t < b.t) {
+                best = Some((i, h));
+            }
+        }
+    }
+    let (object, hit) = best?;
+    Some(record_of(&scene.objects[object], object, ray, &hit))
+}
+
+/// The intersection record of a local hit: world point and normal, and the
+/// fudged-out and fudged-in points.
+fn record_of(obj: &ObjectRecord, object: usize, ray: &Ray, hit: &crate::types::LocalHit) -> IntersectionRecord {
+    let point = ray.at(hit.t);
+    let normal = obj.transfm.transform_vector3(hit.normal).normalize();
+    let fudge = FUDGE * (1.0 + point.abs().max_element());
+    IntersectionRecord {
+        normal,
+        p: point + normal * fudge,
+        insidep: point - normal * fudge,
+        surface: obj.surface,
+        parameter: hit.t,
+        distance: hit.t * ray.dir.length(),
+        object,
+        local: hit.point,
+        local_normal: hit.normal,
+    }
+}
+
+/// The colour a surface shows at a hit under diffuse light: its `color`,
+/// or its pattern's (`painting` of unit `proc`), or its texture's.
+pub fn surface_color(scene: &Scene, surf: &SurfaceRecord, hit: &IntersectionRecord, opts: &Options) -> Intensity {
+    let obj = &scene.objects[hit.object];
+    if let Some(tex) = &surf.texture {
+        let f = face_coords(obj, hit.local, hit.local_normal);
+        return tex.texel(f.s / f.width, f.t / f.height);
+    }
+    let Some(paint) = &surf.paint else {
+        return surf.color;
+    };
+    let painting = match paint.kind {
+        PaintKind::Floor => {
+            let f = face_coords(obj, hit.local, hit.local_normal);
+            crate::proc::floortest(f.s, f.t, paint.lengthx, paint.lengthy)
+        }
+        PaintKind::Floorstar => {
+            let f = face_coords(obj, hit.local, hit.local_normal);
+            crate::proc::floorstar(f.s, f.t, paint.lengthx, paint.lengthy, opts.fidelity)
+        }
+        PaintKind::Star => {
+            // `startest` with cas = 1 (the x–z plane) on the point scaled to
+            // the unit sphere: a star where the object faces ±y.
+            let p = hit.local / obj.radius;
+            crate::proc::startest(p.x * paint.lengthx, p.y, p.z * paint.lengthy, 1)
+        }
+    };
+    match painting.unwrap_or_default() {
+        Painting::Normal1 => surf.color,
+        Painting::Floor1 | Painting::Star1 => paint.color,
+    }
+}
+
+/// `raytrace(aray, weight, inside, acolor, depth)`: the colour seen along
+/// a ray. Reconstructed (see the module's comment); `inside` is kept for
+/// the reader of the main program, the side is taken from the normal.
+pub fn raytrace(
+    scene: &Scene,
+    aray: &Ray,
+    weight: f64,
+    inside: bool,
+    depth: u32,
+    opts: &Options,
+    stats: &mut TraceStats,
+) -> Intensity {
+    let _ = inside;
+    stats.rays += 1;
+    let Some(hit) = intersect(scene, aray, opts) else {
+        return scene.backgrnd;
+    };
+    let surf = &scene.surfaces[hit.surface];
+    match surf.surface {
+        SurfaceAttribute::Background => return scene.backgrnd,
+        SurfaceAttribute::Light => return surf.color,
+        _ => {}
+    }
+    let d = aray.dir;
+    // Which side the ray came from: `n` faces the ray, `near` is the fudged
+    // point on its side and `far` the one on the other.
+    let entering = hit.normal.dot(d) < 0.0;
+    let (n, near, far) = if entering {
+        (hit.normal, hit.p, hit.insidep)
+    } else {
+        (-hit.normal, hit.insidep, hit.p)
+    };
+    let color = surface_color(scene, surf, &hit, opts);
+    let ambient_color = if surf.paint.is_some() || surf.texture.is_some() { color } else { surf.iobject };
+    let mut i = surf.ka * ambient_color;
+    i += surf.kd * diffuse(scene, near, n, opts, stats) * color;
+
+    let (ks_weight, kt_weight) = match surf.surface {
+        SurfaceAttribute::Opaque => (0.0, 0.0),
+        SurfaceAttribute::Mirrored => (surf.ks * surf.prcntrfl, 0.0),
+        _ => (surf.ks, surf.kt),
+    };
+    if depth >= MAXDEPTH {
+        return i;
+    }
+    let reflected = d - 2.0 * d.dot(n) * n;
+    if ks_weight > 0.0 && weight * ks_weight >= MINWEIGHT {
+        let r = Ray::new(near, reflected.normalize());
+        i += ks_weight * raytrace(scene, &r, weight * ks_weight, !entering, depth + 1, opts, stats);
+    }
+    if kt_weight > 0.0 && weight * kt_weight >= MINWEIGHT {
+        let eta = if entering { 1.0 / surf.index } else { surf.index };
+        let t = match refract(d, n, eta) {
+            Some(t) => Ray::new(far, t),
+            None => {
+                stats.kftircnt += 1;
+                Ray::new(near, reflected.normalize())
+            }
+        };
+        i += kt_weight * raytrace(scene, &t, weight * kt_weight, entering, depth + 1, opts, stats);
+    }
+    i
+}
+
+/// Σ (N·L̂j) · light colour over the lights a shadow ray from `p` reaches,
+/// each shadow ray attenuated by the `crystal` objects it passes.
+fn diffuse(scene: &Scene, p: DVec3, n: DVec3, opts: &Options, stats: &mut TraceStats) -> Intensity {
+    let mut sum = Intensity::ZERO;
+    for light in &scene.lights {
+        let to_light = light.position - p;
+        let dist = to_light.length();
+        let l = to_light / dist;
+        let cos = n.dot(l);
+        if cos <= 0.0 {
+            continue;
+        }
+        stats.shadow_rays += 1;
+        let transmit = shadow(scene, Ray::new(p, l), dist, opts);
+        sum += cos * light.color * transmit;
+    }
+    sum
+}
+
+/// How much light passes along a shadow ray to a light `dist` away.
+fn shadow(scene: &Scene, ray: Ray, dist: f64, opts: &Options) -> Intensity {
+    let mut transmit = Intensity::ONE;
+    for obj in &scene.objects {
+        let surf = &scene.surfaces[obj.surface];
+        if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
+            continue;
+        }
+        let Some(h) = intersect_object(obj, &ray, TMIN, opts) else {
+            continue;
+        };
+        if h.t >= dist {
+            continue;
+        }
+        if surf.surface == SurfaceAttribute::Crystal {
+            // Once through each crystal object (its two walls count as one).
+            transmit *= surf.kt * surf.color;
+        } else {
+            return Intensity::ZERO;
+        }
+    }
+    transmit
+}
+
+/// Snell's law: the refracted unit direction of unit `d` at a surface whose
+/// unit normal `n` faces the incoming ray, with `eta` = n₁/n₂; `None` for
+/// total internal reflection.
+pub fn refract(d: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
+    let cos_i = -d.dot(n);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t > 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((eta * d + (eta * cos_i - cos_t) * n).normalize())
+}

@@ -1,1 +1,199 @@
-fn main(){}
+//! `raytrace`: renders a scene deck to a raster file, as the thesis's
+//! program did (its main program is `raytrace::raytrace`).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use raytrace::types::{Fidelity, Options, Solver};
+
+/// The scene rendered when no deck is named: legacy_pascal/decks/default.deck.
+const DEFAULT_DECK: &str = include_str!("../../legacy_pascal/decks/default.deck");
+
+const AFTER_HELP: &str = "\
+With no DECK, renders the embedded default deck (legacy_pascal/decks/default.deck)
+to raster/default.ras and raster/default.png.
+
+The raster file is a Sun rasterfile (24-bit RT_STANDARD), the format the thesis
+sent to the PS 390 through psout; look at it with `psout FILE`.
+
+Exit status: 0 on success, 2 for an error in the deck or an input file
+(reported as FILE:LINE:COLUMN), 1 for anything else (e.g. an output file that
+cannot be written). Nothing is written when the deck has an error.";
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "raytrace",
+    version,
+    about = "Render a scene deck of TR-88-036 (motion-blurred deforming sweep objects) to a raster file",
+    after_help = AFTER_HELP
+)]
+struct Cli {
+    /// The scene deck (format: legacy_pascal/DECK.md). Omit it for the embedded default deck.
+    deck: Option<PathBuf>,
+
+    /// The raster file to write [default: raster/<deck name>.ras].
+    #[arg(short, long, value_name = "FILE")]
+    output: Option<PathBuf>,
+
+    /// Also write the image as PNG to FILE (the default deck always gets raster/default.png).
+    #[arg(long, value_name = "FILE")]
+    png: Option<PathBuf>,
+
+    /// Follow the printed listings quirks included (listing) or the thesis text (thesis);
+    /// legacy_pascal/DEVIATIONS.md lists every difference.
+    #[arg(long, value_enum, default_value_t = FidelityArg::Thesis)]
+    fidelity: FidelityArg,
+
+    /// Root solver for sweep objects: the thesis's laguerre, or a robust one that finds every root.
+    #[arg(long, value_enum, default_value_t = SolverArg::Laguerre)]
+    solver: SolverArg,
+
+    /// Worker threads [default: one per core]; the image is the same for any number.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+
+    /// No progress bar and no summary line.
+    #[arg(short, long)]
+    quiet: bool,
+
+    /// Write the listing's debug log (the Pascal `debugf`: a line per scanline, kfTIRcnt) to FILE.
+    #[arg(long, value_name = "FILE")]
+    debug: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum FidelityArg {
+    Listing,
+    Thesis,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum SolverArg {
+    Laguerre,
+    Robust,
+}
+
+/// An error and the exit status it ends with.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+fn input_error(message: impl ToString) -> Failure {
+    Failure { code: 2, message: message.to_string() }
+}
+
+fn other_error(message: impl ToString) -> Failure {
+    Failure { code: 1, message: message.to_string() }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(&cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("raytrace: {}", f.message);
+            ExitCode::from(f.code)
+        }
+    }
+}
+
+fn run(cli: &Cli) -> Result<(), Failure> {
+    let opts = Options {
+        fidelity: match cli.fidelity {
+            FidelityArg::Listing => Fidelity::Listing,
+            FidelityArg::Thesis => Fidelity::Thesis,
+        },
+        solver: match cli.solver {
+            SolverArg::Laguerre => Solver::Laguerre,
+            SolverArg::Robust => Solver::Robust,
+        },
+    };
+
+    // The deck: text, the name its errors carry, the folder its files are relative to.
+    let (source, file_name, deck_dir, stem) = match &cli.deck {
+        Some(path) => {
+            let source = std::fs::read_to_string(path)
+                .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+            let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("out".into());
+            (source, path.display().to_string(), dir, stem)
+        }
+        None => (
+            DEFAULT_DECK.to_string(),
+            "default.deck".to_string(),
+            PathBuf::from("legacy_pascal/decks"),
+            "default".to_string(),
+        ),
+    };
+    let output = cli.output.clone().unwrap_or_else(|| PathBuf::from(format!("raster/{stem}.ras")));
+    let png = cli.png.clone().or_else(|| cli.deck.is_none().then(|| PathBuf::from("raster/default.png")));
+
+    let mut scene = raytrace::deck::initialize(&source, &file_name, &deck_dir, opts.fidelity).map_err(input_error)?;
+    raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| input_error(format!("{file_name}:{e}")))?;
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cli.threads.unwrap_or(0))
+        .build()
+        .map_err(other_error)?;
+    let bar = if cli.quiet {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::with_draw_target(Some(scene.image.height as u64), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
+                .map_err(other_error)?
+                .progress_chars("=> "),
+        );
+        bar.set_message(format!("tracing {file_name}"));
+        bar
+    };
+    let started = Instant::now();
+    let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
+    let elapsed = started.elapsed();
+    bar.finish_and_clear();
+
+    for path in std::iter::once(&output).chain(png.iter()).chain(cli.debug.iter()) {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
+        }
+    }
+    raytrace::raster::outputframe(&output, &render.raster).map_err(|e| other_error(format!("{}: {e}", output.display())))?;
+    if let Some(png) = &png {
+        write_png(png, &render.raster)?;
+    }
+    if let Some(debug) = &cli.debug {
+        std::fs::write(debug, raytrace::raytrace::debug_log(&scene, &render))
+            .map_err(|e| other_error(format!("{}: {e}", debug.display())))?;
+    }
+    if !cli.quiet {
+        let img = &scene.image;
+        eprintln!(
+            "raytrace: {} → {}{} ({}×{}, {}×{} subpixels, {} rays, {:.2} s)",
+            file_name,
+            output.display(),
+            png.as_ref().map(|p| format!(" and {}", p.display())).unwrap_or_default(),
+            img.width,
+            img.height,
+            img.masksize,
+            img.masksize,
+            render.stats.rays,
+            elapsed.as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+#[cfg(feature = "png")]
+fn write_png(path: &Path, raster: &raytrace::raster::Raster) -> Result<(), Failure> {
+    raytrace::raster::write_png(path, raster).map_err(|e| other_error(format!("{}: {e}", path.display())))
+}
+
+#[cfg(not(feature = "png"))]
+fn write_png(path: &Path, _raster: &raytrace::raster::Raster) -> Result<(), Failure> {
+    Err(input_error(format!("{}: this build has no PNG export (the `png` feature is off)", path.display())))
+}

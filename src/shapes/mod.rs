@@ -1,2 +1,346 @@
-//! Reconstructed base: the primitive intersections (being written).
+//! Reconstructed base: the primitive intersections of the base program
+//! `Raytrace` (Ch. 4 (e): sphere, block, cylinder, prism, sweep object).
+//! The thesis does not print them; they follow the usual closed forms
+//! (Rogers 1985, the thesis's reference for the static program), in each
+//! object's local frame: the ray is carried by the object's `inverse`, the
+//! hit back by its `transfm`. Both are rigid, so the ray parameter is the
+//! same in both frames.
+//!
+//! Every function returns the nearest hit with parameter greater than
+//! `tmin`, entering or leaving, with the unit OUTWARD normal; the shader
+//! decides which side the ray came from.
+
 pub mod sweep;
+
+use crate::types::{DVec3, LocalHit, ObjectRecord, Options, Ray, Shape};
+
+/// A sphere of `radius` about the local origin.
+///
+/// Reconstructed: |o + t d|² = r², a quadratic in t.
+pub fn intersect_sphere(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let a = ray.dir.length_squared();
+    let half_b = ray.origin.dot(ray.dir);
+    let c = ray.origin.length_squared() - radius * radius;
+    let disc = half_b * half_b - a * c;
+    if disc < 0.0 || a == 0.0 {
+        return None;
+    }
+    let sq = disc.sqrt();
+    // The numerically stable pair of roots: q = −(b/2 + sign(b/2)·√disc).
+    let q = -(half_b + half_b.signum() * sq);
+    let (mut t0, mut t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
+    if t0 > t1 {
+        std::mem::swap(&mut t0, &mut t1);
+    }
+    let t = if t0 > tmin {
+        t0
+    } else if t1 > tmin {
+        t1
+    } else {
+        return None;
+    };
+    let point = ray.at(t);
+    Some(LocalHit { t, point, normal: point / radius })
+}
+
+/// The hit of a ray with a convex solid given as the intersection of
+/// half-spaces n·p ≤ h (n unit, outward): the Cyrus–Beck clip. Blocks and
+/// prisms both use it.
+fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f64)>) -> Option<LocalHit> {
+    let mut t_enter = f64::NEG_INFINITY;
+    let mut t_exit = f64::INFINITY;
+    let mut n_enter = DVec3::ZERO;
+    let mut n_exit = DVec3::ZERO;
+    for (n, h) in planes {
+        let denom = n.dot(ray.dir);
+        let dist = h - n.dot(ray.origin);
+        if denom == 0.0 {
+            // Parallel to the plane: inside its half-space or never.
+            if dist < 0.0 {
+                return None;
+            }
+            continue;
+        }
+        let t = dist / denom;
+        if denom < 0.0 {
+            if t > t_enter {
+                t_enter = t;
+                n_enter = n;
+            }
+        } else if t < t_exit {
+            t_exit = t;
+            n_exit = n;
+        }
+    }
+    if t_enter > t_exit {
+        return None;
+    }
+    let (t, normal) = if t_enter > tmin {
+        (t_enter, n_enter)
+    } else if t_exit > tmin && t_exit.is_finite() {
+        (t_exit, n_exit)
+    } else {
+        return None;
+    };
+    Some(LocalHit { t, point: ray.at(t), normal })
+}
+
+/// A box centred on the local origin with edge lengths `lengths`.
+///
+/// Reconstructed: the slab test, as a convex clip of six planes.
+pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let h = lengths * 0.5;
+    let planes = [
+        (DVec3::X, h.x),
+        (DVec3::NEG_X, h.x),
+        (DVec3::Y, h.y),
+        (DVec3::NEG_Y, h.y),
+        (DVec3::Z, h.z),
+        (DVec3::NEG_Z, h.z),
+    ];
+    intersect_convex(ray, tmin, planes.into_iter())
+}
+
+/// A right prism over the convex, counter-clockwise polygon `vertex` in the
+/// local x–y plane, from z = 0 to `height`.
+///
+/// Reconstructed: a convex clip of the side planes and the two caps.
+pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let n = vertex.len();
+    let sides = (0..n).map(move |i| {
+        let [x0, y0] = vertex[i];
+        let [x1, y1] = vertex[(i + 1) % n];
+        // Outward normal of a counter-clockwise edge: (dy, −dx).
+        let normal = DVec3::new(y1 - y0, x0 - x1, 0.0).normalize();
+        (normal, normal.x * x0 + normal.y * y0)
+    });
+    let caps = [(DVec3::Z, height), (DVec3::NEG_Z, 0.0)];
+    intersect_convex(ray, tmin, sides.chain(caps))
+}
+
+/// A cylinder of radius `cylradius` about local z from `bottom` to `top`,
+/// closed by two caps.
+///
+/// Reconstructed: x² + y² = r² for the side, the planes z = bottom, z = top
+/// within the radius for the caps.
+pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let (o, d) = (ray.origin, ray.dir);
+    let mut best: Option<LocalHit> = None;
+    let mut consider = |t: f64, normal: DVec3| {
+        if t > tmin && best.is_none_or(|b| t < b.t) {
+            best = Some(LocalHit { t, point: ray.at(t), normal });
+        }
+    };
+    let a = d.x * d.x + d.y * d.y;
+    if a > 0.0 {
+        let half_b = o.x * d.x + o.y * d.y;
+        let c = o.x * o.x + o.y * o.y - cylradius * cylradius;
+        let disc = half_b * half_b - a * c;
+        if disc >= 0.0 {
+            let sq = disc.sqrt();
+            let q = -(half_b + half_b.signum() * sq);
+            if q != 0.0 {
+                for t in [q / a, c / q] {
+                    let z = o.z + t * d.z;
+                    if z >= bottom && z <= top {
+                        let p = ray.at(t);
+                        consider(t, DVec3::new(p.x, p.y, 0.0) / cylradius);
+                    }
+                }
+            }
+        }
+    }
+    if d.z != 0.0 {
+        for (zc, nz) in [(bottom, -1.0), (top, 1.0)] {
+            let t = (zc - o.z) / d.z;
+            let (x, y) = (o.x + t * d.x, o.y + t * d.y);
+            if x * x + y * y <= cylradius * cylradius {
+                consider(t, DVec3::new(0.0, 0.0, nz));
+            }
+        }
+    }
+    best
+}
+
+/// The hit of a world ray with one object: the bounding-sphere test
+/// (`sphereo`, `radius`), the ray into the local frame, the shape's own
+/// intersection. Returns the local hit (its `t` is the world parameter).
+pub fn intersect_object(obj: &ObjectRecord, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
+    if !bounding_sphere_hit(obj.sphereo, obj.radius, ray, tmin) {
+        return None;
+    }
+    let local = ray.transformed(&obj.inverse);
+    match &obj.shape {
+        Shape::Sphere => intersect_sphere(obj.radius, &local, tmin),
+        Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
+        Shape::Cylinder { cylradius, top, bottom, .. } => {
+            intersect_cylinder(*cylradius, *bottom, *top, &local, tmin)
+        }
+        Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
+        Shape::Sweep(sw) => sweep::intersect_sweep(obj.class, sw, &local, tmin, opts),
+    }
+}
+
+/// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
+/// A cheap rejection before any shape's own test (§2.1.2 (1)(b), the
+/// bounding volume). Padded by a part in 10⁶ so no surface hit is lost.
+fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
+    let r = radius * (1.0 + 1e-6) + 1e-9;
+    let oc = ray.origin - centre;
+    let a = ray.dir.length_squared();
+    let half_b = oc.dot(ray.dir);
+    let c = oc.length_squared() - r * r;
+    if c <= 0.0 {
+        return true; // the ray starts inside
+    }
+    // Outside and moving away, or missing.
+    half_b < 0.0 && half_b * half_b - a * c >= 0.0 && {
+        let far = (-half_b + (half_b * half_b - a * c).sqrt()) / a;
+        far > tmin
+    }
+}
+
+/// Where a pattern or texture is painted: coordinates on the face hit, in
+/// object units from the face's lower-left corner as seen from outside,
+/// and the face's extent.
+///
+/// Reconstructed (the thesis prints the pattern procedures, not how the
+/// base program chose their arguments): block faces take the two
+/// coordinates that span them, upright on the side faces so that a picture
+/// pasted on them reads left to right (Fig. 5.3, 5.5); a cylinder's side
+/// unrolls by arc length from local +x, counter-clockwise; everything else
+/// (caps, spheres, prisms, sweeps) is projected along local z onto the
+/// local x–y plane, from −radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceCoords {
+    pub s: f64,
+    pub t: f64,
+    pub width: f64,
+    pub height: f64,
+}
+
+/// See [`FaceCoords`].
+pub fn face_coords(obj: &ObjectRecord, local: DVec3, local_normal: DVec3) -> FaceCoords {
+    match &obj.shape {
+        Shape::Block { lengths } => {
+            let h = *lengths * 0.5;
+            let a = local_normal.abs();
+            let (s, t, width, height) = if a.z >= a.x && a.z >= a.y {
+                if local_normal.z > 0.0 {
+                    (local.x + h.x, local.y + h.y, lengths.x, lengths.y)
+                } else {
+                    (local.x + h.x, h.y - local.y, lengths.x, lengths.y)
+                }
+            } else if a.y >= a.x {
+                if local_normal.y > 0.0 {
+                    (h.x - local.x, local.z + h.z, lengths.x, lengths.z)
+                } else {
+                    (local.x + h.x, local.z + h.z, lengths.x, lengths.z)
+                }
+            } else if local_normal.x > 0.0 {
+                (local.y + h.y, local.z + h.z, lengths.y, lengths.z)
+            } else {
+                (h.y - local.y, local.z + h.z, lengths.y, lengths.z)
+            };
+            FaceCoords { s, t, width, height }
+        }
+        Shape::Cylinder { cylradius, top, bottom, .. } if local_normal.z.abs() < 0.5 => {
+            let theta = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU);
+            FaceCoords {
+                s: theta * cylradius,
+                t: local.z - bottom,
+                width: std::f64::consts::TAU * cylradius,
+                height: top - bottom,
+            }
+        }
+        _ => {
+            let r = obj.radius;
+            FaceCoords { s: local.x + r, t: local.y + r, width: 2.0 * r, height: 2.0 * r }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray::new(DVec3::from_array(o), DVec3::from_array(d).normalize())
+    }
+
+    fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).length() < 1e-12
+    }
+
+    #[test]
+    fn sphere_hit_distance_and_normal() {
+        let h = intersect_sphere(2.0, &ray([0.0, -10.0, 0.0], [0.0, 1.0, 0.0]), 1e-9).unwrap();
+        assert!((h.t - 8.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::NEG_Y));
+        // From inside, the far side.
+        let h = intersect_sphere(2.0, &ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]), 1e-9).unwrap();
+        assert!((h.t - 2.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::Z));
+        // A ray at distance 3 from the centre misses.
+        assert!(intersect_sphere(2.0, &ray([3.0, -10.0, 0.0], [0.0, 1.0, 0.0]), 1e-9).is_none());
+        // An oblique hit: from (1, −5, 0) along +y meets x² + y² = 4 at y = −√3.
+        let h = intersect_sphere(2.0, &ray([1.0, -5.0, 0.0], [0.0, 1.0, 0.0]), 1e-9).unwrap();
+        assert!((h.t - (5.0 - 3f64.sqrt())).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::new(0.5, -3f64.sqrt() / 2.0, 0.0)));
+    }
+
+    #[test]
+    fn block_faces() {
+        let l = DVec3::new(2.0, 4.0, 6.0);
+        let h = intersect_block(l, &ray([-5.0, 0.5, 0.5], [1.0, 0.0, 0.0]), 1e-9).unwrap();
+        assert!((h.t - 4.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::NEG_X));
+        let h = intersect_block(l, &ray([0.0, 0.0, 10.0], [0.0, 0.0, -1.0]), 1e-9).unwrap();
+        assert!((h.t - 7.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::Z));
+        // From inside: the exit face.
+        let h = intersect_block(l, &ray([0.0, 0.0, 0.0], [0.0, 1.0, 0.0]), 1e-9).unwrap();
+        assert!((h.t - 2.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::Y));
+        // Parallel to a face, outside its slab.
+        assert!(intersect_block(l, &ray([1.5, -9.0, 0.0], [0.0, 1.0, 0.0]), 1e-9).is_none());
+        // Diagonal into a corner region that misses.
+        assert!(intersect_block(l, &ray([-5.0, -5.0, 0.0], [1.0, -1.0, 0.0]), 1e-9).is_none());
+    }
+
+    #[test]
+    fn cylinder_side_and_caps() {
+        let h = intersect_cylinder(1.0, -1.0, 2.0, &ray([-5.0, 0.0, 0.5], [1.0, 0.0, 0.0]), 1e-9).unwrap();
+        assert!((h.t - 4.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::NEG_X));
+        let h = intersect_cylinder(1.0, -1.0, 2.0, &ray([0.3, 0.2, 9.0], [0.0, 0.0, -1.0]), 1e-9).unwrap();
+        assert!((h.t - 7.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::Z));
+        let h = intersect_cylinder(1.0, -1.0, 2.0, &ray([0.3, 0.2, -9.0], [0.0, 0.0, 1.0]), 1e-9).unwrap();
+        assert!((h.t - 8.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::NEG_Z));
+        // Above the top, aimed sideways: misses.
+        assert!(intersect_cylinder(1.0, -1.0, 2.0, &ray([-5.0, 0.0, 2.5], [1.0, 0.0, 0.0]), 1e-9).is_none());
+        // Oblique through the side at 45° in x–z: enters x = −1 at z = 0.
+        let h = intersect_cylinder(1.0, -1.0, 2.0, &ray([-3.0, 0.0, -2.0], [1.0, 0.0, 1.0]), 1e-9).unwrap();
+        assert!((h.t - 2.0 * 2f64.sqrt()).abs() < 1e-12);
+        assert!(close(h.point, DVec3::new(-1.0, 0.0, 0.0)));
+    }
+
+    #[test]
+    fn prism_over_a_triangle() {
+        // Right triangle (0,0), (2,0), (0,2), height 1.
+        let v = [[0.0, 0.0], [2.0, 0.0], [0.0, 2.0]];
+        // Into the hypotenuse x + y = 2 from (3, 3) toward the origin.
+        let h = intersect_prism(&v, 1.0, &ray([3.0, 3.0, 0.5], [-1.0, -1.0, 0.0]), 1e-9).unwrap();
+        let expect_t = (DVec3::new(3.0, 3.0, 0.0) - DVec3::new(1.0, 1.0, 0.0)).length();
+        assert!((h.t - expect_t).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::new(1.0, 1.0, 0.0).normalize()));
+        // Down onto the top cap.
+        let h = intersect_prism(&v, 1.0, &ray([0.5, 0.5, 5.0], [0.0, 0.0, -1.0]), 1e-9).unwrap();
+        assert!((h.t - 4.0).abs() < 1e-12);
+        assert!(close(h.normal, DVec3::Z));
+        // Beside the hypotenuse: misses.
+        assert!(intersect_prism(&v, 1.0, &ray([1.5, 1.5, 5.0], [0.0, 0.0, -1.0]), 1e-9).is_none());
+    }
+}
