@@ -1,7 +1,31 @@
 //! Unit `drt` of the thesis (listing in the OCR text, lines 2021–2262):
-//! distributed ray tracing. So far the lookup table of pixel jitter that
-//! `initialize` builds (Ch. 4 (a) (3)); `motionblur`, `boundvolume`,
-//! `depthoffield`, `jittering` and `Isblur` come with the motion-blur work.
+//! distributed ray tracing for motion blur (§2.6, §3.4, after Cook 1984
+//! and 1986), in the listing's order: `motionblur` (with its nested
+//! `boundvolume`), `depthoffield`, `jittering`, `Isblur`. Beside them the
+//! lookup tables `initialize` builds (Ch. 4 (a)(3): "建立lookup table以做為
+//! 產生blur時所需之統計數據"), the pattern tables of Fig. 2.33, and `LAW`
+//! of Fig. 3.2 (§3.2.2).
+//!
+//! # Subpixel times and the temporal filter
+//! Every subpixel of a pixel gets a time from the M×M pattern table (M =
+//! `masksize`, §2.6.3–2.6.4):
+//! - `listing` fidelity: `time := pattern[row,col]*0.1` (errata 1, 2): times
+//!   0, 0.1, …, so a 4×4 table reaches 1.5 and a 2×2 table 0.3; no jitter.
+//!   Over the pixel the shutter is sampled at M² fixed instants: the
+//!   temporal filter is a comb of M² equal spikes.
+//! - `thesis` fidelity: `time := (pattern[row,col] + x̄) / M²`, where x̄ is
+//!   the mean of the `blur` N uniforms of the CLT table (§2.6.5: the sum of
+//!   N uniforms, mean N/2, variance N/12, so x̄ has mean ½ and variance
+//!   1/(12N)); `blur 0` takes x̄ = ½, the centre of each stratum. So the
+//!   table picks one of M² strata of the shutter and x̄ a place in it: with
+//!   N = 1 the times are stratified uniform and the filter is a box over
+//!   [0, 1); with larger N each stratum's samples gather at its centre
+//!   (the box convolved with the Irwin–Hall density of x̄), tending to the
+//!   comb of `blur 0` — §3.4 (c): "n decides the normal distribution".
+
+use crate::types::{
+    Axis, BoundingBox, DMat4, DVec3, Fidelity, Law, MotionRecord, ObjectRecord, PatternRecord, Pose, Ray,
+};
 
 /// `maxindex`: the length of the lookup tables the cursors `aindex`,
 /// `dindex` and `mindex` run through (wrapping to 1 past it). Not printed;
@@ -37,6 +61,318 @@ impl MinimalStandard {
 pub fn noise2_table() -> Vec<f64> {
     let mut rng = MinimalStandard::new(2);
     (0..MAXINDEX).map(|_| rng.next_uniform() - 0.5).collect()
+}
+
+/// `noise[1..maxindex]`: the table `depthoffield` reads (Reconstructed:
+/// not printed). Uniform on (−½, ½), so `fradius*noise[dindex]*2` moves the
+/// eye by at most `fradius`.
+pub fn noise_table() -> Vec<f64> {
+    let mut rng = MinimalStandard::new(3);
+    (0..MAXINDEX).map(|_| rng.next_uniform() - 0.5).collect()
+}
+
+/// The CLT table of §2.6.5 for `blur n`: entry k is the sum of n uniforms
+/// on (0, 1), before centring (mean n/2, variance n/12). Reconstructed:
+/// the thesis gives the theorem, not the table. Empty for n = 0.
+pub fn clt_table(n: u32) -> Vec<f64> {
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut rng = MinimalStandard::new(5);
+    (0..MAXINDEX).map(|_| (0..n).map(|_| rng.next_uniform()).sum()).collect()
+}
+
+/// Fig. 2.33, the 4×4 sampling pattern as printed (erratum 1: 10 appears
+/// twice, 9 never).
+pub const FIG_2_33: [[u32; 4]; 4] = [[7, 11, 3, 14], [4, 15, 13, 0], [10, 1, 8, 12], [6, 10, 5, 2]];
+
+/// Fig. 2.33 for a fidelity. Erratum 1: `listing` keeps the printed table;
+/// `thesis` makes it the permutation of 0..15 it was meant to be by
+/// writing 9 for the 10 in row 3, column 1. Of the two 10s that one is
+/// chosen because it has fewer neighbours (diagonals included) with a
+/// consecutive time: beside (3,1) only 10 at (4,2); beside (4,2) both 8
+/// and 10 (a 9 at (4,2) would stand next to 8 and 10).
+pub fn fig_2_33(fidelity: Fidelity) -> [[u32; 4]; 4] {
+    let mut t = FIG_2_33;
+    if fidelity == Fidelity::Thesis {
+        t[2][0] = 9;
+    }
+    t
+}
+
+/// The table for `masksize` 2 (not printed: the experiments of Ch. 5 used
+/// 2×2 supersampling): times on the diagonals apart, as Fig. 2.33 keeps
+/// consecutive times apart.
+pub const PATTERN_2: [[u32; 2]; 2] = [[0, 2], [3, 1]];
+
+/// The pattern table for a subpixel mask of `m`×`m` when the deck has no
+/// `pattern` record: 1×1 is [0], 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
+/// and other sizes a fixed shuffle of 0..m²−1 (the port's).
+pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
+    match m {
+        2 => PATTERN_2.iter().map(|r| r.to_vec()).collect(),
+        4 => fig_2_33(fidelity).iter().map(|r| r.to_vec()).collect(),
+        _ => {
+            let mut v: Vec<u32> = (0..(m * m) as u32).collect();
+            let mut rng = MinimalStandard::new(7);
+            for i in (1..v.len()).rev() {
+                let j = (rng.next_uniform() * (i + 1) as f64) as usize;
+                v.swap(i, j.min(i));
+            }
+            v.chunks(m.max(1)).map(|r| r.to_vec()).collect()
+        }
+    }
+}
+
+/// The subpixel times of a render: the pattern table, the CLT table of
+/// `blur`, and the fidelity that reads them.
+#[derive(Clone, Debug)]
+pub struct TimeTable {
+    /// `masksize`.
+    m: usize,
+    /// `pattern[row][col]`, 0-based here.
+    pattern: Vec<Vec<u32>>,
+    /// `blur` N (0: no jitter).
+    n: u32,
+    clt: Vec<f64>,
+    fidelity: Fidelity,
+}
+
+impl TimeTable {
+    /// The table for `masksize`, the deck's `pattern` (which must be
+    /// masksize × masksize) and `blur` N.
+    pub fn new(
+        masksize: usize,
+        pattern: Option<&PatternRecord>,
+        blur: u32,
+        fidelity: Fidelity,
+    ) -> Result<TimeTable, String> {
+        match pattern {
+            None => Ok(Self::with_default_pattern(masksize, blur, fidelity)),
+            Some(p) if p.m != masksize => Err(format!(
+                "the pattern table is {}×{} but the image's mask is {}×{}: the listing indexes it by scanline and scancol mod masksize",
+                p.m, p.m, masksize, masksize
+            )),
+            Some(p) => Ok(TimeTable { m: masksize, pattern: p.values.clone(), n: blur, clt: clt_table(blur), fidelity }),
+        }
+    }
+
+    /// The table for `masksize` with [`default_pattern`].
+    pub fn with_default_pattern(masksize: usize, blur: u32, fidelity: Fidelity) -> TimeTable {
+        let m = masksize.max(1);
+        TimeTable { m, pattern: default_pattern(m, fidelity), n: blur, clt: clt_table(blur), fidelity }
+    }
+
+    /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
+    /// subpixel of the scan order (0-based): the first lines of
+    /// `motionblur`. Errata 1 and 2.
+    pub fn time(&self, scanline: usize, scancol: usize, k: usize) -> f64 {
+        match self.fidelity {
+            // Erratum 2, listing: `col := (scanline mod masksize)+1;
+            // row := (scancol mod masksize)+1; time := pattern[row,col]*0.1`
+            // and `mindex` is advanced but never read.
+            Fidelity::Listing => {
+                let (row, col) = (scancol % self.m, scanline % self.m);
+                self.pattern[row][col] as f64 * 0.1
+            }
+            // Thesis: row from the scanline, column from the scancol; the
+            // table picks a stratum of [0,1), the CLT mean x̄ (entry `mindex`
+            // = k mod maxindex) a place in it (§2.6.4–2.6.5).
+            Fidelity::Thesis => {
+                let (row, col) = (scanline % self.m, scancol % self.m);
+                let xbar = if self.n == 0 { 0.5 } else { self.clt[k % MAXINDEX] / self.n as f64 };
+                (self.pattern[row][col] as f64 + xbar) / (self.m * self.m) as f64
+            }
+        }
+    }
+}
+
+/// `LAW(OP, MAXVAL, FRACT)` of Fig. 3.2 (§3.2.2, OCR lines 720–733): how
+/// far along a path a key frame is at the fraction FRACT of the time.
+#[allow(non_snake_case)]
+pub fn LAW(op: Law, maxval: f64, fract: f64) -> f64 {
+    use std::f64::consts::PI;
+    match op {
+        // 1: constant velocity
+        Law::Constant => maxval * fract,
+        // 2: acceleration
+        Law::Accelerate => maxval * (1.0 - (PI * fract / 2.0).cos()),
+        // 3: deceleration
+        Law::Decelerate => maxval * (PI * fract / 2.0).sin(),
+        // 4: acceleration then deceleration
+        Law::Smooth => maxval * (1.0 - (PI * fract).cos()) / 2.0,
+    }
+}
+
+/// The rotation about a world axis by `degrees`.
+fn rotation(axis: Axis, degrees: f64) -> DMat4 {
+    let a = degrees.to_radians();
+    match axis {
+        Axis::X => DMat4::from_rotation_x(a),
+        Axis::Y => DMat4::from_rotation_y(a),
+        Axis::Z => DMat4::from_rotation_z(a),
+    }
+}
+
+/// The pose of an object whose rest pose is `rest`, turned by `turn` (a
+/// rotation about axes through its origin) and moved to `sphereo`.
+fn posed(rest: &ObjectRecord, turn: DMat4, sphereo: DVec3) -> Pose {
+    // transfm = T(sphereo) · turn · (rotation and axis of the rest pose).
+    let rest_rotation = DMat4::from_translation(-rest.sphereo) * rest.transfm;
+    let transfm = DMat4::from_translation(sphereo) * turn * rest_rotation;
+    let inverse_rest_rotation = rest.inverse * DMat4::from_translation(rest.sphereo);
+    let inverse = inverse_rest_rotation * turn.transpose() * DMat4::from_translation(-sphereo);
+    Pose { transfm, inverse, sphereo }
+}
+
+/// The point of a motion path at the fraction `f` of the way (§3.2.2):
+/// the straight line from `from` to `to`, or the cubic Bezier with the
+/// two `via` points as its inner control points.
+pub fn path_point(from: DVec3, motion: &MotionRecord, f: f64) -> DVec3 {
+    match motion.via {
+        None => from + (motion.to - from) * f,
+        Some([p1, p2]) => {
+            let g = 1.0 - f;
+            from * (g * g * g) + p1 * (3.0 * g * g * f) + p2 * (3.0 * g * f * f) + motion.to * (f * f * f)
+        }
+    }
+}
+
+/// `motionblur(r, int, temp1, temp2, object, msc)` (unit `drt`, OCR lines
+/// 2036–2186), for an object that moves but does not deform: from the
+/// rest pose (the listing restores `transfm`, `inverse` and `sphereo` from
+/// `temp1`, `temp2`), the pose at `time`. The time itself comes from
+/// [`TimeTable::time`]; the key-frame branch (`paper = 1`) comes with the
+/// `paper` unit. Erratum 3.
+pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity) -> Pose {
+    match fidelity {
+        // Erratum 3, listing: `sphereo.x := sphereo.x+time*6;
+        // rotate(name,xaxis,0,0,0,270*time*50); translate(name,sphereo…)`:
+        // every moving object slides 6 along x while it spins about x,
+        // whatever its motion record says.
+        Fidelity::Listing => {
+            let sphereo = object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0);
+            posed(object, rotation(Axis::X, 270.0 * time * 50.0), sphereo)
+        }
+        // Thesis (§3.2.2): the user's path, the turn interpolated linearly,
+        // both at LAW(law, 1, time); turns about x, then y, then z.
+        Fidelity::Thesis => {
+            let f = LAW(motion.law, 1.0, time);
+            let sphereo = path_point(object.sphereo, motion, f);
+            let t = motion.turn * f;
+            let turn = rotation(Axis::Z, t.z) * rotation(Axis::Y, t.y) * rotation(Axis::X, t.x);
+            posed(object, turn, sphereo)
+        }
+    }
+}
+
+/// `boundvolume(r, class)` (nested in `motionblur`, OCR lines 2044–2110):
+/// does the line of the ray meet the box? It compares the line with the
+/// box's corners in projections. Erratum 12: the listing tests only the
+/// x–y and x–z projections (and its call is commented out); `thesis`
+/// fidelity adds the y–z projection, which makes the test exact for a
+/// line (the three projections are the separating axes d × eᵢ). Like the
+/// listing, it takes the ray as a whole line, both ways.
+pub fn boundvolume(r: &Ray, bx: &BoundingBox, fidelity: Fidelity) -> bool {
+    let (x0, y0, z0) = (r.origin.x, r.origin.y, r.origin.z);
+    let (vx, vy, vz) = (r.dir.x, r.dir.y, r.dir.z);
+    // The line (p0 + s·v) projected along the third axis crosses the
+    // rectangle [amin,amax]×[bmin,bmax] iff the two corners on the
+    // rectangle's diagonal that the line's slope picks lie on both sides.
+    let crosses = |va: f64, vb: f64, a0: f64, b0: f64, amin: f64, amax: f64, bmin: f64, bmax: f64| {
+        let tail = vb * a0 - va * b0;
+        let (t1, t2) = if va * vb >= 0.0 {
+            (vb * amin - va * bmax - tail, vb * amax - va * bmin - tail)
+        } else {
+            (vb * amax - va * bmax - tail, vb * amin - va * bmin - tail)
+        };
+        t1 * t2 <= 0.0
+    };
+    let xy = crosses(vx, vy, x0, y0, bx.xmin, bx.xmax, bx.ymin, bx.ymax);
+    let xz = crosses(vx, vz, x0, z0, bx.xmin, bx.xmax, bx.zmin, bx.zmax);
+    match fidelity {
+        Fidelity::Listing => xy && xz,
+        Fidelity::Thesis => xy && xz && crosses(vy, vz, y0, z0, bx.ymin, bx.ymax, bx.zmin, bx.zmax),
+    }
+}
+
+/// `depthoffield(x0, y0, var z0, x1, y1, z1)` (unit `drt`, OCR lines
+/// 2191–2202), which the thesis calls "not completed" and no deck record
+/// reaches: moves the ray's second point onto the focal plane
+/// y = `focuslength`, then the eye by `fradius*noise[dindex]*2` in z only
+/// (a lens one-dimensional). `dindex` is 0-based here.
+#[allow(clippy::too_many_arguments)]
+pub fn depthoffield(
+    x0: f64,
+    y0: f64,
+    z0: &mut f64,
+    x1: &mut f64,
+    y1: &mut f64,
+    z1: &mut f64,
+    focuslength: f64,
+    fradius: f64,
+    noise: &[f64],
+    dindex: usize,
+) {
+    let t = (focuslength - y0) / (*y1 - y0);
+    *x1 = x0 + (*x1 - x0) * t;
+    *y1 = y0 + (*y1 - y0) * t;
+    *z1 = *z0 + (*z1 - *z0) * t;
+    *z0 += fradius * noise[dindex % noise.len()] * 2.0;
+}
+
+/// `jittering(x0, y0, z0, r, var a, b, c)` (unit `drt`, OCR lines
+/// 2204–2238): the point 5 along the direction (a, b, c) from
+/// (x0, y0, z0), moved by `r` across the direction. Erratum 16 (the port's
+/// reading): the listing's first branch writes `a := xi-(b+c)*r/a`
+/// without the factor t, and the second and third read `a` (and `b`)
+/// after overwriting them, so the offset is neither across the direction
+/// nor of length r; `thesis` fidelity uses t and the old components,
+/// (−(b+c)·r·t/a, r·t, r·t) and its two siblings, which is perpendicular
+/// to (a, b, c) and of length r.
+#[allow(clippy::too_many_arguments)]
+pub fn jittering(x0: f64, y0: f64, z0: f64, r: f64, a: &mut f64, b: &mut f64, c: &mut f64, fidelity: Fidelity) {
+    let len = (*a * *a + *b * *b + *c * *c).sqrt();
+    *a /= len;
+    *b /= len;
+    *c /= len;
+    let (xi, yi, zi) = (x0 + *a * 5.0, y0 + *b * 5.0, z0 + *c * 5.0);
+    let (oa, ob, oc) = (*a, *b, *c);
+    if oa != 0.0 {
+        let t = (oa * oa / (2.0 * oa * oa + (ob + oc) * (ob + oc))).sqrt();
+        *a = match fidelity {
+            Fidelity::Listing => xi - (ob + oc) * r / oa,
+            Fidelity::Thesis => xi - (ob + oc) * r * t / oa,
+        };
+        *b = yi + r * t;
+        *c = zi + r * t;
+    } else if ob != 0.0 {
+        let t = (ob * ob / (2.0 * ob * ob + (oa + oc) * (oa + oc))).sqrt();
+        *a = xi + r * t;
+        *b = match fidelity {
+            // `b := yi-(a+c)*r/b` after `a := xi+r*t`.
+            Fidelity::Listing => yi - (*a + oc) * r / ob,
+            Fidelity::Thesis => yi - (oa + oc) * r * t / ob,
+        };
+        *c = zi + r * t;
+    } else if oc != 0.0 {
+        let t = (oc * oc / (2.0 * oc * oc + (ob + oa) * (ob + oa))).sqrt();
+        *a = xi + r * t;
+        *b = yi + r * t;
+        *c = match fidelity {
+            // `c := zi-(a+b)*r/c` after `a` and `b` were overwritten.
+            Fidelity::Listing => zi - (*a + *b) * r / oc,
+            Fidelity::Thesis => zi - (oa + ob) * r * t / oc,
+        };
+    }
+}
+
+/// `Isblur` (unit `drt`, OCR lines 2240–2262): is the object
+/// `tableindex` absent from the motion table `motionmatrix`? True means it
+/// does not move, so it needs no per-ray work.
+#[allow(non_snake_case)]
+pub fn Isblur(tableindex: usize, motionmatrix: &[usize]) -> bool {
+    !motionmatrix.contains(&tableindex)
 }
 
 #[cfg(test)]

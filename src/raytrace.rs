@@ -15,9 +15,9 @@
 
 use rayon::prelude::*;
 
-use crate::drt::{noise2_table, MAXINDEX};
+use crate::drt::{motionblur, noise2_table, Isblur, TimeTable, MAXINDEX};
 use crate::raster::{rgbtochars, Raster};
-use crate::trace::{raytrace, TraceStats};
+use crate::trace::{raytrace, rest_poses, Snapshot, TraceStats};
 use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, View};
 
 /// A scene the renderer cannot draw yet or at all.
@@ -25,33 +25,38 @@ use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, View};
 pub enum RenderError {
     /// A record whose rendering is not part of the port yet: named with
     /// where it stands, never dropped silently.
-    #[error("line {}:{}: the '{record}' record is read and checked, but this version of the renderer cannot draw it yet", .pos.line, .pos.column)]
+    #[error("{}:{}: the '{record}' record is read and checked, but this version of the renderer cannot draw it yet", .pos.line, .pos.column)]
     Unsupported { pos: Pos, record: &'static str },
+    /// A record that does not fit the rest of the scene.
+    #[error("{}:{}: {record}: {message}", .pos.line, .pos.column)]
+    Misfit { pos: Pos, record: &'static str, message: String },
 }
 
-/// Refuses the records whose rendering is still to come (motion blur and
-/// key-frame deformation), naming the first of each.
+/// Refuses the records whose rendering is still to come (key-frame
+/// deformation), naming the first.
 pub fn check_supported(scene: &Scene) -> Result<(), RenderError> {
-    if let Some(m) = scene.motions.first() {
-        return Err(RenderError::Unsupported { pos: m.pos, record: "motion" });
-    }
     if let Some(k) = scene.keyframes.first() {
         return Err(RenderError::Unsupported { pos: k.pos, record: "keyframe" });
-    }
-    if let Some(b) = &scene.blur {
-        return Err(RenderError::Unsupported { pos: b.pos, record: "blur" });
-    }
-    if let Some(p) = &scene.pattern {
-        return Err(RenderError::Unsupported { pos: p.pos, record: "pattern" });
     }
     Ok(())
 }
 
+/// The subpixel times of a scene: its `pattern` and `blur` records, or
+/// the defaults.
+pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, RenderError> {
+    let blur = scene.blur.as_ref().map_or(0, |b| b.n);
+    TimeTable::new(scene.image.masksize, scene.pattern.as_ref(), blur, fidelity).map_err(|message| {
+        let pos = scene.pattern.as_ref().map(|p| p.pos).unwrap_or_default();
+        RenderError::Misfit { pos, record: "pattern", message }
+    })
+}
+
 /// The set-up the main program does between `initialize` and the scanline
-/// loop: the sweeps' `spline` coefficients and boxes (then, with later
-/// work, `goahead` per key-frame pair and the motion table).
+/// loop: the sweeps' `spline` coefficients and boxes, the subpixel time
+/// table (then, with later work, `goahead` per key-frame pair).
 pub fn prepare(scene: &mut Scene, opts: &Options) -> Result<(), RenderError> {
     check_supported(scene)?;
+    time_table(scene, opts.fidelity)?;
     crate::shapes::sweep::prepare_sweeps(scene, opts.fidelity);
     Ok(())
 }
@@ -169,11 +174,23 @@ pub struct Render {
 /// `noise2[aindex]*aliasing`, in x and z alike; `thesis` fidelity (§2.1.3
 /// (4), stochastic sampling) advances the cursor: subpixel k of the scan
 /// order takes entries 2k and 2k+1 (mod `maxindex`) for x and z.
+///
+/// Moving objects (the motion table, `motionmatrix`): each subpixel gets a
+/// time from [`TimeTable::time`] and `motionblur` poses every object that
+/// `Isblur` says moves; the others keep their rest pose at no cost.
 pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
     let img = &scene.image;
     let m = img.masksize;
     let camera = Camera::new(scene, opts.fidelity);
     let noise2 = noise2_table();
+    // `prepare` has refused a pattern that does not fit; a caller that
+    // skipped it gets the default table.
+    let blur = scene.blur.as_ref().map_or(0, |b| b.n);
+    let times = time_table(scene, opts.fidelity)
+        .unwrap_or_else(|_| TimeTable::with_default_pattern(m, blur, opts.fidelity));
+    let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
+    let moving: Vec<&crate::types::MotionRecord> =
+        scene.motions.iter().filter(|mo| !Isblur(mo.object, &motionmatrix)).collect();
     let first_col = match opts.fidelity {
         Fidelity::Listing => 0,
         Fidelity::Thesis => 1,
@@ -201,12 +218,21 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
             let mut stats = TraceStats::default();
             let mut primary = 0u64;
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
+            let mut poses = rest_poses(scene);
             for sub in 0..m {
                 let scanline = row * m + sub + 1;
                 for scancol in first_col..=camera.virthighx {
                     let (jx, jz) = jitter(scanline, scancol);
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
-                    let acolor = raytrace(scene, &aray, 1.0, false, 1, opts, &mut stats);
+                    if !moving.is_empty() {
+                        let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
+                        let time = times.time(scanline, scancol, k);
+                        for mo in &moving {
+                            poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
+                        }
+                    }
+                    let snap = Snapshot { scene, poses: &poses };
+                    let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
                     primary += 1;
                     if scancol >= 1 {
                         virtual_rows[sub * img.width + (scancol - 1) / m] += acolor;

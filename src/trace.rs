@@ -24,9 +24,24 @@
 
 use crate::shapes::{face_coords, intersect_object};
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, ObjectRecord, Options, PaintKind, Painting, Ray, Scene,
+    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene,
     SurfaceAttribute, SurfaceRecord,
 };
+
+/// The scene at one instant of the shutter: the read-only scene and where
+/// each of its objects stands then (`poses[i]` for `scene.objects[i]`).
+/// What `motionblur` wrote into the shared records, the port keeps here.
+#[derive(Clone, Copy, Debug)]
+pub struct Snapshot<'a> {
+    pub scene: &'a Scene,
+    pub poses: &'a [Pose],
+}
+
+/// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
+/// scene in which nothing moves.
+pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
+    scene.objects.iter().map(|o| o.pose()).collect()
+}
 
 /// The deepest recursion `raytrace` makes (the main program calls it at
 /// depth 1). The base program's limit is not printed; 6 is the port's.
@@ -67,24 +82,25 @@ impl std::ops::AddAssign for TraceStats {
 /// The nearest hit of a ray with the scene's objects beyond the ray's
 /// origin, as an `intersectionrecord` (Fig. 4.3); `None` is `status =
 /// false`. `dir` must be unit length.
-pub fn intersect(scene: &Scene, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
-    let mut best: Option<(usize, crate::types::LocalHit)> = None;
-    for (i, obj) in scene.objects.iter().enumerate() {
-        if let Some(h) = intersect_object(obj, ray, TMIN, opts) {
+pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
+    let mut best: Option<(usize, LocalHit)> = None;
+    for (i, (obj, pose)) in snap.scene.objects.iter().zip(snap.poses).enumerate() {
+        if let Some(h) = intersect_object(obj, pose, ray, TMIN, opts) {
             if best.is_none_or(|(_, b)| h.t < b.t) {
                 best = Some((i, h));
             }
         }
     }
     let (object, hit) = best?;
-    Some(record_of(&scene.objects[object], object, ray, &hit))
+    Some(record_of(snap, object, ray, &hit))
 }
 
 /// The intersection record of a local hit: world point and normal, and the
 /// fudged-out and fudged-in points.
-fn record_of(obj: &ObjectRecord, object: usize, ray: &Ray, hit: &crate::types::LocalHit) -> IntersectionRecord {
+fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> IntersectionRecord {
+    let obj = &snap.scene.objects[object];
     let point = ray.at(hit.t);
-    let normal = obj.transfm.transform_vector3(hit.normal).normalize();
+    let normal = snap.poses[object].transfm.transform_vector3(hit.normal).normalize();
     let fudge = FUDGE * (1.0 + point.abs().max_element());
     IntersectionRecord {
         normal,
@@ -136,7 +152,7 @@ pub fn surface_color(scene: &Scene, surf: &SurfaceRecord, hit: &IntersectionReco
 /// a ray. Reconstructed (see the module's comment); `inside` is kept for
 /// the reader of the main program, the side is taken from the normal.
 pub fn raytrace(
-    scene: &Scene,
+    snap: &Snapshot,
     aray: &Ray,
     weight: f64,
     inside: bool,
@@ -145,8 +161,9 @@ pub fn raytrace(
     stats: &mut TraceStats,
 ) -> Intensity {
     let _ = inside;
+    let scene = snap.scene;
     stats.rays += 1;
-    let Some(hit) = intersect(scene, aray, opts) else {
+    let Some(hit) = intersect(snap, aray, opts) else {
         return scene.backgrnd;
     };
     let surf = &scene.surfaces[hit.surface];
@@ -167,7 +184,7 @@ pub fn raytrace(
     let color = surface_color(scene, surf, &hit, opts);
     let ambient_color = if surf.paint.is_some() || surf.texture.is_some() { color } else { surf.iobject };
     let mut i = surf.ka * ambient_color;
-    i += surf.kd * diffuse(scene, near, n, opts, stats) * color;
+    i += surf.kd * diffuse(snap, near, n, opts, stats) * color;
 
     let (ks_weight, kt_weight) = match surf.surface {
         SurfaceAttribute::Opaque => (0.0, 0.0),
@@ -180,7 +197,7 @@ pub fn raytrace(
     let reflected = d - 2.0 * d.dot(n) * n;
     if ks_weight > 0.0 && weight * ks_weight >= MINWEIGHT {
         let r = Ray::new(near, reflected.normalize());
-        i += ks_weight * raytrace(scene, &r, weight * ks_weight, !entering, depth + 1, opts, stats);
+        i += ks_weight * raytrace(snap, &r, weight * ks_weight, !entering, depth + 1, opts, stats);
     }
     if kt_weight > 0.0 && weight * kt_weight >= MINWEIGHT {
         let eta = if entering { 1.0 / surf.index } else { surf.index };
@@ -191,16 +208,16 @@ pub fn raytrace(
                 Ray::new(near, reflected.normalize())
             }
         };
-        i += kt_weight * raytrace(scene, &t, weight * kt_weight, entering, depth + 1, opts, stats);
+        i += kt_weight * raytrace(snap, &t, weight * kt_weight, entering, depth + 1, opts, stats);
     }
     i
 }
 
 /// Σ (N·L̂j) · light colour over the lights a shadow ray from `p` reaches,
 /// each shadow ray attenuated by the `crystal` objects it passes.
-fn diffuse(scene: &Scene, p: DVec3, n: DVec3, opts: &Options, stats: &mut TraceStats) -> Intensity {
+fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, opts: &Options, stats: &mut TraceStats) -> Intensity {
     let mut sum = Intensity::ZERO;
-    for light in &scene.lights {
+    for light in &snap.scene.lights {
         let to_light = light.position - p;
         let dist = to_light.length();
         let l = to_light / dist;
@@ -209,21 +226,21 @@ fn diffuse(scene: &Scene, p: DVec3, n: DVec3, opts: &Options, stats: &mut TraceS
             continue;
         }
         stats.shadow_rays += 1;
-        let transmit = shadow(scene, Ray::new(p, l), dist, opts);
+        let transmit = shadow(snap, Ray::new(p, l), dist, opts);
         sum += cos * light.color * transmit;
     }
     sum
 }
 
 /// How much light passes along a shadow ray to a light `dist` away.
-fn shadow(scene: &Scene, ray: Ray, dist: f64, opts: &Options) -> Intensity {
+fn shadow(snap: &Snapshot, ray: Ray, dist: f64, opts: &Options) -> Intensity {
     let mut transmit = Intensity::ONE;
-    for obj in &scene.objects {
-        let surf = &scene.surfaces[obj.surface];
+    for (obj, pose) in snap.scene.objects.iter().zip(snap.poses) {
+        let surf = &snap.scene.surfaces[obj.surface];
         if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
             continue;
         }
-        let Some(h) = intersect_object(obj, &ray, TMIN, opts) else {
+        let Some(h) = intersect_object(obj, pose, &ray, TMIN, opts) else {
             continue;
         };
         if h.t >= dist {

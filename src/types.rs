@@ -283,6 +283,24 @@ pub struct ObjectRecord {
     pub shape: Shape,
 }
 
+impl ObjectRecord {
+    /// The object where the deck leaves it (its pose at rest).
+    pub fn pose(&self) -> Pose {
+        Pose { transfm: self.transfm, inverse: self.inverse, sphereo: self.sphereo }
+    }
+}
+
+/// Where an object stands at one instant of the shutter: the fields of
+/// `objectrecord` that `motionblur` rewrites per ray (`transfm`, `inverse`,
+/// `sphereo`). The port keeps them in per-thread scratch instead of the
+/// shared record (DESIGN, "State").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    pub transfm: DMat4,
+    pub inverse: DMat4,
+    pub sphereo: Points,
+}
+
 /// `ray = record x0, x1, y0, y1, z0, z1 : real end`: the Pascal ray runs
 /// from (x0, y0, z0) through (x1, y1, z1); here `origin` is the first point
 /// and `dir` the difference (x1 − x0, y1 − y0, z1 − z0).

@@ -4,11 +4,17 @@
 mod common;
 use common::*;
 use raytrace::raytrace::{render, Camera};
-use raytrace::trace::{raytrace, refract, TraceStats};
+use raytrace::trace::{raytrace, refract, rest_poses, Snapshot, TraceStats};
 use raytrace::types::*;
 
 fn opts() -> Options {
     Options::default()
+}
+
+/// `raytrace(aray, 1.0, false, acolor, 1)` in a scene where nothing moves.
+fn trace_one(s: &Scene, ray: &Ray) -> Intensity {
+    let poses = rest_poses(s);
+    raytrace(&Snapshot { scene: s, poses: &poses }, ray, 1.0, false, 1, &opts(), &mut TraceStats::default())
 }
 
 /// I = ka·Iobject + kd·cosθ·light·colour at a known angle θ = 60°.
@@ -23,7 +29,7 @@ fn diffuse_term_at_a_known_angle() {
     let at = DVec3::new(0.0, -1.0, 0.0) + l * 1e4;
     s.lights.push(light(at.to_array(), [1.0, 0.5, 0.25]));
     let ray = Ray::new(DVec3::new(0.0, -10.0, 0.0), DVec3::Y);
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     let color = DVec3::new(0.8, 0.6, 0.4);
     let want = 0.1 * color + 0.7 * theta.cos() * DVec3::new(1.0, 0.5, 0.25) * color;
     assert!(close(got, want, 1e-9), "{got} vs {want}");
@@ -32,7 +38,7 @@ fn diffuse_term_at_a_known_angle() {
     s.surfaces.push(surface(SurfaceAttribute::Opaque, [1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0));
     let mid = DVec3::new(0.0, -1.0, 0.0) + l * 5.0;
     s.objects.push(block("wall", 1, mid.to_array(), [1.0, 1.0, 1.0]));
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, 0.1 * color, 1e-12), "{got}");
 }
 
@@ -49,11 +55,11 @@ fn shadows_through_crystal_and_transparent() {
     s.objects.push(sphere("gem", 1, [0.0, 0.0, 5.0], 1.0));
     // Straight down onto the floor under the gem: N·L = 1.
     let ray = Ray::new(DVec3::new(0.0, 0.0, 3.0), DVec3::NEG_Z);
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, DVec3::new(0.4, 0.8, 0.8), 1e-9), "{got}");
     glass.surface = SurfaceAttribute::Transparent;
     s.surfaces[1] = glass;
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, DVec3::ZERO, 0.0), "{got}");
 }
 
@@ -71,12 +77,12 @@ fn mirror_reflection_at_45_degrees() {
     s.objects.push(block("mirror", 0, [0.0, 0.0, -0.5], [4.0, 4.0, 1.0]));
     s.objects.push(sphere("lamp", 1, [0.0, 5.0, 5.0], 0.1));
     let ray = Ray::new(DVec3::new(0.0, -5.0, 5.0), DVec3::new(0.0, 1.0, -1.0).normalize());
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, 0.4 * DVec3::new(1.0, 0.8, 0.6), 1e-12), "{got}");
     s.objects[1].sphereo = DVec3::new(0.0, 5.0, 5.5);
     s.objects[1].transfm = DMat4::from_translation(s.objects[1].sphereo);
     s.objects[1].inverse = DMat4::from_translation(-s.objects[1].sphereo);
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, 0.4 * s.backgrnd, 1e-12), "{got}");
 }
 
@@ -110,12 +116,12 @@ fn refraction_through_a_slab() {
     let target = exit + DVec3::new(1.0, 0.0, -1.0).normalize() * 3.0;
     s.objects.push(sphere("lamp", 1, target.to_array(), 0.05));
     let ray = Ray::new(DVec3::new(-2.0, 0.0, 2.0), DVec3::new(1.0, 0.0, -1.0).normalize());
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, DVec3::new(0.3, 0.9, 0.6), 1e-12), "{got}");
     // The unrefracted line would pass 1 − tan θt ≈ 0.47 away.
     let straight = DVec3::new(1.0, 0.0, -1.0) + DVec3::new(1.0, 0.0, -1.0).normalize() * 3.0;
     s.objects[1] = sphere("lamp", 1, straight.to_array(), 0.05);
-    let got = raytrace(&s, &ray, 1.0, false, 1, &opts(), &mut TraceStats::default());
+    let got = trace_one(&s, &ray);
     assert!(close(got, DVec3::ZERO, 0.0), "{got}");
 }
 

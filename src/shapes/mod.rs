@@ -12,7 +12,7 @@
 
 pub mod sweep;
 
-use crate::types::{DVec3, LocalHit, ObjectRecord, Options, Ray, Shape};
+use crate::types::{DVec3, LocalHit, ObjectRecord, Options, Pose, Ray, Shape};
 
 /// A sphere of `radius` about the local origin.
 ///
@@ -162,14 +162,15 @@ pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin
     best
 }
 
-/// The hit of a world ray with one object: the bounding-sphere test
-/// (`sphereo`, `radius`), the ray into the local frame, the shape's own
-/// intersection. Returns the local hit (its `t` is the world parameter).
-pub fn intersect_object(obj: &ObjectRecord, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
-    if !bounding_sphere_hit(obj.sphereo, obj.radius, ray, tmin) {
+/// The hit of a world ray with one object standing at `pose`: the
+/// bounding-sphere test (`sphereo`, `radius`), the ray into the local
+/// frame, the shape's own intersection. Returns the local hit (its `t` is
+/// the world parameter).
+pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
+    if !bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
         return None;
     }
-    let local = ray.transformed(&obj.inverse);
+    let local = ray.transformed(&pose.inverse);
     match &obj.shape {
         Shape::Sphere => intersect_sphere(obj.radius, &local, tmin),
         Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
