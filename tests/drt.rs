@@ -214,7 +214,7 @@ fn moving_square_matches_its_coverage() {
     let m = 8usize;
     let mut s = scene();
     s.view = View { eyept: DVec3::new(0.0, -1000.0, 0.0), lookpt: DVec3::ZERO, screensize: 16.0, scrndistance: 1000.0 };
-    s.image = ImageSpec { width: 16, height: 4, masksize: m, aliasing: 0.0 };
+    s.image = ImageSpec { width: 64, height: 4, masksize: m, aliasing: 0.0 };
     s.surfaces.push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
     let (w_sq, x0, d) = (2.0, -5.0, 10.0);
     s.objects.push(block("square", 0, [x0, 0.0, 0.0], [w_sq, 0.01, 20.0]));
@@ -229,11 +229,11 @@ fn moving_square_matches_its_coverage() {
     s.blur = Some(BlurRecord { pos: Pos::default(), n: 1 });
     let img = render(&s, &Options::default(), &|| {}).raster;
     let cam = raytrace::raytrace::Camera::new(&s, Fidelity::Thesis);
-    let pixel_w = 16.0 / 16.0; // screen 16 wide over 16 pixels, at nearly parallel projection
+    let pixel_w = 16.0 / 64.0; // screen 16 wide over 64 pixels, nearly parallel projection
     let bound = 2.0 / (m * m) as f64 + 2.0 * pixel_w / d + 1.0 / 255.0;
     let mut worst: f64 = 0.0;
     for row in 0..4 {
-        for col in 0..16 {
+        for col in 0..64 {
             let mut cover = 0.0;
             for sl in 0..m {
                 for sc in 0..m {
@@ -247,7 +247,7 @@ fn moving_square_matches_its_coverage() {
                 }
             }
             let want = cover / (m * m) as f64;
-            let got = img.pixels[row * 16 + col][1] as f64 / 255.0;
+            let got = img.pixels[row * 64 + col][1] as f64 / 255.0;
             worst = worst.max((got - want).abs());
             assert!((got - want).abs() <= bound, "pixel ({col},{row}): {got} vs {want}, bound {bound}");
         }
