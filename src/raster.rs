@@ -1,7 +1,60 @@
-//! The raster file: a Sun rasterfile (being written; the interface below is
-//! the one the rest of the port uses).
+//! The raster file: a Sun rasterfile, the format the thesis's `Raytrace`
+//! wrote on the Sun 3 and sent through `psout` to the PS 390 (Ch. 4 (二),
+//! Fig. 4.1; Ch. 4.1 (g) "Output raster file").
+//!
+//! The thesis does not print the raster procedures; the main program only
+//! calls them (OCR lines 3073 and 3165 `rgbtochars`, 3217–3223
+//! `outputframe`). What is here is reconstructed from those calls and from
+//! the Sun rasterfile layout (`<rasterfile.h>`): a 32-byte big-endian header
+//! — magic 0x59a66a95, width, height, depth, length, type, maptype,
+//! maplength — then the colour map, then the image, each row padded to a
+//! multiple of 16 bits.
+//!
+//! Reading accepts RT_OLD (0) and RT_STANDARD (1) (BGR order), RT_BYTE_ENCODED
+//! (2) and RT_FORMAT_RGB (3) (RGB order), at depth 8 (grey, or indices into an
+//! RMT_EQUAL_RGB colour map), 24 and 32 (XBGR, or XRGB for type 3; the first
+//! byte of each 32-bit pixel is ignored). Depth 1, RMT_RAW maps and colour
+//! maps at depth 24/32 are refused with an error. Any byte string is either
+//! a raster or an error, never a panic; nothing is allocated beyond a small
+//! multiple of the bytes actually present.
+//!
+//! Writing produces RT_STANDARD, 24-bit, BGR, no colour map, to a temporary
+//! file beside the target that is then renamed over it.
 
-use std::path::Path;
+use std::fs::File;
+use std::io::{BufWriter, Read, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use byteorder::{BigEndian, ByteOrder};
+
+use crate::types::Intensity;
+
+/// `RAS_MAGIC`: the first four bytes of every Sun raster file.
+pub const RAS_MAGIC: u32 = 0x59a6_6a95;
+/// `RT_OLD`: the layout of RT_STANDARD; old writers left `ras_length` 0.
+pub const RT_OLD: u32 = 0;
+/// `RT_STANDARD`: raw pixels, 24/32-bit in BGR order.
+pub const RT_STANDARD: u32 = 1;
+/// `RT_BYTE_ENCODED`: RT_STANDARD data run-length encoded with escape 0x80.
+pub const RT_BYTE_ENCODED: u32 = 2;
+/// `RT_FORMAT_RGB`: raw pixels, 24/32-bit in RGB order.
+pub const RT_FORMAT_RGB: u32 = 3;
+/// `RMT_NONE`: no colour map (`ras_maplength` 0).
+pub const RMT_NONE: u32 = 0;
+/// `RMT_EQUAL_RGB`: a map of three planes (red, green, blue) of
+/// `ras_maplength / 3` bytes each.
+pub const RMT_EQUAL_RGB: u32 = 1;
+/// The largest width and height read or written (a sanity cap, far above
+/// the thesis's 256×256 and the PS 390's 1024×864).
+pub const MAX_SIDE: usize = 16384;
+
+/// The length of the header in bytes.
+const HEADER_LEN: usize = 32;
+/// The largest colour map: 256 entries of three bytes.
+const MAX_MAP_LENGTH: usize = 768;
+/// The RLE escape byte of RT_BYTE_ENCODED.
+const ESCAPE: u8 = 0x80;
 
 /// A 24-bit image, row 0 at the top, `pixels` row-major as [r, g, b].
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -11,18 +64,528 @@ pub struct Raster {
     pub pixels: Vec<[u8; 3]>,
 }
 
-/// What can go wrong reading or writing a raster file.
+impl Raster {
+    /// Checks that the raster can be written and read back: `pixels` holds
+    /// `width × height` entries and both sides are in 1..=[`MAX_SIDE`].
+    pub fn check(&self) -> Result<(), RasterError> {
+        if !(1..=MAX_SIDE).contains(&self.width) || !(1..=MAX_SIDE).contains(&self.height) {
+            return Err(RasterError::Inconsistent(format!(
+                "size {}×{} is outside 1..={MAX_SIDE} per side",
+                self.width, self.height
+            )));
+        }
+        if self.pixels.len() != self.width * self.height {
+            return Err(RasterError::Inconsistent(format!(
+                "{} pixels for a {}×{} raster",
+                self.pixels.len(),
+                self.width,
+                self.height
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// What can go wrong reading or writing a raster file. The messages do not
+/// name the file; callers that know it prefix it.
 #[derive(Debug, thiserror::Error)]
 pub enum RasterError {
-    #[error("{0}")]
-    Format(String),
+    #[error("not a Sun raster file (magic number {0:#010x}, expected 0x59a66a95)")]
+    BadMagic(u32),
+    #[error("truncated raster file: the {part} needs {needed} bytes, only {found} are present")]
+    Truncated {
+        part: &'static str,
+        needed: usize,
+        found: usize,
+    },
+    #[error("raster size {width}×{height} is outside 1..=16384 per side")]
+    BadSize { width: u32, height: u32 },
+    #[error("unsupported raster type {0} (known: 0 old, 1 standard, 2 byte-encoded, 3 RGB)")]
+    UnsupportedType(u32),
+    #[error("unsupported raster depth {0} (supported: 8, 24, 32 bits)")]
+    UnsupportedDepth(u32),
+    #[error("unsupported colour map type {0} (supported: 0 none, 1 equal RGB)")]
+    UnsupportedMapType(u32),
+    #[error("bad colour map: {0}")]
+    BadMap(String),
+    #[error("header length {header} does not match the image data size {expected}")]
+    LengthMismatch { header: u32, expected: usize },
+    #[error("pixel ({x}, {y}) has colour index {index}, but the colour map has {entries} entries")]
+    ColourIndex {
+        x: usize,
+        y: usize,
+        index: u8,
+        entries: usize,
+    },
+    #[error("byte-encoded data: {0}")]
+    Rle(String),
+    #[error("raster cannot be written: {0}")]
+    Inconsistent(String),
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    #[cfg(feature = "png")]
+    #[error("PNG: {0}")]
+    Png(#[from] image::ImageError),
+}
+
+/// The header fields, as stored.
+#[derive(Clone, Copy, Debug)]
+struct Header {
+    width: u32,
+    height: u32,
+    depth: u32,
+    length: u32,
+    ras_type: u32,
+    maptype: u32,
+    maplength: u32,
+}
+
+/// What the header says about the layout, once checked.
+#[derive(Clone, Copy, Debug)]
+struct Layout {
+    width: usize,
+    height: usize,
+    /// Bytes per pixel: 1, 3 or 4.
+    bytes_per_pixel: usize,
+    /// Bytes per row with the 16-bit padding.
+    row_bytes: usize,
+    /// `row_bytes × height`: the (decoded) image data.
+    data_bytes: usize,
+    /// Where the image data starts: after the header and the colour map.
+    data_start: usize,
+}
+
+fn parse_header(bytes: &[u8]) -> Result<Header, RasterError> {
+    if bytes.len() < HEADER_LEN {
+        // A short file that does not even start with the magic is not a
+        // raster at all; say so rather than "truncated".
+        if bytes.len() >= 4 && BigEndian::read_u32(bytes) != RAS_MAGIC {
+            return Err(RasterError::BadMagic(BigEndian::read_u32(bytes)));
+        }
+        return Err(RasterError::Truncated {
+            part: "header",
+            needed: HEADER_LEN,
+            found: bytes.len(),
+        });
+    }
+    let field = |i: usize| BigEndian::read_u32(&bytes[4 * i..4 * i + 4]);
+    if field(0) != RAS_MAGIC {
+        return Err(RasterError::BadMagic(field(0)));
+    }
+    Ok(Header {
+        width: field(1),
+        height: field(2),
+        depth: field(3),
+        length: field(4),
+        ras_type: field(5),
+        maptype: field(6),
+        maplength: field(7),
+    })
+}
+
+/// Checks everything the header alone can tell, before any allocation.
+fn layout(h: &Header) -> Result<Layout, RasterError> {
+    if !matches!(
+        h.ras_type,
+        RT_OLD | RT_STANDARD | RT_BYTE_ENCODED | RT_FORMAT_RGB
+    ) {
+        return Err(RasterError::UnsupportedType(h.ras_type));
+    }
+    let bytes_per_pixel = match h.depth {
+        8 => 1,
+        24 => 3,
+        32 => 4,
+        d => return Err(RasterError::UnsupportedDepth(d)),
+    };
+    let (width, height) = (h.width as usize, h.height as usize);
+    if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+        return Err(RasterError::BadSize {
+            width: h.width,
+            height: h.height,
+        });
+    }
+    let maplength = h.maplength as usize;
+    match h.maptype {
+        RMT_NONE => {
+            if maplength != 0 {
+                return Err(RasterError::BadMap(format!(
+                    "map type 0 (none) with map length {maplength}"
+                )));
+            }
+        }
+        RMT_EQUAL_RGB => {
+            if h.depth != 8 {
+                return Err(RasterError::BadMap(format!(
+                    "a colour map with depth {} is not supported",
+                    h.depth
+                )));
+            }
+            if maplength == 0 || maplength > MAX_MAP_LENGTH || maplength % 3 != 0 {
+                return Err(RasterError::BadMap(format!(
+                    "map length {maplength} is not a multiple of 3 in 3..={MAX_MAP_LENGTH}"
+                )));
+            }
+        }
+        t => return Err(RasterError::UnsupportedMapType(t)),
+    }
+    // Both factors are capped, so this cannot overflow: at most 16384 × 4
+    // bytes a row, 2^30 bytes in all.
+    let row_bytes = (width * bytes_per_pixel).div_ceil(2) * 2;
+    let data_bytes = row_bytes * height;
+    let length = h.length as usize;
+    if h.ras_type == RT_BYTE_ENCODED {
+        // Each decoded byte costs at most two encoded bytes (`80 00`), so a
+        // longer encoding cannot be exact.
+        if length > 2 * data_bytes {
+            return Err(RasterError::LengthMismatch {
+                header: h.length,
+                expected: data_bytes,
+            });
+        }
+    } else if length != 0 && length != data_bytes {
+        // RT_OLD files, and some old writers of type 1, leave the length 0.
+        return Err(RasterError::LengthMismatch {
+            header: h.length,
+            expected: data_bytes,
+        });
+    }
+    Ok(Layout {
+        width,
+        height,
+        bytes_per_pixel,
+        row_bytes,
+        data_bytes,
+        data_start: HEADER_LEN + maplength,
+    })
+}
+
+/// The most bytes of a file [`read_raster`] can look at, given its header.
+fn bytes_needed(h: &Header, lay: &Layout) -> usize {
+    let data = if h.ras_type != RT_BYTE_ENCODED {
+        lay.data_bytes
+    } else if h.length != 0 {
+        h.length as usize
+    } else {
+        2 * lay.data_bytes
+    };
+    lay.data_start + data
+}
+
+/// Decodes RT_BYTE_ENCODED data: `80 00` is one 0x80 byte, `80 n v`
+/// (n ≥ 1) is n + 1 copies of v, any other byte is itself. The encoding
+/// runs over the whole padded image, so runs may cross row ends.
+///
+/// `expected` is the decoded size. With `exact`, all of `src` must decode
+/// to exactly `expected` bytes (the header gave the encoded length);
+/// otherwise decoding stops when the image is full and the rest of `src` is
+/// ignored (the header left the length 0).
+///
+/// The output grows with what is actually decoded, so memory follows the
+/// input, not the header.
+fn decode_byte_encoded(src: &[u8], expected: usize, exact: bool) -> Result<Vec<u8>, RasterError> {
+    // The densest encoding, `80 ff v`, gives 256 bytes for 3.
+    if expected > src.len().saturating_mul(86) {
+        return Err(RasterError::Rle(format!(
+            "{} encoded bytes cannot hold {expected} image bytes",
+            src.len()
+        )));
+    }
+    let mut out = Vec::with_capacity(expected.min(src.len()));
+    let mut i = 0;
+    while i < src.len() && (exact || out.len() < expected) {
+        let b = src[i];
+        if b != ESCAPE {
+            if out.len() == expected {
+                return Err(RasterError::Rle(format!(
+                    "data continues past the end of the image at encoded byte {i}"
+                )));
+            }
+            out.push(b);
+            i += 1;
+            continue;
+        }
+        let n = *src
+            .get(i + 1)
+            .ok_or_else(|| RasterError::Rle(format!("escape at encoded byte {i} is cut off")))?;
+        let (count, value, step) = if n == 0 {
+            (1, ESCAPE, 2)
+        } else {
+            let v = *src
+                .get(i + 2)
+                .ok_or_else(|| RasterError::Rle(format!("run at encoded byte {i} is cut off")))?;
+            (n as usize + 1, v, 3)
+        };
+        if out.len() + count > expected {
+            return Err(RasterError::Rle(format!(
+                "run of {count} at encoded byte {i} runs past the end of the image \
+                 ({} of {expected} bytes already decoded)",
+                out.len()
+            )));
+        }
+        out.resize(out.len() + count, value);
+        i += step;
+    }
+    if out.len() < expected {
+        return Err(RasterError::Truncated {
+            part: "byte-encoded image",
+            needed: expected,
+            found: out.len(),
+        });
+    }
+    Ok(out)
+}
+
+/// Reads a raster file from its bytes.
+///
+/// Reconstructed: the Sun rasterfile layout (module doc). Bytes after the
+/// image are ignored; everything else that does not fit the layout is an
+/// error. 8-bit pixels without a map are grey.
+pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
+    let h = parse_header(bytes)?;
+    let lay = layout(&h)?;
+
+    let map = if h.maptype == RMT_EQUAL_RGB {
+        let end = lay.data_start;
+        let planes = bytes.get(HEADER_LEN..end).ok_or(RasterError::Truncated {
+            part: "colour map",
+            needed: end,
+            found: bytes.len(),
+        })?;
+        Some(planes)
+    } else {
+        None
+    };
+
+    let rest = &bytes[lay.data_start.min(bytes.len())..];
+    let decoded;
+    let data: &[u8] = if h.ras_type == RT_BYTE_ENCODED {
+        let (src, exact) = if h.length != 0 {
+            let length = h.length as usize;
+            let src = rest.get(..length).ok_or(RasterError::Truncated {
+                part: "byte-encoded image",
+                needed: lay.data_start + length,
+                found: bytes.len(),
+            })?;
+            (src, true)
+        } else {
+            (rest, false)
+        };
+        decoded = decode_byte_encoded(src, lay.data_bytes, exact)?;
+        &decoded
+    } else {
+        rest.get(..lay.data_bytes).ok_or(RasterError::Truncated {
+            part: "image",
+            needed: lay.data_start + lay.data_bytes,
+            found: bytes.len(),
+        })?
+    };
+
+    // `data` is present in full, so this allocation is no larger than the
+    // input (or its checked decoding).
+    let mut pixels = Vec::with_capacity(lay.width * lay.height);
+    let rgb_order = h.ras_type == RT_FORMAT_RGB;
+    let entries = map.map_or(0, |m| m.len() / 3);
+    for (y, row) in data.chunks_exact(lay.row_bytes).enumerate() {
+        let row = &row[..lay.width * lay.bytes_per_pixel];
+        match lay.bytes_per_pixel {
+            1 => {
+                for (x, &index) in row.iter().enumerate() {
+                    pixels.push(match map {
+                        None => [index; 3],
+                        Some(m) => {
+                            let i = index as usize;
+                            if i >= entries {
+                                return Err(RasterError::ColourIndex {
+                                    x,
+                                    y,
+                                    index,
+                                    entries,
+                                });
+                            }
+                            [m[i], m[entries + i], m[2 * entries + i]]
+                        }
+                    });
+                }
+            }
+            n => {
+                // 24-bit: B G R (type 3: R G B); 32-bit: X B G R (X R G B).
+                for p in row.chunks_exact(n) {
+                    let [a, b, c] = [p[n - 3], p[n - 2], p[n - 1]];
+                    pixels.push(if rgb_order { [a, b, c] } else { [c, b, a] });
+                }
+            }
+        }
+    }
+    Ok(Raster {
+        width: lay.width,
+        height: lay.height,
+        pixels,
+    })
 }
 
 /// Reads a raster file.
+///
+/// Reconstructed (as [`read_raster`]). Only the bytes the header can need
+/// are read, so a huge file costs no more memory than its raster.
 pub fn read_raster_file(path: &Path) -> Result<Raster, RasterError> {
-    Err(RasterError::Format(format!("{}: raster reading is not built yet", path.display())))
+    let mut file = File::open(path)?;
+    let mut head = Vec::with_capacity(HEADER_LEN);
+    (&mut file).take(HEADER_LEN as u64).read_to_end(&mut head)?;
+    let limit = match parse_header(&head) {
+        Ok(h) => bytes_needed(&h, &layout(&h)?),
+        // Let read_raster report the short header.
+        Err(_) => HEADER_LEN,
+    };
+    let mut bytes = head;
+    file.take((limit - bytes.len().min(limit)) as u64)
+        .read_to_end(&mut bytes)?;
+    read_raster(&bytes)
+}
+
+/// `rgbtochars(acolor, threechars)`: a colour of the renderer (each channel
+/// nominally 0–1) to the three bytes of a raster pixel.
+///
+/// Reconstructed: the main program calls it for the background
+/// (`rgbtochars(backgrnd,back)`, OCR line 3073) and for each traced pixel
+/// (line 3165); its body is not printed. Each channel is clamped to [0, 1]
+/// and rounded to the nearest of 0..=255. A NaN channel (a failed shading
+/// computation) gives 0, so a bad sample shows black rather than stopping
+/// the render.
+pub fn rgbtochars(acolor: Intensity) -> [u8; 3] {
+    let byte = |c: f64| {
+        if c.is_nan() {
+            0
+        } else {
+            (c.clamp(0.0, 1.0) * 255.0).round() as u8
+        }
+    };
+    [byte(acolor.x), byte(acolor.y), byte(acolor.z)]
+}
+
+/// The bytes of a raster file: RT_STANDARD, 24-bit, BGR, rows padded to 16
+/// bits, `ras_length` = padded row bytes × height, no colour map.
+///
+/// # Panics
+/// If the raster fails [`Raster::check`] (a bug of the caller:
+/// [`outputframe`] checks first and returns an error instead).
+pub fn encode_raster(raster: &Raster) -> Vec<u8> {
+    if let Err(e) = raster.check() {
+        panic!("encode_raster: {e}");
+    }
+    let row_bytes = (raster.width * 3).div_ceil(2) * 2;
+    let data_bytes = row_bytes * raster.height;
+    let mut out = vec![0; HEADER_LEN];
+    // The sizes are capped by `check`, so they fit in u32.
+    BigEndian::write_u32_into(
+        &[
+            RAS_MAGIC,
+            raster.width as u32,
+            raster.height as u32,
+            24,
+            data_bytes as u32,
+            RT_STANDARD,
+            RMT_NONE,
+            0,
+        ],
+        &mut out,
+    );
+    out.reserve(data_bytes);
+    for row in raster.pixels.chunks_exact(raster.width) {
+        for &[r, g, b] in row {
+            out.extend_from_slice(&[b, g, r]);
+        }
+        if raster.width % 2 == 1 {
+            out.push(0);
+        }
+    }
+    out
+}
+
+/// `outputframe`: writes the finished frame as a raster file.
+///
+/// Reconstructed: the main program calls `outputframe` once per frame (OCR
+/// lines 3217–3223, after `expandframe` when the image is scaled up); its
+/// body is not printed. The file is written to a temporary file beside
+/// `path` and renamed over it, so an interrupted write never leaves a
+/// truncated file or clobbers the last good one.
+pub fn outputframe(path: &Path, raster: &Raster) -> Result<(), RasterError> {
+    raster.check()?;
+    let bytes = encode_raster(raster);
+    write_atomically(path, |w| Ok(w.write_all(&bytes)?))
+}
+
+/// Writes the raster as an 8-bit RGB PNG, through a temporary file beside
+/// `path` renamed over it.
+#[cfg(feature = "png")]
+pub fn write_png(path: &Path, raster: &Raster) -> Result<(), RasterError> {
+    use image::ImageEncoder;
+    raster.check()?;
+    let flat: Vec<u8> = raster.pixels.iter().flatten().copied().collect();
+    write_atomically(path, |w| {
+        image::codecs::png::PngEncoder::new(w).write_image(
+            &flat,
+            raster.width as u32,
+            raster.height as u32,
+            image::ExtendedColorType::Rgb8,
+        )?;
+        Ok(())
+    })
+}
+
+/// Writes through `write` into a new temporary file in the directory of
+/// `path`, syncs it and renames it to `path`. On any error the temporary
+/// file is removed and `path` is untouched.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<&File>) -> Result<(), RasterError>,
+) -> Result<(), RasterError> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path.file_name().ok_or_else(|| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("{} does not name a file", path.display()),
+        )
+    })?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let (temp_path, file) = loop {
+        let mut temp_name = std::ffi::OsString::from(".");
+        temp_name.push(name);
+        temp_name.push(format!(
+            ".{}.{}.tmp",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        let temp_path = dir.join(temp_name);
+        match File::options()
+            .write(true)
+            .create_new(true)
+            .open(&temp_path)
+        {
+            Ok(f) => break (temp_path, f),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e.into()),
+        }
+    };
+    let result = (|| {
+        let mut w = BufWriter::new(&file);
+        write(&mut w)?;
+        w.flush()?;
+        drop(w);
+        file.sync_all()?;
+        std::fs::rename(&temp_path, path)?;
+        Ok(())
+    })();
+    if result.is_err() {
+        // Best effort: the error that matters is the one returned.
+        let _ = std::fs::remove_file(&temp_path);
+    } else if let Ok(d) = File::open(&dir) {
+        // Make the rename itself durable where the platform allows it.
+        let _ = d.sync_all();
+    }
+    result
 }
 
 /// Stand-in until the raster branch lands.
