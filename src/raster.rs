@@ -587,20 +587,3 @@ fn write_atomically(
     }
     result
 }
-
-/// Stand-in until the raster branch lands.
-pub fn rgbtochars(acolor: crate::types::Intensity) -> [u8; 3] {
-    let c = |v: f64| if v.is_nan() { 0 } else { (v.clamp(0.0, 1.0) * 255.0).round() as u8 };
-    [c(acolor.x), c(acolor.y), c(acolor.z)]
-}
-
-/// Stand-in until the raster branch lands.
-pub fn outputframe(path: &Path, _raster: &Raster) -> Result<(), RasterError> {
-    Err(RasterError::Format(format!("{}: raster writing is not built yet", path.display())))
-}
-
-/// Stand-in until the raster branch lands.
-#[cfg(feature = "png")]
-pub fn write_png(path: &Path, _raster: &Raster) -> Result<(), RasterError> {
-    Err(RasterError::Format(format!("{}: PNG writing is not built yet", path.display())))
-}
