@@ -17,11 +17,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Write the test-card texture raster the decks paste on blocks and cylinders.
+    /// Write the texture rasters the decks paste on blocks and cylinders:
+    /// card.tex.ras (a test card) and nec.tex.ras (the letters NEC).
     Texture {
-        /// Where to write it.
-        #[arg(default_value = "raster/card.tex.ras")]
-        out: PathBuf,
+        /// The folder to write them in.
+        #[arg(default_value = "raster")]
+        dir: PathBuf,
     },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
@@ -45,13 +46,13 @@ enum Command {
 
 fn main() -> Result<(), String> {
     match Cli::parse().command {
-        Command::Texture { out } => {
-            let card = test_card(64, 64);
-            if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-                std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+        Command::Texture { dir } => {
+            std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
+                let out = dir.join(name);
+                outputframe(&out, &raster).map_err(|e| format!("{}: {e}", out.display()))?;
+                println!("wrote {} ({}×{})", out.display(), raster.width, raster.height);
             }
-            outputframe(&out, &card).map_err(|e| format!("{}: {e}", out.display()))?;
-            println!("wrote {} ({}×{})", out.display(), card.width, card.height);
             Ok(())
         }
         Command::Bench { deck, runs, threads, robust, listing } => {
@@ -99,6 +100,36 @@ fn test_card(width: usize, height: usize) -> Raster {
     Raster { width, height, pixels }
 }
 
+/// The letters N, E, C in blue on white, 96×48, for the advertising cube
+/// of Fig. 5.5. Each letter is drawn from strokes on a 5×7 grid.
+fn nec_card() -> Raster {
+    const GLYPHS: [[&str; 7]; 3] = [
+        ["X...X", "XX..X", "XX..X", "X.X.X", "X..XX", "X..XX", "X...X"],
+        ["XXXXX", "X....", "X....", "XXXX.", "X....", "X....", "XXXXX"],
+        [".XXXX", "X....", "X....", "X....", "X....", "X....", ".XXXX"],
+    ];
+    let (cell, width, height) = (4usize, 96usize, 48usize);
+    let (left, top) = (6usize, 10usize);
+    let mut pixels = vec![[255u8, 255, 255]; width * height];
+    for (g, glyph) in GLYPHS.iter().enumerate() {
+        for (row, line) in glyph.iter().enumerate() {
+            for (col, ch) in line.bytes().enumerate() {
+                if ch != b'X' {
+                    continue;
+                }
+                let x0 = left + g * (6 * cell + 4) + col * cell;
+                let y0 = top + row * cell;
+                for y in y0..y0 + cell {
+                    for x in x0..x0 + cell {
+                        pixels[y * width + x] = [20, 40, 170];
+                    }
+                }
+            }
+        }
+    }
+    Raster { width, height, pixels }
+}
+
 fn bench(deck: &Path, runs: usize, threads: Option<usize>, opts: &Options) -> Result<(), String> {
     let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
     let dir = deck.parent().unwrap_or(Path::new("."));
@@ -139,4 +170,19 @@ fn bench(deck: &Path, runs: usize, threads: Option<usize>, opts: &Options) -> Re
         warm.stats.rays as f64 / median
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The texture rasters in raster/ are what `tools texture` writes.
+    #[test]
+    fn shipped_textures_are_the_tools_output() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../raster");
+        for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
+            let shipped = std::fs::read(dir.join(name)).expect("the shipped texture is readable");
+            assert_eq!(shipped, raytrace::raster::encode_raster(&raster), "{name}: run `cargo run -p tools -- texture`");
+        }
+    }
 }
