@@ -193,7 +193,12 @@ mod tests {
     fn comments_do_not_nest_and_close_only_their_own_kind() {
         assert_eq!(
             words("{ (* } x *) y"),
-            vec![Tok::Word("x".into()), Tok::Word("*)".into()), Tok::Word("y".into()), Tok::Eof]
+            vec![
+                Tok::Word("x".into()),
+                Tok::Word("*)".into()),
+                Tok::Word("y".into()),
+                Tok::Eof
+            ]
         );
         assert_eq!(words("(* } *) z"), vec![Tok::Word("z".into()), Tok::Eof]);
     }
@@ -213,9 +218,18 @@ mod tests {
 
     #[test]
     fn end_of_file_stands_on_the_last_line() {
-        assert_eq!(tokenize("").last().map(|t| t.pos), Some(Pos { line: 1, column: 1 }));
-        assert_eq!(tokenize("ab\n").last().map(|t| t.pos), Some(Pos { line: 1, column: 3 }));
-        assert_eq!(tokenize("ab\ncd").last().map(|t| t.pos), Some(Pos { line: 2, column: 3 }));
+        assert_eq!(
+            tokenize("").last().map(|t| t.pos),
+            Some(Pos { line: 1, column: 1 })
+        );
+        assert_eq!(
+            tokenize("ab\n").last().map(|t| t.pos),
+            Some(Pos { line: 1, column: 3 })
+        );
+        assert_eq!(
+            tokenize("ab\ncd").last().map(|t| t.pos),
+            Some(Pos { line: 2, column: 3 })
+        );
     }
 
     #[test]
@@ -226,10 +240,14 @@ mod tests {
 
     #[test]
     fn number_grammar() {
-        for ok in ["2", "-0.5", "+3", "1.5E-3", ".5", "5.", "1e10", "-.25e+2", "007"] {
+        for ok in [
+            "2", "-0.5", "+3", "1.5E-3", ".5", "5.", "1e10", "-.25e+2", "007",
+        ] {
             assert!(is_number(ok), "{ok}");
         }
-        for bad in ["", ".", "-", "1e", "1.2.3", "e5", "1,5", "inf", "NaN", "0x10", "5f", "--5"] {
+        for bad in [
+            "", ".", "-", "1e", "1.2.3", "e5", "1,5", "inf", "NaN", "0x10", "5f", "--5",
+        ] {
             assert!(!is_number(bad), "{bad}");
         }
         assert!(is_integer("-12") && is_integer("+0"));

@@ -46,8 +46,8 @@
 //!
 //! # Values
 //! - `view`: exactly once. `screen` and `distance` > 0. The eye may not be
-//!   straight above or below `look` (eye − look parallel to z, or eye =
-//!   look): world z is up in the image.
+//!   straight above or below `look` (eye = look, or the horizontal part of
+//!   eye − look under 1e-9 of its length): world z is up in the image.
 //! - `image`: exactly once. WIDTH, HEIGHT integers 1..8192; `mask` M an
 //!   integer 1..8 (required); `aliasing` A in 0..1, default 0.
 //! - `background`: at most once; R G B in 0..1; default black.
@@ -62,7 +62,8 @@
 //!   `reflect` and `index` are accepted on every kind; the tracer uses them
 //!   where DECK.md says.
 //! - `paint`: `scale` LX LY > 0, default 1 1; `color` in 0..1, default
-//!   white. `texture`: FILE is relative to the deck's folder, read as a
+//!   white. `texture`: FILE is relative to the deck's folder (`deck_dir`;
+//!   an absolute path stays absolute), read with `raster::read_raster_file` as a
 //!   raster file (texel = byte / 255); an empty raster is an error. A
 //!   surface gets at most one `paint` or `texture`, not both.
 //!
@@ -146,8 +147,8 @@ use std::path::Path;
 use glam::DMat3;
 
 use crate::types::{
-    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord, MotionRecord,
-    ObjectRecord, PatternRecord, Pos, Scene, SurfaceRecord, View,
+    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord,
+    MotionRecord, ObjectRecord, PatternRecord, Pos, Scene, SurfaceRecord, View,
 };
 use parse::Parser;
 
@@ -178,7 +179,12 @@ fn name_part(name: &Option<String>) -> String {
 /// it in errors, `deck_dir` is the folder `texture` files are relative to,
 /// and `fidelity` decides whether a `pattern` must be a permutation
 /// (erratum 1).
-pub fn initialize(source: &str, file_name: &str, deck_dir: &Path, fidelity: Fidelity) -> Result<Scene, DeckError> {
+pub fn initialize(
+    source: &str,
+    file_name: &str,
+    deck_dir: &Path,
+    fidelity: Fidelity,
+) -> Result<Scene, DeckError> {
     let mut b = Builder {
         p: Parser::new(source, file_name),
         deck_dir,
@@ -329,7 +335,8 @@ impl Builder<'_> {
         // The checks of `delete`, `motion` and `keyframe` keep every entry
         // named below in the scene; a failure here is a bug of this module,
         // reported as a deck error rather than a panic.
-        let lost = |p: &Parser, pos: Pos| p.error_at(pos, "internal error: the object left the scene");
+        let lost =
+            |p: &Parser, pos: Pos| p.error_at(pos, "internal error: the object left the scene");
         let mut motions = Vec::new();
         for m in self.motions {
             let mut record = m.record;
@@ -339,7 +346,11 @@ impl Builder<'_> {
         let mut keyframes = Vec::new();
         for k in self.keyframes {
             let first = final_index[k.first].ok_or_else(|| lost(&self.p, k.pos))?;
-            let rest = k.rest.iter().map(|&i| self.entries[i].record.clone()).collect();
+            let rest = k
+                .rest
+                .iter()
+                .map(|&i| self.entries[i].record.clone())
+                .collect();
             keyframes.push(KeyframeRecord {
                 pos: k.pos,
                 first,

@@ -7,7 +7,9 @@ use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use super::parse::Num;
 use super::{Builder, DeckError, ObjEntry};
-use crate::types::{Axis, CurveKind, ObjectRecord, PrimitiveClass, Pos, Shape, SweepShape, MAXSEGMENTS};
+use crate::types::{
+    Axis, CurveKind, ObjectRecord, Pos, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS,
+};
 
 /// The cosine and sine of an angle in degrees; exact for whole multiples of
 /// 90°, so that quarter turns and `axis` give exact matrices.
@@ -78,7 +80,10 @@ pub(super) fn class_name(class: PrimitiveClass) -> &'static str {
 
 /// The largest U² + V² of a point list.
 fn max_r2(points: &[[f64; 2]]) -> f64 {
-    points.iter().map(|p| p[0] * p[0] + p[1] * p[1]).fold(0.0, f64::max)
+    points
+        .iter()
+        .map(|p| p[0] * p[0] + p[1] * p[1])
+        .fold(0.0, f64::max)
 }
 
 /// Why a prism's polygon is refused: the vertex (0-based) and the message.
@@ -103,12 +108,19 @@ pub(super) fn convex_ccw(pts: &[[f64; 2]]) -> Result<Vec<[f64; 2]>, PolygonFault
         if cross.abs() <= 1e-12 * before.length() * after.length() {
             return Err(PolygonFault {
                 vertex: i,
-                message: format!("vertex {} is in line with its neighbours or repeats one", i + 1),
+                message: format!(
+                    "vertex {} is in line with its neighbours or repeats one",
+                    i + 1
+                ),
             });
         }
         turns.push((cross, cross.atan2(before.dot(after))));
     }
-    let sign = if area2 != 0.0 { area2.signum() } else { turns[0].0.signum() };
+    let sign = if area2 != 0.0 {
+        area2.signum()
+    } else {
+        turns[0].0.signum()
+    };
     for (i, (cross, _)) in turns.iter().enumerate() {
         if cross.signum() != sign {
             return Err(PolygonFault {
@@ -144,6 +156,14 @@ struct NewObject {
     shape: Shape,
 }
 
+/// The points of a prism or sweep: (U, V), where each U stands, and where
+/// `end` stands.
+struct PointList {
+    points: Vec<[f64; 2]>,
+    places: Vec<Pos>,
+    end: Pos,
+}
+
 /// A point list's limit: the most points, and the message past it.
 struct Limit {
     points: usize,
@@ -158,7 +178,10 @@ impl Builder<'_> {
         self.p.name = Some(name.clone());
         if let Some(&i) = self.object_index.get(&name) {
             let line = self.entries[i].pos.line;
-            return Err(self.p.error_at(pos, format!("the object name '{name}' is already used on line {line}")));
+            return Err(self.p.error_at(
+                pos,
+                format!("the object name '{name}' is already used on line {line}"),
+            ));
         }
         let (surface, _) = self.surface_ref()?;
         Ok((name, surface))
@@ -266,7 +289,10 @@ impl Builder<'_> {
         let bottom: Num = self.p.number("after 'bottom'")?;
         self.p.keyword("top")?;
         let b = bottom.value;
-        let top = self.p.number_where("after 'top'", &format!("> {}", bottom.text), |t| t > b)?.value;
+        let top = self
+            .p
+            .number_where("after 'top'", &format!("> {}", bottom.text), |t| t > b)?
+            .value;
         let mut orient = Axis::Z;
         let mut seen = Vec::new();
         while self.p.field(&["axis"], &mut seen)?.is_some() {
@@ -295,10 +321,9 @@ impl Builder<'_> {
         Ok(())
     }
 
-    /// The lines `U V` … `end` after a prism's or sweep's first line: the
-    /// points with the position of each U, and the position of `end`.
+    /// The lines `U V` … `end` after a prism's or sweep's first line.
     /// `u_radius`: U is a radius (≥ 0).
-    fn point_list(&mut self, limit: Option<Limit>, u_radius: bool) -> Result<(Vec<[f64; 2]>, Vec<Pos>, Pos), DeckError> {
+    fn point_list(&mut self, limit: Option<Limit>, u_radius: bool) -> Result<PointList, DeckError> {
         let mut points = Vec::new();
         let mut places = Vec::new();
         loop {
@@ -308,7 +333,11 @@ impl Builder<'_> {
                 Some((w, pos)) if w.eq_ignore_ascii_case("end") => {
                     self.p.keyword("end")?;
                     self.p.end_of_line()?;
-                    return Ok((points, places, pos));
+                    return Ok(PointList {
+                        points,
+                        places,
+                        end: pos,
+                    });
                 }
                 Some((w, pos)) if super::lex::is_number(&w) => {
                     if let Some(l) = &limit {
@@ -317,7 +346,8 @@ impl Builder<'_> {
                         }
                     }
                     let u = if u_radius {
-                        self.p.number_where("for U (a radius)", ">= 0", |u| u >= 0.0)?
+                        self.p
+                            .number_where("for U (a radius)", ">= 0", |u| u >= 0.0)?
                     } else {
                         self.p.number("for U")?
                     };
@@ -348,14 +378,19 @@ impl Builder<'_> {
             orientp = self.axis()?;
         }
         self.p.end_of_line()?;
-        let (points, places, end) = self.point_list(None, false)?;
+        let PointList {
+            points,
+            places,
+            end,
+        } = self.point_list(None, false)?;
         if points.len() < 3 {
             return Err(self.p.error_at(
                 end,
                 format!("a prism needs at least 3 vertices, found {}", points.len()),
             ));
         }
-        let vertex = convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex], f.message))?;
+        let vertex =
+            convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex], f.message))?;
         let radius = (max_r2(&vertex) + height * height).sqrt();
         let shape = Shape::Prism {
             orientp,
@@ -393,7 +428,10 @@ impl Builder<'_> {
         )?;
         let (curve, _) = self.p.choice(
             "a curve",
-            &[("bspline", CurveKind::Bspline), ("bezier", CurveKind::Bezier)],
+            &[
+                ("bspline", CurveKind::Bspline),
+                ("bezier", CurveKind::Bezier),
+            ],
         )?;
         let sphereo = self.at()?;
         let mut length = None;
@@ -412,10 +450,17 @@ impl Builder<'_> {
                     if class != PrimitiveClass::Conic {
                         return Err(self.p.error_at(
                             fpos,
-                            format!("only a conic sweep takes 'scale', not a {}", class_name(class)),
+                            format!(
+                                "only a conic sweep takes 'scale', not a {}",
+                                class_name(class)
+                            ),
                         ));
                     }
-                    scale = Some(self.p.number_where("after 'scale'", ">= 0", |s| s >= 0.0)?.value);
+                    scale = Some(
+                        self.p
+                            .number_where("after 'scale'", ">= 0", |s| s >= 0.0)?
+                            .value,
+                    );
                 }
                 _ => orientt = self.axis()?,
             }
@@ -425,7 +470,9 @@ impl Builder<'_> {
             (_, Some(l)) => l,
             (_, None) => {
                 let pos = self.p.pos();
-                return Err(self.p.error_at(pos, format!("a {} needs 'length L'", class_name(class))));
+                return Err(self
+                    .p
+                    .error_at(pos, format!("a {} needs 'length L'", class_name(class))));
             }
         };
         let scale = match (class, scale) {
@@ -447,15 +494,22 @@ impl Builder<'_> {
                 message: format!("more than {MAXSEGMENTS} segments: a bezier contour has one segment per 3 points"),
             },
         };
-        let (points, _, end) = self.point_list(Some(limit), class == PrimitiveClass::Rotation)?;
+        let PointList { points, end, .. } =
+            self.point_list(Some(limit), class == PrimitiveClass::Rotation)?;
         let n = points.len();
         let segment = match curve {
             CurveKind::Bspline if n < 4 => {
-                return Err(self.p.error_at(end, format!("a bspline contour needs at least 4 points, found {n}")));
+                return Err(self.p.error_at(
+                    end,
+                    format!("a bspline contour needs at least 4 points, found {n}"),
+                ));
             }
             CurveKind::Bspline => n,
             CurveKind::Bezier if n % 3 != 0 => {
-                return Err(self.p.error_at(end, format!("a bezier contour needs a multiple of 3 points, found {n}")));
+                return Err(self.p.error_at(
+                    end,
+                    format!("a bezier contour needs a multiple of 3 points, found {n}"),
+                ));
             }
             CurveKind::Bezier if n < 6 => {
                 return Err(self.p.error_at(
@@ -467,7 +521,9 @@ impl Builder<'_> {
         };
         let radius = match class {
             PrimitiveClass::Rotation => max_r2(&points).sqrt(),
-            PrimitiveClass::Conic => (max_r2(&points) * scale.max(1.0).powi(2) + length * length).sqrt(),
+            PrimitiveClass::Conic => {
+                (max_r2(&points) * scale.max(1.0).powi(2) + length * length).sqrt()
+            }
             _ => (max_r2(&points) + length * length).sqrt(),
         };
         let shape = Shape::Sweep(SweepShape {
@@ -486,7 +542,7 @@ impl Builder<'_> {
             orientt,
             NewObject {
                 name,
-                class: class,
+                class,
                 surface,
                 sphereo,
                 radius,
@@ -531,7 +587,10 @@ mod tests {
     #[test]
     fn convex_polygons_come_out_counter_clockwise() {
         let cw = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
-        assert_eq!(convex_ccw(&cw), Ok(vec![[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]]));
+        assert_eq!(
+            convex_ccw(&cw),
+            Ok(vec![[1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.0, 0.0]])
+        );
         let ccw = [[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]];
         assert_eq!(convex_ccw(&ccw), Ok(ccw.to_vec()));
     }
@@ -554,6 +613,10 @@ mod tests {
             })
             .collect();
         let fault = convex_ccw(&star).unwrap_err();
-        assert!(fault.message.contains("crosses itself"), "{}", fault.message);
+        assert!(
+            fault.message.contains("crosses itself"),
+            "{}",
+            fault.message
+        );
     }
 }

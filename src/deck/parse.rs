@@ -82,7 +82,10 @@ impl<'a> Parser<'a> {
     }
 
     fn advance(&mut self) {
-        if matches!(self.toks.get(self.i).map(|t| &t.tok), Some(Tok::Word(_) | Tok::Eol)) {
+        if matches!(
+            self.toks.get(self.i).map(|t| &t.tok),
+            Some(Tok::Word(_) | Tok::Eol)
+        ) {
             self.i += 1;
         }
     }
@@ -158,7 +161,11 @@ impl<'a> Parser<'a> {
     }
 
     /// One of the keywords of `options` (any case), as its value.
-    pub fn choice<T: Copy>(&mut self, what: &str, options: &[(&str, T)]) -> Result<(T, Pos), DeckError> {
+    pub fn choice<T: Copy>(
+        &mut self,
+        what: &str,
+        options: &[(&str, T)],
+    ) -> Result<(T, Pos), DeckError> {
         if let Some((w, pos)) = self.peek_word()? {
             if let Some((_, v)) = options.iter().find(|(k, _)| w.eq_ignore_ascii_case(k)) {
                 self.advance();
@@ -202,7 +209,11 @@ impl<'a> Parser<'a> {
                 return match w.parse::<f64>() {
                     Ok(value) if value.is_finite() => {
                         self.advance();
-                        Ok(Num { value, pos, text: w })
+                        Ok(Num {
+                            value,
+                            pos,
+                            text: w,
+                        })
                     }
                     _ => Err(self.error_at(pos, format!("the number '{w}' is out of range"))),
                 };
@@ -213,12 +224,20 @@ impl<'a> Parser<'a> {
 
     /// A number that must meet `ok`, described by `range` ("> 0",
     /// "in 0..1").
-    pub fn number_where(&mut self, what: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
+    pub fn number_where(
+        &mut self,
+        what: &str,
+        range: &str,
+        ok: impl Fn(f64) -> bool,
+    ) -> Result<Num, DeckError> {
         let n = self.number(what)?;
         if ok(n.value) {
             Ok(n)
         } else {
-            Err(self.error_at(n.pos, format!("expected a number {range} {what}, found '{}'", n.text)))
+            Err(self.error_at(
+                n.pos,
+                format!("expected a number {range} {what}, found '{}'", n.text),
+            ))
         }
     }
 
@@ -249,7 +268,10 @@ impl<'a> Parser<'a> {
                         self.advance();
                         Ok((v, pos))
                     }
-                    _ => Err(self.error_at(pos, format!("expected an integer in {lo}..{hi} {what}, found '{w}'"))),
+                    _ => Err(self.error_at(
+                        pos,
+                        format!("expected an integer in {lo}..{hi} {what}, found '{w}'"),
+                    )),
                 };
             }
         }
@@ -259,7 +281,11 @@ impl<'a> Parser<'a> {
     /// The next optional field of a record: `None` at the end of the line;
     /// otherwise one of `allowed` (any case), consumed. A field given twice
     /// or a word that is no field of the record is an error.
-    pub fn field(&mut self, allowed: &[&'static str], seen: &mut Vec<&'static str>) -> Result<Option<(&'static str, Pos)>, DeckError> {
+    pub fn field(
+        &mut self,
+        allowed: &[&'static str],
+        seen: &mut Vec<&'static str>,
+    ) -> Result<Option<(&'static str, Pos)>, DeckError> {
         if self.at_eol()? {
             return Ok(None);
         }
@@ -273,7 +299,11 @@ impl<'a> Parser<'a> {
                 return Ok(Some((f, pos)));
             }
         }
-        let list: Vec<String> = allowed.iter().filter(|f| !seen.contains(f)).map(|f| format!("'{f}'")).collect();
+        let list: Vec<String> = allowed
+            .iter()
+            .filter(|f| !seen.contains(f))
+            .map(|f| format!("'{f}'"))
+            .collect();
         if list.is_empty() {
             Err(self.expected("end of line"))
         } else {

@@ -9,8 +9,8 @@ use super::objects::rotation;
 use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo};
 use crate::raster::read_raster_file;
 use crate::types::{
-    Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint, PaintKind,
-    PatternRecord, Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
+    Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint,
+    PaintKind, PatternRecord, Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
 };
 
 /// The largest `blur N`: the CLT sum costs N uniforms a sample.
@@ -27,7 +27,10 @@ impl Builder<'_> {
     fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
         self.p.error_at(
             pos,
-            format!("a second '{keyword}' record (the first is on line {})", first.line),
+            format!(
+                "a second '{keyword}' record (the first is on line {})",
+                first.line
+            ),
         )
     }
 
@@ -97,7 +100,8 @@ impl Builder<'_> {
         let look_pos = self.p.keyword("look")?;
         let lookpt = self.p.vec3("after 'look'")?;
         let d = eyept - lookpt;
-        if d.x.hypot(d.y) <= 1e-9 * d.length() || d == DVec3::ZERO {
+        let across = d.x.hypot(d.y);
+        if across <= 1e-9 * across.hypot(d.z) || d == DVec3::ZERO {
             return Err(self.p.error_at(
                 look_pos,
                 "the eye is straight above or below the look point (world z must be up in the image)",
@@ -169,14 +173,18 @@ impl Builder<'_> {
         let (name, pos) = self.p.name("a light name")?;
         self.p.name = Some(name.clone());
         if let Some(&(_, line)) = self.light_index.get(&name) {
-            return Err(self.p.error_at(pos, format!("the light name '{name}' is already used on line {line}")));
+            return Err(self.p.error_at(
+                pos,
+                format!("the light name '{name}' is already used on line {line}"),
+            ));
         }
         let x = self.p.number("for X")?.value;
         let y = self.p.number("for Y")?.value;
         let z = self.p.number("for Z")?.value;
         let color = self.rgb(["for R", "for G", "for B"], false)?;
         self.p.end_of_line()?;
-        self.light_index.insert(name.clone(), (self.lights.len(), pos.line));
+        self.light_index
+            .insert(name.clone(), (self.lights.len(), pos.line));
         self.lights.push(LightRecord {
             name,
             position: DVec3::new(x, y, z),
@@ -193,7 +201,10 @@ impl Builder<'_> {
         self.p.name = Some(name.clone());
         if let Some(&i) = self.surface_index.get(&name) {
             let line = self.surface_info[i].pos.line;
-            return Err(self.p.error_at(pos, format!("the surface name '{name}' is already used on line {line}")));
+            return Err(self.p.error_at(
+                pos,
+                format!("the surface name '{name}' is already used on line {line}"),
+            ));
         }
         let (surface, _) = self.p.choice(
             "a surface kind",
@@ -218,7 +229,11 @@ impl Builder<'_> {
         self.p.keyword("kt")?;
         let kt = self.p.unit("after 'kt'")?.value;
         let mut iobject = color;
-        let mut prcntrfl = if surface == SurfaceAttribute::Mirrored { 1.0 } else { 0.0 };
+        let mut prcntrfl = if surface == SurfaceAttribute::Mirrored {
+            1.0
+        } else {
+            0.0
+        };
         let mut index = 1.0;
         let mut seen = Vec::new();
         while let Some((field, _)) = self.p.field(&["ambient", "reflect", "index"], &mut seen)? {
@@ -253,7 +268,11 @@ impl Builder<'_> {
 
     /// The surface a `paint` or `texture` record decorates; it may have no
     /// decoration yet.
-    fn decorated_surface(&mut self, keyword: &'static str, record_pos: Pos) -> Result<usize, DeckError> {
+    fn decorated_surface(
+        &mut self,
+        keyword: &'static str,
+        record_pos: Pos,
+    ) -> Result<usize, DeckError> {
         let (i, pos) = self.surface_ref()?;
         self.p.name = Some(self.surfaces[i].name.clone());
         if let Some((line, what)) = self.surface_info[i].decoration {
@@ -305,12 +324,22 @@ impl Builder<'_> {
         let i = self.decorated_surface("texture", record_pos)?;
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
-        let raster = read_raster_file(&self.deck_dir.join(&file))
-            .map_err(|e| self.p.error_at(file_pos, format!("cannot read the raster file '{file}': {e}")))?;
-        if raster.width == 0 || raster.height == 0 || raster.pixels.len() != raster.width * raster.height {
+        let raster = read_raster_file(&self.deck_dir.join(&file)).map_err(|e| {
+            self.p.error_at(
+                file_pos,
+                format!("cannot read the raster file '{file}': {e}"),
+            )
+        })?;
+        if raster.width == 0
+            || raster.height == 0
+            || raster.width.checked_mul(raster.height) != Some(raster.pixels.len())
+        {
             return Err(self.p.error_at(
                 file_pos,
-                format!("the raster file '{file}' holds no picture ({}×{})", raster.width, raster.height),
+                format!(
+                    "the raster file '{file}' holds no picture ({}×{})",
+                    raster.width, raster.height
+                ),
             ));
         }
         let texels = raster
@@ -331,7 +360,9 @@ impl Builder<'_> {
         self.p.begin("rotate");
         let (i, pos) = self.object_ref()?;
         self.pose_free(i, pos, "turned")?;
-        let (axis, _) = self.p.choice("an axis", &[("x", Axis::X), ("y", Axis::Y), ("z", Axis::Z)])?;
+        let (axis, _) = self
+            .p
+            .choice("an axis", &[("x", Axis::X), ("y", Axis::Y), ("z", Axis::Z)])?;
         let deg = self.p.number("for DEGREES")?.value;
         self.p.end_of_line()?;
         let e = &mut self.entries[i];
@@ -376,12 +407,18 @@ impl Builder<'_> {
         let (i, pos) = self.object_ref()?;
         let e = &self.entries[i];
         if let Some(line) = e.motion_line {
-            return Err(self.p.error_at(pos, format!("'{}' already has a motion (line {line})", e.record.name)));
+            return Err(self.p.error_at(
+                pos,
+                format!("'{}' already has a motion (line {line})", e.record.name),
+            ));
         }
         if let Some(line) = e.keyframe_line {
             return Err(self.p.error_at(
                 pos,
-                format!("'{}' is a key shape (keyframe on line {line}) and cannot have a motion", e.record.name),
+                format!(
+                    "'{}' is a key shape (keyframe on line {line}) and cannot have a motion",
+                    e.record.name
+                ),
             ));
         }
         self.p.keyword("to")?;
@@ -436,7 +473,8 @@ impl Builder<'_> {
         self.p.begin("keyframe");
         let mut shapes: Vec<usize> = Vec::new();
         loop {
-            let at_expander = matches!(self.p.peek_word()?, Some((w, _)) if w.eq_ignore_ascii_case("expander"));
+            let at_expander =
+                matches!(self.p.peek_word()?, Some((w, _)) if w.eq_ignore_ascii_case("expander"));
             if self.p.at_eol()? || at_expander {
                 break;
             }
@@ -454,7 +492,10 @@ impl Builder<'_> {
             if !super::objects::is_sweep(class) {
                 return Err(self.p.error_at(
                     pos,
-                    format!("'{name}' is a {}, not a sweep: key shapes are sweep objects", super::objects::class_name(class)),
+                    format!(
+                        "'{name}' is a {}, not a sweep: key shapes are sweep objects",
+                        super::objects::class_name(class)
+                    ),
                 ));
             }
             if let Some(&f) = shapes.first() {
@@ -472,7 +513,9 @@ impl Builder<'_> {
                 }
             }
             if shapes.contains(&i) {
-                return Err(self.p.error_at(pos, format!("'{name}' is named twice in this keyframe")));
+                return Err(self
+                    .p
+                    .error_at(pos, format!("'{name}' is named twice in this keyframe")));
             }
             if let Some(line) = e.keyframe_line {
                 return Err(self.p.error_at(
@@ -489,7 +532,11 @@ impl Builder<'_> {
             shapes.push(i);
         }
         if shapes.len() < 2 {
-            let what = if shapes.is_empty() { "the FIRST key shape's name" } else { "the LAST key shape's name" };
+            let what = if shapes.is_empty() {
+                "the FIRST key shape's name"
+            } else {
+                "the LAST key shape's name"
+            };
             return Err(self.p.expected(what));
         }
         let mut expander = Expander::Arclength;
@@ -499,7 +546,10 @@ impl Builder<'_> {
                 .p
                 .choice(
                     "an expander",
-                    &[("burtnyk", Expander::Burtnyk), ("arclength", Expander::Arclength)],
+                    &[
+                        ("burtnyk", Expander::Burtnyk),
+                        ("arclength", Expander::Arclength),
+                    ],
                 )?
                 .0;
         }
@@ -552,7 +602,9 @@ impl Builder<'_> {
             }
             let mut r = Vec::with_capacity(m);
             for _ in 0..m {
-                let (v, vpos) = self.p.integer(&format!("for row {row}"), 0, cells as i64 - 1)?;
+                let (v, vpos) = self
+                    .p
+                    .integer(&format!("for row {row}"), 0, cells as i64 - 1)?;
                 let v = v as usize;
                 if used[v] {
                     match self.fidelity {
