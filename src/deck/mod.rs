@@ -1,0 +1,375 @@
+//! `initialize`: reading the scene deck (DECK.md) into a [`Scene`].
+//!
+//! Reconstructed: the thesis does not print `initialize`. The main program
+//! (OCR lines ~3013–3046) calls it first and names the text files it read
+//! (`fview`, `filmdata`, `filmdata2`, `translationf`, …); Ch. 4 (a)–(b) says
+//! it sets up the variables and lets the user "create the scene" in the
+//! records of Fig. 4.3. The port reads all of that from one deck file whose
+//! format, /work/shared/DECK.md, is the users' contract. This comment is the
+//! user's reference for everything DECK.md leaves open; where a choice was
+//! open the stricter reading was taken, because an error can be relaxed
+//! later without breaking a deck, while an accepted deck must keep rendering
+//! the same way.
+//!
+//! # Lexical rules
+//! - Comments are `{ … }` and `(* … *)`. They do not nest; `{` is closed
+//!   only by `}` and `(*` only by `*)`. A comment separates words like a
+//!   space; the line ends inside a comment do not end a record. A comment
+//!   left open at the end of the deck is an error at its opening bracket.
+//! - A word is a run of characters other than white space and comment
+//!   openers. Keywords and field names are case-insensitive.
+//! - Names (surfaces, lights, objects) are case-sensitive, 1–10 characters
+//!   of `[A-Za-z0-9_]`; a word that is a number is never a name (`5` where a
+//!   name is expected is an error), but `2nd` is a name.
+//! - Numbers: `[+|-] (digits [. [digits]] | . digits) [(e|E) [+|-] digits]`,
+//!   so `2`, `-0.5`, `1.5E-3`, `.5` and `5.` are numbers; a number too large
+//!   for a 64-bit real is an error. Where DECK.md says integer (WIDTH,
+//!   HEIGHT, mask, blur, pattern), only `[+|-] digits` is accepted (`2.` is
+//!   not an integer).
+//! - A file name (`texture`) is one word: it cannot hold spaces or braces.
+//!
+//! # Records and lines
+//! - A record is one line. `prism`, `sweep` and `pattern` end their first
+//!   line after their fields; then each following line holds one point
+//!   `U V` (one row of M integers for `pattern`), and the list ends with a
+//!   line holding `end` alone. Empty and comment-only lines are skipped,
+//!   between records and inside lists.
+//! - Required fields come in DECK.md's order. The optional fields (those in
+//!   brackets) follow them in any order, each at most once; a field given
+//!   twice, a word that is no field of the record, or any extra token is an
+//!   error.
+//! - Records are read top to bottom and may name only what stands above
+//!   them. Surfaces, lights and objects are three kinds of name: a surface
+//!   and an object may share a name, two surfaces (two lights, two objects
+//!   in the scene) may not. After `delete NAME` the name is free again;
+//!   referring to the deleted object is an error ("unknown object").
+//!
+//! # Values
+//! - `view`: exactly once. `screen` and `distance` > 0. The eye may not be
+//!   straight above or below `look` (eye = look, or the horizontal part of
+//!   eye − look under 1e-9 of its length): world z is up in the image.
+//! - `image`: exactly once. WIDTH, HEIGHT integers 1..8192; `mask` M an
+//!   integer 1..8 (required); `aliasing` A in 0..1, default 0.
+//! - `background`: at most once; R G B in 0..1; default black.
+//! - `light`: R G B in 0..1 (a point light's intensity, as Fig. 4.3's
+//!   `intensity` comment says).
+//! - `surface`: KIND is `opaque`, `mirrored`, `transparent`, `crystal`,
+//!   `light` or `background`. `ka kd ks kt` and `reflect` in 0..1. `color`
+//!   and `ambient` components in 0..1, except on a `light` surface, which
+//!   emits: there any component ≥ 0 is allowed. `ambient` (`Iobject`)
+//!   defaults to `color`; `reflect` (`prcntrfl`) defaults to 1 for
+//!   `mirrored` and 0 otherwise; `index` defaults to 1.0 and must be > 0.
+//!   `reflect` and `index` are accepted on every kind; the tracer uses them
+//!   where DECK.md says.
+//! - `paint`: `scale` LX LY > 0, default 1 1; `color` in 0..1, default
+//!   white. `texture`: FILE is relative to the deck's folder (`deck_dir`;
+//!   an absolute path stays absolute), read with `raster::read_raster_file` as a
+//!   raster file (texel = byte / 255); an empty raster is an error. A
+//!   surface gets at most one `paint` or `texture`, not both.
+//!
+//! # Objects
+//! - `at` gives `sphereo`. `transfm` = T(`sphereo`) · R · A(axis) and
+//!   `inverse` = A(axis)ᵀ · Rᵀ · T(−`sphereo`), inverted exactly (both
+//!   rotation parts are orthogonal). A(axis) maps local z onto the named
+//!   world axis: `x` is +90° about y, `y` is −90° about x, `z` the
+//!   identity. `rotate NAME x|y|z DEG` sets R ← R_axis(DEG) · R (turning
+//!   the object about that world axis through its `sphereo`) and adds DEG to
+//!   `angle`; angles that are whole multiples of 90° use exact sines and
+//!   cosines. `translate NAME X Y Z` adds to `sphereo`.
+//! - `sphere`: radius > 0. `block`: a box centred on `sphereo`, edges LX LY
+//!   LZ > 0. `cylinder`: radius > 0, bottom < top, along local z. `prism`:
+//!   height > 0 and at least 3 vertices of a strictly convex polygon: a
+//!   vertex in line with its neighbours (or repeated), a reflex vertex, or a
+//!   polygon winding more than once is an error; a clockwise list is stored
+//!   counter-clockwise.
+//! - `radius` of a non-sphere is that of a sphere about `sphereo` holding
+//!   the whole object: half the block's diagonal; for a cylinder
+//!   √(r² + max(bottom², top²)); for a prism √(max(U²+V²) + H²); for sweeps
+//!   the control points bound the contour (convex hull property):
+//!   translation √(max(U²+V²) + L²), conic the same with the contour scaled
+//!   by max(1, S), rotation max √(U²+V²).
+//!
+//! # Sweeps
+//! - `sweep NAME SURFACE CLASS CURVE at X Y Z`, then `length`, `scale`,
+//!   `axis` in any order. `length` L > 0 is required for `translation` and
+//!   `conic` and an error on `rotation`. `scale` S ≥ 0 is required for
+//!   `conic` (S = 0 is a cone's apex; a conic sweep without a scale would be
+//!   a translation sweep) and an error on the other classes.
+//! - `bspline`: n ≥ 4 points give n segments. `bezier`: 3k points with
+//!   k ≥ 2 give k segments (a single closed cubic, k = 1, starts and ends at
+//!   one point with a corner there; two segments can draw any such shape).
+//!   More than 60 segments (`MAXSEGMENTS`) is an error at the first point
+//!   too many. A `rotation` contour with U < 0 is an error at that U.
+//! - The port fills `points`, `curve`, `segment`, `length` (0 for
+//!   rotation), `scale` (1 for translation and rotation) and `orientt`;
+//!   `u`, `v` and `bbox` are left empty for the sweep module (`spline`).
+//!
+//! # Motion and key frames
+//! - `motion NAME to X Y Z [turn AX AY AZ] [via X1 Y1 Z1 X2 Y2 Z2]
+//!   [law constant|accelerate|decelerate|smooth]`: one per object; `turn`
+//!   defaults to 0 0 0 and `law` to constant.
+//! - `keyframe A B [C …] [expander burtnyk|arclength]`: two or more distinct
+//!   sweep objects of one class (the word `expander`, in any case, ends the
+//!   list of names). A shape may be in one `keyframe` record only. The
+//!   later shapes are removed from `objects` into `KeyframeRecord::rest`
+//!   after the whole deck is read; every index (`objects`, `object_pos`,
+//!   `MotionRecord::object`, `KeyframeRecord::first`) refers to the final
+//!   `objects`. `expander` defaults to `arclength`.
+//! - Once an object has a `motion` or is a key shape its pose is fixed: a
+//!   later `rotate`, `translate` or `delete` of it is an error, and a key
+//!   shape may not have a `motion` (its path is from FIRST's pose to the
+//!   next shape's pose).
+//! - `blur N`: an integer 0..1000, at most once. `pattern M`: M an integer
+//!   1..16, then M rows of M integers in 0..M²−1, then `end`; at most once.
+//!   In `Fidelity::Thesis` the values must be a permutation of 0..M²−1 (an
+//!   error at the first repeated value); `Fidelity::Listing` accepts
+//!   repeats, as the printed table of Fig. 2.33 has them (erratum 1).
+//!
+//! # Errors
+//! [`DeckError`] reads `FILE:LINE:COL: RECORD 'NAME': MESSAGE`, or
+//! `FILE:LINE:COL: RECORD: MESSAGE` before the record's name is known.
+//! RECORD is the record's keyword in lower case, or `deck` outside any
+//! record (an unknown record keyword, a comment left open between records).
+//! NAME is the declared name once it is a valid name, or the named surface
+//! or object of a referring record once it has been found. The position is
+//! that of the offending token; a missing token is reported where it was
+//! expected: at the next token, the end of the line or the end of the deck.
+//! A missing `view` or `image` is reported at the end of the deck.
+
+mod lex;
+mod objects;
+mod parse;
+mod records;
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::DMat3;
+
+use crate::types::{
+    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord,
+    MotionRecord, ObjectRecord, PatternRecord, Pos, Scene, SurfaceRecord, View,
+};
+use parse::Parser;
+
+/// A deck error: where (file, 1-based line and column, the column counting
+/// characters), in which record, and what was wrong.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{file}:{line}:{column}: {record}{}: {message}", name_part(.name))]
+pub struct DeckError {
+    /// The deck's file name as given to [`initialize`].
+    pub file: String,
+    pub line: u32,
+    pub column: u32,
+    /// The record's keyword (`sweep`), or `deck` outside any record.
+    pub record: String,
+    /// The record's name, when known.
+    pub name: Option<String>,
+    pub message: String,
+}
+
+fn name_part(name: &Option<String>) -> String {
+    name.as_ref().map(|n| format!(" '{n}'")).unwrap_or_default()
+}
+
+/// Reads a deck into a [`Scene`].
+///
+/// Reconstructed: `initialize` of the main program `raytrace` (not printed;
+/// see the module comment). `source` is the deck's text, `file_name` names
+/// it in errors, `deck_dir` is the folder `texture` files are relative to,
+/// and `fidelity` decides whether a `pattern` must be a permutation
+/// (erratum 1).
+pub fn initialize(
+    source: &str,
+    file_name: &str,
+    deck_dir: &Path,
+    fidelity: Fidelity,
+) -> Result<Scene, DeckError> {
+    let mut b = Builder {
+        p: Parser::new(source, file_name),
+        deck_dir,
+        fidelity,
+        view: None,
+        image: None,
+        background: None,
+        lights: Vec::new(),
+        light_index: HashMap::new(),
+        surfaces: Vec::new(),
+        surface_info: Vec::new(),
+        surface_index: HashMap::new(),
+        entries: Vec::new(),
+        object_index: HashMap::new(),
+        motions: Vec::new(),
+        keyframes: Vec::new(),
+        blur: None,
+        pattern: None,
+    };
+    loop {
+        b.p.begin("deck");
+        b.p.skip_blank_lines()?;
+        if b.p.at_eof()? {
+            break;
+        }
+        b.record()?;
+    }
+    b.finish()
+}
+
+/// What the builder keeps about a surface besides its record.
+struct SurfaceInfo {
+    pos: Pos,
+    /// The line and keyword of its `paint` or `texture` record, if any.
+    decoration: Option<(u32, &'static str)>,
+}
+
+/// An object as read so far.
+struct ObjEntry {
+    record: ObjectRecord,
+    pos: Pos,
+    /// R: the product of the object's `rotate` records.
+    rot: DMat3,
+    /// A(axis): local z onto the named world axis.
+    axis: DMat3,
+    /// Removed by `delete`.
+    deleted: bool,
+    /// The line of its `motion` record.
+    motion_line: Option<u32>,
+    /// The line of the `keyframe` record it is a key shape of.
+    keyframe_line: Option<u32>,
+    /// A later key shape: moved into `KeyframeRecord::rest` at the end.
+    key_rest: bool,
+}
+
+/// A keyframe record before the final object indices are known.
+struct PendingKeyframe {
+    pos: Pos,
+    first: usize,
+    rest: Vec<usize>,
+    expander: Expander,
+}
+
+/// A motion record before the final object indices are known.
+struct PendingMotion {
+    record: MotionRecord,
+    entry: usize,
+}
+
+struct Builder<'a> {
+    p: Parser<'a>,
+    deck_dir: &'a Path,
+    fidelity: Fidelity,
+    view: Option<(View, Pos)>,
+    image: Option<(ImageSpec, Pos)>,
+    background: Option<(Intensity, Pos)>,
+    lights: Vec<LightRecord>,
+    /// Light name → (index, line).
+    light_index: HashMap<String, (usize, u32)>,
+    surfaces: Vec<SurfaceRecord>,
+    surface_info: Vec<SurfaceInfo>,
+    surface_index: HashMap<String, usize>,
+    entries: Vec<ObjEntry>,
+    /// Names of the objects in the scene (not deleted) → index in `entries`.
+    object_index: HashMap<String, usize>,
+    motions: Vec<PendingMotion>,
+    keyframes: Vec<PendingKeyframe>,
+    blur: Option<BlurRecord>,
+    pattern: Option<PatternRecord>,
+}
+
+impl Builder<'_> {
+    /// Reads one record, its first word being the next token.
+    fn record(&mut self) -> Result<(), DeckError> {
+        let (word, pos) = self.p.word("a record")?;
+        match word.to_ascii_lowercase().as_str() {
+            "view" => self.view(pos),
+            "image" => self.image(pos),
+            "background" => self.background(pos),
+            "light" => self.light(),
+            "surface" => self.surface(pos),
+            "paint" => self.paint(pos),
+            "texture" => self.texture(pos),
+            "sphere" => self.sphere(pos),
+            "block" => self.block(pos),
+            "cylinder" => self.cylinder(pos),
+            "prism" => self.prism(pos),
+            "sweep" => self.sweep(pos),
+            "rotate" => self.rotate(),
+            "translate" => self.translate(),
+            "delete" => self.delete(),
+            "motion" => self.motion(pos),
+            "keyframe" => self.keyframe(pos),
+            "blur" => self.blur(pos),
+            "pattern" => self.pattern(pos),
+            _ => Err(self.p.error_at(pos, format!("unknown record '{word}'"))),
+        }
+    }
+
+    /// Builds the scene once every record is read: checks that `view` and
+    /// `image` were given, computes the transforms, removes deleted objects
+    /// and later key shapes, and resolves the object indices.
+    fn finish(mut self) -> Result<Scene, DeckError> {
+        let end = self.p.pos();
+        let Some((view, _)) = self.view.take() else {
+            self.p.begin("view");
+            return Err(self.p.error_at(end, "the deck has no 'view' record"));
+        };
+        let Some((image, _)) = self.image.take() else {
+            self.p.begin("image");
+            return Err(self.p.error_at(end, "the deck has no 'image' record"));
+        };
+        for e in &mut self.entries {
+            let (transfm, inverse) = objects::transforms(e.record.sphereo, e.rot, e.axis);
+            e.record.transfm = transfm;
+            e.record.inverse = inverse;
+        }
+        let mut final_index = vec![None; self.entries.len()];
+        let mut objects = Vec::new();
+        let mut object_pos = Vec::new();
+        for (i, e) in self.entries.iter().enumerate() {
+            if !e.deleted && !e.key_rest {
+                final_index[i] = Some(objects.len());
+                objects.push(e.record.clone());
+                object_pos.push(e.pos);
+            }
+        }
+        // The checks of `delete`, `motion` and `keyframe` keep every entry
+        // named below in the scene; a failure here is a bug of this module,
+        // reported as a deck error rather than a panic.
+        let lost =
+            |p: &Parser, pos: Pos| p.error_at(pos, "internal error: the object left the scene");
+        let mut motions = Vec::new();
+        for m in self.motions {
+            let mut record = m.record;
+            record.object = final_index[m.entry].ok_or_else(|| lost(&self.p, record.pos))?;
+            motions.push(record);
+        }
+        let mut keyframes = Vec::new();
+        for k in self.keyframes {
+            let first = final_index[k.first].ok_or_else(|| lost(&self.p, k.pos))?;
+            let rest = k
+                .rest
+                .iter()
+                .map(|&i| self.entries[i].record.clone())
+                .collect();
+            keyframes.push(KeyframeRecord {
+                pos: k.pos,
+                first,
+                rest,
+                expander: k.expander,
+            });
+        }
+        Ok(Scene {
+            view,
+            image,
+            backgrnd: self.background.map(|(c, _)| c).unwrap_or_default(),
+            lights: self.lights,
+            surfaces: self.surfaces,
+            objects,
+            object_pos,
+            motions,
+            keyframes,
+            blur: self.blur,
+            pattern: self.pattern,
+        })
+    }
+}
