@@ -39,7 +39,8 @@ pub struct Framebuffer {
 }
 
 impl Framebuffer {
-    /// The pixel at column `x`, row `y`.
+    /// The pixel at column `x`, row `y`; panics outside the screen, like
+    /// slice indexing.
     pub fn pixel(&self, x: usize, y: usize) -> u32 {
         self.pixels[y * self.width + x]
     }
@@ -206,24 +207,25 @@ impl Lut {
                 entries: colours.into_iter().map(|(c, _)| c).collect(),
             };
         }
-        // Boxes are ranges of `colours`, each sorted as its split needs.
-        let mut boxes: Vec<std::ops::Range<usize>> = std::iter::once(0..colours.len()).collect();
+        // Boxes are ranges of `colours` (each sorted as its split needs),
+        // with their widest channel, its range and their pixel count.
+        let stats = |colours: &[([u8; 3], u64)], b: std::ops::Range<usize>| {
+            let (channel, range) = widest_channel(&colours[b.clone()]);
+            let weight: u64 = colours[b.clone()].iter().map(|&(_, w)| w).sum();
+            (b, channel, range, weight)
+        };
+        let mut boxes = vec![stats(&colours, 0..colours.len())];
         while boxes.len() < n {
-            let mut best: Option<(usize, usize, (u8, u64))> = None;
-            for (i, b) in boxes.iter().enumerate() {
-                if b.len() < 2 {
-                    continue;
-                }
-                let (channel, range) = widest_channel(&colours[b.clone()]);
-                let weight = colours[b.clone()].iter().map(|&(_, w)| w).sum();
-                if best.map_or(true, |(_, _, key)| (range, weight) > key) {
-                    best = Some((i, channel, (range, weight)));
+            let mut best: Option<(usize, (u8, u64))> = None;
+            for (i, (b, _, range, weight)) in boxes.iter().enumerate() {
+                if b.len() >= 2 && best.map_or(true, |(_, key)| (*range, *weight) > key) {
+                    best = Some((i, (*range, *weight)));
                 }
             }
-            let Some((i, channel, (_, weight))) = best else {
+            let Some((i, _)) = best else {
                 break;
             };
-            let b = boxes[i].clone();
+            let (b, channel, _, weight) = boxes[i].clone();
             let slice = &mut colours[b.clone()];
             slice.sort_unstable_by_key(|&(c, _)| (c[channel], c));
             // The first split point where the left part holds half the
@@ -238,12 +240,12 @@ impl Lut {
                 }
             }
             let split = b.start + split.clamp(1, b.len() - 1);
-            boxes[i] = b.start..split;
-            boxes.push(split..b.end);
+            boxes[i] = stats(&colours, b.start..split);
+            boxes.push(stats(&colours, split..b.end));
         }
         let entries = boxes
             .into_iter()
-            .map(|b| {
+            .map(|(b, ..)| {
                 let part = &colours[b];
                 let total: u64 = part.iter().map(|&(_, w)| w).sum();
                 let mean = |ch: usize| {
