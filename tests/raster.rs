@@ -541,7 +541,7 @@ fn read_raster_file_reads_only_what_the_header_needs() {
     let dir = tempfile::tempdir().unwrap();
     let raster = test_raster(3, 2, 4);
     let mut bytes = encode_raster(&raster);
-    bytes.extend(std::iter::repeat_n(0xab, 1 << 20));
+    bytes.extend(vec![0xab; 1 << 20]);
     let path = dir.path().join("padded.ras");
     std::fs::write(&path, &bytes).unwrap();
     assert_eq!(read_raster_file(&path).unwrap(), raster);
