@@ -179,6 +179,20 @@ pub struct Render {
 /// time from [`TimeTable::time`] and `motionblur` poses every object that
 /// `Isblur` says moves; the others keep their rest pose at no cost.
 pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
+    let (colours, stats, primary) = render_rows(scene, opts, progress);
+    let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
+    let img = &scene.image;
+    Render { raster: Raster { width: img.width, height: img.height, pixels }, stats, primary }
+}
+
+/// The image as colours, before `rgbtochars` clamps and rounds them (row
+/// 0 at the top): for checks that must see a NaN or a colour above 1.
+pub fn render_colours(scene: &Scene, opts: &Options) -> Vec<Intensity> {
+    render_rows(scene, opts, &|| {}).0
+}
+
+/// The scanline loop: the colour of every pixel, the counts, the primary rays.
+fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (Vec<Intensity>, TraceStats, u64) {
     let img = &scene.image;
     let m = img.masksize;
     let camera = Camera::new(scene, opts.fidelity);
@@ -210,7 +224,7 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
         }
     };
 
-    let mut pixels = vec![[0u8; 3]; img.width * img.height];
+    let mut pixels = vec![Intensity::ZERO; img.width * img.height];
     let per_row: Vec<(TraceStats, u64)> = pixels
         .par_chunks_mut(img.width)
         .enumerate()
@@ -250,7 +264,7 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
         stats += s;
         primary += p;
     }
-    Render { raster: Raster { width: img.width, height: img.height, pixels }, stats, primary }
+    (pixels, stats, primary)
 }
 
 /// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the
@@ -258,11 +272,11 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
 /// filter, the mean of the masksize × masksize subpixels of each pixel
 /// (§2.1.3 (2), supersampling). `sums` holds, for each of the `m` subpixel
 /// rows, each pixel's sum over its `m` subpixel columns.
-fn antialias(sums: &[Intensity], m: usize, out: &mut [[u8; 3]]) {
+fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
     let width = out.len();
     for (x, px) in out.iter_mut().enumerate() {
         let total: Intensity = (0..m).map(|sub| sums[sub * width + x]).sum();
-        *px = rgbtochars(total / (m * m) as f64);
+        *px = total / (m * m) as f64;
     }
 }
 

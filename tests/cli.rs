@@ -1,0 +1,157 @@
+//! The `raytrace` command as a user meets it: exit codes, what it writes
+//! and what it refuses to write.
+
+use std::path::Path;
+use std::process::Command;
+
+fn raytrace() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_raytrace"))
+}
+
+fn decks() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
+}
+
+const SMALL: &str = "\
+view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
+image 16 12  mask 1
+light sun 5 -5 10  1 1 1
+surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0 kt 0
+sphere ball red at 0 0 0 radius 1
+";
+
+/// A deck with an error: exit status 2, the error as FILE:LINE:COLUMN,
+/// and no raster, no PNG, no debug log written (and an old raster left
+/// as it was).
+#[test]
+fn deck_error_exits_2_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("bad.deck");
+    std::fs::write(&deck, SMALL.replace("radius 1", "radius lots")).unwrap();
+    let out = dir.path().join("bad.ras");
+    std::fs::write(&out, b"the last good raster").unwrap();
+    let png = dir.path().join("bad.png");
+    let debug = dir.path().join("bad.log");
+    let run = raytrace()
+        .arg(&deck)
+        .arg("-o")
+        .arg(&out)
+        .arg("--png")
+        .arg(&png)
+        .arg("--debug")
+        .arg(&debug)
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("bad.deck:5:"), "{err}");
+    assert!(err.contains("sphere 'ball'"), "{err}");
+    assert_eq!(std::fs::read(&out).unwrap(), b"the last good raster");
+    assert!(!png.exists() && !debug.exists());
+    // Only the two files the test made are in the folder.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+/// A deck that cannot be read at all, and a texture that is not a raster.
+#[test]
+fn unreadable_inputs_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = raytrace().arg(dir.path().join("missing.deck")).output().unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("missing.deck"));
+
+    std::fs::write(dir.path().join("junk.ras"), b"not a raster at all, not even close").unwrap();
+    let deck = dir.path().join("tex.deck");
+    std::fs::write(&deck, format!("{SMALL}texture red junk.ras\n")).unwrap();
+    let out = dir.path().join("tex.ras");
+    let run = raytrace().arg(&deck).arg("-o").arg(&out).output().unwrap();
+    assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("tex.deck:6:"));
+    assert!(!out.exists());
+}
+
+/// A good deck: exit 0, a raster the reader reads back at the deck's
+/// size, a PNG, and the listing's debug log.
+#[test]
+fn good_deck_writes_raster_png_and_debug_log() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("small.deck");
+    std::fs::write(&deck, SMALL).unwrap();
+    let out = dir.path().join("nested/small.ras");
+    let png = dir.path().join("small.png");
+    let debug = dir.path().join("small.log");
+    let run = raytrace()
+        .args(["--quiet", "--threads", "2"])
+        .arg(&deck)
+        .arg("-o")
+        .arg(&out)
+        .arg("--png")
+        .arg(&png)
+        .arg("--debug")
+        .arg(&debug)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(run.stderr.is_empty(), "--quiet: {}", String::from_utf8_lossy(&run.stderr));
+    let r = raytrace::raster::read_raster_file(&out).unwrap();
+    assert_eq!((r.width, r.height), (16, 12));
+    assert!(r.pixels.iter().any(|p| p[0] > 100 && p[1] < 30), "the red ball is in the picture");
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    let log = std::fs::read_to_string(&debug).unwrap();
+    assert_eq!(log.lines().filter(|l| l.starts_with(" scanline=")).count(), 12);
+    assert!(log.contains(" scanline=    1\n") && log.contains("FRAME NUMBER   1---DONE"));
+}
+
+/// The two fidelities are accepted, and a bad flag is a usage error.
+#[test]
+fn flags() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("small.deck");
+    std::fs::write(&deck, SMALL).unwrap();
+    for f in ["listing", "thesis"] {
+        let out = dir.path().join(format!("{f}.ras"));
+        let run = raytrace().args(["-q", "--fidelity", f]).arg(&deck).arg("-o").arg(&out).output().unwrap();
+        assert!(run.status.success());
+        assert!(out.exists());
+    }
+    let run = raytrace().args(["--fidelity", "pascal"]).arg(&deck).output().unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let help = raytrace().arg("--help").output().unwrap();
+    let text = String::from_utf8_lossy(&help.stdout);
+    assert!(text.contains("--fidelity") && text.contains("Exit status"));
+}
+
+/// Every deck in legacy_pascal/decks renders at a small size with no NaN
+/// or infinite colour reaching the raster (checked on the float image
+/// before `rgbtochars`, which would hide a NaN as black).
+#[test]
+fn every_legacy_deck_renders_without_nan() {
+    use raytrace::types::{Fidelity, Options};
+    let mut names = vec![];
+    for entry in std::fs::read_dir(decks()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "deck") {
+            names.push(path);
+        }
+    }
+    names.sort();
+    assert!(names.len() >= 6, "{names:?}");
+    for path in names {
+        let src = std::fs::read_to_string(&path).unwrap();
+        for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+            let name = path.display().to_string();
+            let mut scene = raytrace::deck::initialize(&src, &name, decks(), fidelity)
+                .unwrap_or_else(|e| panic!("{name} ({fidelity:?}): {e}"));
+            let opts = Options { fidelity, ..Options::default() };
+            if let Err(e) = raytrace::raytrace::prepare(&mut scene, &opts) {
+                // Key frames come with the paper unit.
+                assert!(e.to_string().contains("keyframe"), "{name}: {e}");
+                continue;
+            }
+            scene.image.width = 48;
+            scene.image.height = 48;
+            let colours = raytrace::raytrace::render_colours(&scene, &opts);
+            assert!(colours.iter().all(|c| c.is_finite()), "{name} ({fidelity:?}): a NaN or infinite colour");
+        }
+    }
+}
