@@ -79,7 +79,9 @@ pub fn clt_table(n: u32) -> Vec<f64> {
         return Vec::new();
     }
     let mut rng = MinimalStandard::new(5);
-    (0..MAXINDEX).map(|_| (0..n).map(|_| rng.next_uniform()).sum()).collect()
+    (0..MAXINDEX)
+        .map(|_| (0..n).map(|_| rng.next_uniform()).sum())
+        .collect()
 }
 
 /// Fig. 2.33, the 4×4 sampling pattern as printed (erratum 1: 10 appears
@@ -160,7 +162,13 @@ impl TimeTable {
     /// The table for `masksize` with [`default_pattern`].
     pub fn with_default_pattern(masksize: usize, blur: u32, fidelity: Fidelity) -> TimeTable {
         let m = masksize.max(1);
-        TimeTable { m, pattern: default_pattern(m, fidelity), n: blur, clt: clt_table(blur), fidelity }
+        TimeTable {
+            m,
+            pattern: default_pattern(m, fidelity),
+            n: blur,
+            clt: clt_table(blur),
+            fidelity,
+        }
     }
 
     /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
@@ -180,7 +188,11 @@ impl TimeTable {
             // = k mod maxindex) a place in it (§2.6.4–2.6.5).
             Fidelity::Thesis => {
                 let (row, col) = (scanline % self.m, scancol % self.m);
-                let xbar = if self.n == 0 { 0.5 } else { self.clt[k % MAXINDEX] / self.n as f64 };
+                let xbar = if self.n == 0 {
+                    0.5
+                } else {
+                    self.clt[k % MAXINDEX] / self.n as f64
+                };
                 (self.pattern[row][col] as f64 + xbar) / (self.m * self.m) as f64
             }
         }
@@ -222,7 +234,11 @@ fn posed(rest: &ObjectRecord, turn: DMat4, sphereo: DVec3) -> Pose {
     let transfm = DMat4::from_translation(sphereo) * turn * rest_rotation;
     let inverse_rest_rotation = rest.inverse * DMat4::from_translation(rest.sphereo);
     let inverse = inverse_rest_rotation * turn.transpose() * DMat4::from_translation(-sphereo);
-    Pose { transfm, inverse, sphereo }
+    Pose {
+        transfm,
+        inverse,
+        sphereo,
+    }
 }
 
 /// The point of a motion path at the fraction `f` of the way (§3.2.2):

@@ -97,9 +97,7 @@ pub struct Placement {
 /// axis; a smaller one stays entirely on screen. So a raster can never be
 /// dragged off the screen.
 pub fn placement(width: usize, height: usize, zoom: Option<u32>, pan: (i64, i64)) -> Placement {
-    let zoom = zoom
-        .unwrap_or_else(|| default_zoom(width, height))
-        .clamp(1, MAX_ZOOM);
+    let zoom = zoom.unwrap_or_else(|| default_zoom(width, height)).clamp(1, MAX_ZOOM);
     let (sw, sh) = (width as i64 * zoom as i64, height as i64 * zoom as i64);
     let (screen_w, screen_h) = (SCREEN_WIDTH as i64, SCREEN_HEIGHT as i64);
     let centre_left = (screen_w - sw).div_euclid(2);
@@ -218,7 +216,7 @@ impl Lut {
         while boxes.len() < n {
             let mut best: Option<(usize, (u8, u64))> = None;
             for (i, (b, _, range, weight)) in boxes.iter().enumerate() {
-                if b.len() >= 2 && best.map_or(true, |(_, key)| (*range, *weight) > key) {
+                if b.len() >= 2 && best.is_none_or(|(_, key)| (*range, *weight) > key) {
                     best = Some((i, (*range, *weight)));
                 }
             }
@@ -277,11 +275,7 @@ impl Lut {
         let pixels = raster
             .pixels
             .iter()
-            .map(|&c| {
-                *cache
-                    .entry(c)
-                    .or_insert_with(|| self.entries[self.nearest(c)])
-            })
+            .map(|&c| *cache.entry(c).or_insert_with(|| self.entries[self.nearest(c)]))
             .collect();
         Raster {
             width: raster.width,
@@ -306,9 +300,9 @@ pub fn distance2(a: [u8; 3], b: [u8; 3]) -> u32 {
 fn widest_channel(colours: &[([u8; 3], u64)]) -> (usize, u8) {
     let mut best = (0, 0);
     for ch in 0..3 {
-        let (lo, hi) = colours.iter().fold((u8::MAX, u8::MIN), |(lo, hi), (c, _)| {
-            (lo.min(c[ch]), hi.max(c[ch]))
-        });
+        let (lo, hi) = colours
+            .iter()
+            .fold((u8::MAX, u8::MIN), |(lo, hi), (c, _)| (lo.min(c[ch]), hi.max(c[ch])));
         let range = hi.saturating_sub(lo);
         if ch == 0 || range > best.1 {
             best = (ch, range);
@@ -320,10 +314,9 @@ fn widest_channel(colours: &[([u8; 3], u64)]) -> (usize, u8) {
 /// The window title: file name, raster size and zoom, e.g.
 /// `psout — fig5_6.ras 256×256 ×3`, with ` LUT 16` in lookup-table mode.
 pub fn title(path: &Path, width: usize, height: usize, zoom: u32, lut: Option<usize>) -> String {
-    let name = path.file_name().map_or_else(
-        || path.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
+    let name = path
+        .file_name()
+        .map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let mut t = format!("psout — {name} {width}×{height} ×{zoom}");
     if let Some(n) = lut {
         t.push_str(&format!(" LUT {n}"));
@@ -357,21 +350,10 @@ pub fn neighbour(path: &Path, forward: bool) -> std::io::Result<Option<PathBuf>>
     let pick = match list.iter().position(|p| p.file_name() == name) {
         Some(i) if list.len() > 1 => {
             let n = list.len();
-            Some(
-                list[if forward {
-                    (i + 1) % n
-                } else {
-                    (i + n - 1) % n
-                }]
-                .clone(),
-            )
+            Some(list[if forward { (i + 1) % n } else { (i + n - 1) % n }].clone())
         }
         Some(_) => None,
-        None if forward => list
-            .iter()
-            .find(|p| p.file_name() > name)
-            .or(list.first())
-            .cloned(),
+        None if forward => list.iter().find(|p| p.file_name() > name).or(list.first()).cloned(),
         None => list
             .iter()
             .rev()

@@ -185,10 +185,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header, RasterError> {
 
 /// Checks everything the header alone can tell, before any allocation.
 fn layout(h: &Header) -> Result<Layout, RasterError> {
-    if !matches!(
-        h.ras_type,
-        RT_OLD | RT_STANDARD | RT_BYTE_ENCODED | RT_FORMAT_RGB
-    ) {
+    if !matches!(h.ras_type, RT_OLD | RT_STANDARD | RT_BYTE_ENCODED | RT_FORMAT_RGB) {
         return Err(RasterError::UnsupportedType(h.ras_type));
     }
     let bytes_per_pixel = match h.depth {
@@ -395,12 +392,7 @@ pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
                         Some(m) => {
                             let i = index as usize;
                             if i >= entries {
-                                return Err(RasterError::ColourIndex {
-                                    x,
-                                    y,
-                                    index,
-                                    entries,
-                                });
+                                return Err(RasterError::ColourIndex { x, y, index, entries });
                             }
                             [m[i], m[entries + i], m[2 * entries + i]]
                         }
@@ -559,11 +551,7 @@ fn write_atomically(
             COUNTER.fetch_add(1, Ordering::Relaxed)
         ));
         let temp_path = dir.join(temp_name);
-        match File::options()
-            .write(true)
-            .create_new(true)
-            .open(&temp_path)
-        {
+        match File::options().write(true).create_new(true).open(&temp_path) {
             Ok(f) => break (temp_path, f),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
             Err(e) => return Err(e.into()),

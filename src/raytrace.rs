@@ -29,14 +29,21 @@ pub enum RenderError {
     Unsupported { pos: Pos, record: &'static str },
     /// A record that does not fit the rest of the scene.
     #[error("{}:{}: {record}: {message}", .pos.line, .pos.column)]
-    Misfit { pos: Pos, record: &'static str, message: String },
+    Misfit {
+        pos: Pos,
+        record: &'static str,
+        message: String,
+    },
 }
 
 /// Refuses the records whose rendering is still to come (key-frame
 /// deformation), naming the first.
 pub fn check_supported(scene: &Scene) -> Result<(), RenderError> {
     if let Some(k) = scene.keyframes.first() {
-        return Err(RenderError::Unsupported { pos: k.pos, record: "keyframe" });
+        return Err(RenderError::Unsupported {
+            pos: k.pos,
+            record: "keyframe",
+        });
     }
     Ok(())
 }
@@ -47,7 +54,11 @@ pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, Render
     let blur = scene.blur.as_ref().map_or(0, |b| b.n);
     TimeTable::new(scene.image.masksize, scene.pattern.as_ref(), blur, fidelity).map_err(|message| {
         let pos = scene.pattern.as_ref().map(|p| p.pos).unwrap_or_default();
-        RenderError::Misfit { pos, record: "pattern", message }
+        RenderError::Misfit {
+            pos,
+            record: "pattern",
+            message,
+        }
     })
 }
 
@@ -182,7 +193,15 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
     let (colours, stats, primary) = render_rows(scene, opts, progress);
     let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
     let img = &scene.image;
-    Render { raster: Raster { width: img.width, height: img.height, pixels }, stats, primary }
+    Render {
+        raster: Raster {
+            width: img.width,
+            height: img.height,
+            pixels,
+        },
+        stats,
+        primary,
+    }
 }
 
 /// The image as colours, before `rgbtochars` clamps and rounds them (row
@@ -200,11 +219,14 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
     // `prepare` has refused a pattern that does not fit; a caller that
     // skipped it gets the default table.
     let blur = scene.blur.as_ref().map_or(0, |b| b.n);
-    let times = time_table(scene, opts.fidelity)
-        .unwrap_or_else(|_| TimeTable::with_default_pattern(m, blur, opts.fidelity));
+    let times =
+        time_table(scene, opts.fidelity).unwrap_or_else(|_| TimeTable::with_default_pattern(m, blur, opts.fidelity));
     let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
-    let moving: Vec<&crate::types::MotionRecord> =
-        scene.motions.iter().filter(|mo| !Isblur(mo.object, &motionmatrix)).collect();
+    let moving: Vec<&crate::types::MotionRecord> = scene
+        .motions
+        .iter()
+        .filter(|mo| !Isblur(mo.object, &motionmatrix))
+        .collect();
     let first_col = match opts.fidelity {
         Fidelity::Listing => 0,
         Fidelity::Thesis => 1,
@@ -299,7 +321,12 @@ mod tests {
     use super::*;
 
     fn view(eye: [f64; 3], look: [f64; 3]) -> View {
-        View { eyept: DVec3::from_array(eye), lookpt: DVec3::from_array(look), screensize: 2.0, scrndistance: 1.0 }
+        View {
+            eyept: DVec3::from_array(eye),
+            lookpt: DVec3::from_array(look),
+            screensize: 2.0,
+            scrndistance: 1.0,
+        }
     }
 
     /// The point straight ahead on the screen lies on the line of sight, for

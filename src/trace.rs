@@ -24,8 +24,8 @@
 
 use crate::shapes::{face_coords, intersect_object};
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene,
-    SurfaceAttribute, SurfaceRecord,
+    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene, SurfaceAttribute,
+    SurfaceRecord,
 };
 
 /// The scene at one instant of the shutter: the read-only scene and where
@@ -182,7 +182,11 @@ pub fn raytrace(
         (-hit.normal, hit.insidep, hit.p)
     };
     let color = surface_color(scene, surf, &hit, opts);
-    let ambient_color = if surf.paint.is_some() || surf.texture.is_some() { color } else { surf.iobject };
+    let ambient_color = if surf.paint.is_some() || surf.texture.is_some() {
+        color
+    } else {
+        surf.iobject
+    };
     let mut i = surf.ka * ambient_color;
     i += surf.kd * diffuse(snap, near, n, opts, stats) * color;
 

@@ -286,7 +286,11 @@ pub struct ObjectRecord {
 impl ObjectRecord {
     /// The object where the deck leaves it (its pose at rest).
     pub fn pose(&self) -> Pose {
-        Pose { transfm: self.transfm, inverse: self.inverse, sphereo: self.sphereo }
+        Pose {
+            transfm: self.transfm,
+            inverse: self.inverse,
+            sphereo: self.sphereo,
+        }
     }
 }
 

@@ -92,10 +92,17 @@ fn good_deck_writes_raster_png_and_debug_log() {
         .output()
         .unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    assert!(run.stderr.is_empty(), "--quiet: {}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.stderr.is_empty(),
+        "--quiet: {}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let r = raytrace::raster::read_raster_file(&out).unwrap();
     assert_eq!((r.width, r.height), (16, 12));
-    assert!(r.pixels.iter().any(|p| p[0] > 100 && p[1] < 30), "the red ball is in the picture");
+    assert!(
+        r.pixels.iter().any(|p| p[0] > 100 && p[1] < 30),
+        "the red ball is in the picture"
+    );
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
     let log = std::fs::read_to_string(&debug).unwrap();
     assert_eq!(log.lines().filter(|l| l.starts_with(" scanline=")).count(), 12);
@@ -110,7 +117,13 @@ fn flags() {
     std::fs::write(&deck, SMALL).unwrap();
     for f in ["listing", "thesis"] {
         let out = dir.path().join(format!("{f}.ras"));
-        let run = raytrace().args(["-q", "--fidelity", f]).arg(&deck).arg("-o").arg(&out).output().unwrap();
+        let run = raytrace()
+            .args(["-q", "--fidelity", f])
+            .arg(&deck)
+            .arg("-o")
+            .arg(&out)
+            .output()
+            .unwrap();
         assert!(run.status.success());
         assert!(out.exists());
     }
@@ -142,7 +155,10 @@ fn every_legacy_deck_renders_without_nan() {
             let name = path.display().to_string();
             let mut scene = raytrace::deck::initialize(&src, &name, decks(), fidelity)
                 .unwrap_or_else(|e| panic!("{name} ({fidelity:?}): {e}"));
-            let opts = Options { fidelity, ..Options::default() };
+            let opts = Options {
+                fidelity,
+                ..Options::default()
+            };
             if let Err(e) = raytrace::raytrace::prepare(&mut scene, &opts) {
                 // Key frames come with the paper unit.
                 assert!(e.to_string().contains("keyframe"), "{name}: {e}");
@@ -151,7 +167,10 @@ fn every_legacy_deck_renders_without_nan() {
             scene.image.width = 48;
             scene.image.height = 48;
             let colours = raytrace::raytrace::render_colours(&scene, &opts);
-            assert!(colours.iter().all(|c| c.is_finite()), "{name} ({fidelity:?}): a NaN or infinite colour");
+            assert!(
+                colours.iter().all(|c| c.is_finite()),
+                "{name} ({fidelity:?}): a NaN or infinite colour"
+            );
         }
     }
 }

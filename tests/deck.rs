@@ -163,21 +163,14 @@ fn surfaces_with_defaults_paint_and_light_emission() {
         })
     );
     assert_eq!(s.surfaces[1].surface, SurfaceAttribute::Mirrored);
-    assert_eq!(
-        s.surfaces[1].prcntrfl, 1.0,
-        "reflect defaults to 1 for mirrored"
-    );
+    assert_eq!(s.surfaces[1].prcntrfl, 1.0, "reflect defaults to 1 for mirrored");
     let glass = &s.surfaces[2];
     assert_eq!(glass.surface, SurfaceAttribute::Transparent);
     assert_eq!((glass.index, glass.prcntrfl), (1.5, 0.1));
     assert_eq!(glass.iobject, DVec3::splat(0.5));
     let lamp = &s.surfaces[3];
     assert_eq!(lamp.surface, SurfaceAttribute::Light);
-    assert_eq!(
-        lamp.color,
-        DVec3::new(4.0, 4.0, 2.0),
-        "a light surface may exceed 1"
-    );
+    assert_eq!(lamp.color, DVec3::new(4.0, 4.0, 2.0), "a light surface may exceed 1");
     assert_eq!(
         s.surfaces[4].paint,
         Some(Paint {
@@ -218,14 +211,8 @@ fn an_object_at_1_2_3_turned_90_about_z() {
                 block b s at 1 2 3 size 1 1 1\nrotate b z 90\n";
     let s = initialize(deck, "t.deck", Path::new("."), Fidelity::Thesis).unwrap();
     let b = &s.objects[0];
-    assert_eq!(
-        b.transfm.transform_point3(DVec3::X),
-        DVec3::new(1.0, 3.0, 3.0)
-    );
-    assert_eq!(
-        b.inverse.transform_point3(DVec3::new(1.0, 3.0, 3.0)),
-        DVec3::X
-    );
+    assert_eq!(b.transfm.transform_point3(DVec3::X), DVec3::new(1.0, 3.0, 3.0));
+    assert_eq!(b.inverse.transform_point3(DVec3::new(1.0, 3.0, 3.0)), DVec3::X);
     assert_eq!(s.backgrnd, DVec3::ZERO, "background defaults to black");
     assert!(s.blur.is_none() && s.pattern.is_none());
     assert!(s.lights.is_empty() && s.motions.is_empty() && s.keyframes.is_empty());
@@ -286,10 +273,7 @@ fn sweeps() {
         panic!("wave is a sweep")
     };
     assert_eq!(wave.curve, CurveKind::Bspline);
-    assert_eq!(
-        wave.points,
-        vec![[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]
-    );
+    assert_eq!(wave.points, vec![[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]);
     assert_eq!((wave.segment, wave.length, wave.scale), (4, 2.0, 1.0));
     assert_eq!(wave.orientt, Axis::Z);
     assert!(wave.u.is_empty() && wave.v.is_empty());
@@ -312,10 +296,7 @@ fn sweeps() {
     let Shape::Sweep(v) = &vase.shape else {
         panic!("vase is a sweep")
     };
-    assert_eq!(
-        (v.segment, v.length, v.scale, v.orientt),
-        (4, 0.0, 1.0, Axis::Y)
-    );
+    assert_eq!((v.segment, v.length, v.scale, v.orientt), (4, 0.0, 1.0, Axis::Y));
     // The farthest control point is (0, 2).
     assert_eq!(vase.radius, 2.0);
 }
@@ -324,10 +305,7 @@ fn sweeps() {
 fn delete_and_keyframe_remove_objects_and_indices_follow() {
     let s = full();
     let names: Vec<&str> = s.objects.iter().map(|o| o.name.as_str()).collect();
-    assert_eq!(
-        names,
-        ["ball", "floor", "post", "wedge", "wave", "cone", "vase", "k1"]
-    );
+    assert_eq!(names, ["ball", "floor", "post", "wedge", "wave", "cone", "vase", "k1"]);
     let lines: Vec<u32> = s.object_pos.iter().map(|p| p.line).collect();
     assert_eq!(lines, [15, 17, 18, 19, 26, 32, 40, 56]);
     assert!(s.object_pos.iter().all(|p| p.column == 1));
@@ -335,18 +313,9 @@ fn delete_and_keyframe_remove_objects_and_indices_follow() {
     assert_eq!(s.keyframes.len(), 2);
     let k = &s.keyframes[0];
     assert_eq!(s.objects[k.first].name, "wave");
-    assert_eq!(
-        k.rest.iter().map(|o| o.name.as_str()).collect::<Vec<_>>(),
-        ["wave2"]
-    );
+    assert_eq!(k.rest.iter().map(|o| o.name.as_str()).collect::<Vec<_>>(), ["wave2"]);
     assert_eq!(k.expander, Expander::Arclength);
-    assert_eq!(
-        k.pos,
-        Pos {
-            line: 76,
-            column: 1
-        }
-    );
+    assert_eq!(k.pos, Pos { line: 76, column: 1 });
     let Shape::Sweep(w2) = &k.rest[0].shape else {
         panic!("wave2 is a sweep")
     };
@@ -355,11 +324,7 @@ fn delete_and_keyframe_remove_objects_and_indices_follow() {
     let chain = &s.keyframes[1];
     assert_eq!(s.objects[chain.first].name, "k1");
     assert_eq!(
-        chain
-            .rest
-            .iter()
-            .map(|o| o.name.as_str())
-            .collect::<Vec<_>>(),
+        chain.rest.iter().map(|o| o.name.as_str()).collect::<Vec<_>>(),
         ["k2", "k3"]
     );
     assert_eq!(chain.rest[0].sphereo, DVec3::new(0.0, 0.0, 1.0));
@@ -374,18 +339,9 @@ fn motions_blur_and_pattern() {
     assert_eq!(s.objects[m.object].name, "vase");
     assert_eq!(m.to, DVec3::ONE);
     assert_eq!(m.turn, DVec3::new(0.0, 0.0, 90.0));
-    assert_eq!(
-        m.via,
-        Some([DVec3::new(0.0, 0.0, 1.0), DVec3::new(1.0, 0.0, 1.0)])
-    );
+    assert_eq!(m.via, Some([DVec3::new(0.0, 0.0, 1.0), DVec3::new(1.0, 0.0, 1.0)]));
     assert_eq!(m.law, Law::Smooth);
-    assert_eq!(
-        m.pos,
-        Pos {
-            line: 78,
-            column: 1
-        }
-    );
+    assert_eq!(m.pos, Pos { line: 78, column: 1 });
     let m = &s.motions[1];
     assert_eq!(s.objects[m.object].name, "ball");
     assert_eq!((m.turn, m.via, m.law), (DVec3::ZERO, None, Law::Constant));
@@ -393,20 +349,14 @@ fn motions_blur_and_pattern() {
     assert_eq!(
         s.blur,
         Some(BlurRecord {
-            pos: Pos {
-                line: 80,
-                column: 1
-            },
+            pos: Pos { line: 80, column: 1 },
             n: 6
         })
     );
     assert_eq!(
         s.pattern,
         Some(PatternRecord {
-            pos: Pos {
-                line: 81,
-                column: 1
-            },
+            pos: Pos { line: 81, column: 1 },
             m: 2,
             values: vec![vec![0, 3], vec![2, 1]],
         })
@@ -425,10 +375,7 @@ fn a_repeated_pattern_value_is_accepted_in_listing_fidelity() {
     let deck = "view eye 0 -10 0 look 0 0 0 screen 1 distance 1\nimage 8 8 mask 2\n\
                 pattern 4\n 0 8 2 10\n 12 4 14 6\n 3 11 1 10\n 15 7 13 5\nend\n";
     let s = initialize(deck, "t.deck", Path::new("."), Fidelity::Listing).unwrap();
-    assert_eq!(
-        s.pattern.map(|p| p.values[2].clone()),
-        Some(vec![3, 11, 1, 10])
-    );
+    assert_eq!(s.pattern.map(|p| p.values[2].clone()), Some(vec![3, 11, 1, 10]));
     assert!(initialize(deck, "t.deck", Path::new("."), Fidelity::Thesis).is_err());
 }
 
@@ -444,17 +391,8 @@ fn comments_of_both_forms_anywhere() {
 #[test]
 fn default_deck_initializes() {
     let text = include_str!("../legacy_pascal/decks/default.deck");
-    let s = initialize(
-        text,
-        "default.deck",
-        Path::new("legacy_pascal/decks"),
-        Fidelity::Thesis,
-    )
-    .unwrap();
-    assert_eq!(
-        (s.image.width, s.image.height, s.image.masksize),
-        (256, 256, 2)
-    );
+    let s = initialize(text, "default.deck", Path::new("legacy_pascal/decks"), Fidelity::Thesis).unwrap();
+    assert_eq!((s.image.width, s.image.height, s.image.masksize), (256, 256, 2));
     let classes: Vec<PrimitiveClass> = s.objects.iter().map(|o| o.class).collect();
     for c in [
         PrimitiveClass::Sphere,

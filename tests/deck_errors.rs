@@ -73,10 +73,7 @@ fn the_base_decks_are_valid() {
 #[test]
 fn error_fields_are_kept() {
     let e = read(
-        &replacing(
-            6,
-            "sweep wave red translation bspline at 0 0 0 length lenght",
-        ),
+        &replacing(6, "sweep wave red translation bspline at 0 0 0 length lenght"),
         Fidelity::Thesis,
     )
     .unwrap_err();
@@ -247,10 +244,7 @@ fn missing_image() {
 #[test]
 fn surface_coefficient_out_of_range() {
     check(
-        &replacing(
-            4,
-            "surface red opaque color 1 0 0 ka 1.5 kd 0.7 ks 0.2 kt 0",
-        ),
+        &replacing(4, "surface red opaque color 1 0 0 ka 1.5 kd 0.7 ks 0.2 kt 0"),
         "t.deck:4:35: surface 'red': expected a number in 0..1 after 'ka', found '1.5'",
     );
 }
@@ -258,10 +252,7 @@ fn surface_coefficient_out_of_range() {
 #[test]
 fn surface_colour_above_one_on_an_opaque_surface() {
     check(
-        &replacing(
-            4,
-            "surface red opaque color 2 0 0 ka 0.1 kd 0.7 ks 0.2 kt 0",
-        ),
+        &replacing(4, "surface red opaque color 2 0 0 ka 0.1 kd 0.7 ks 0.2 kt 0"),
         "t.deck:4:26: surface 'red': expected a number in 0..1 after 'color', found '2'",
     );
 }
@@ -327,10 +318,7 @@ fn texture_file_that_cannot_be_read() {
     let e = read(&plus("texture red no_such.ras\n"), Fidelity::Thesis).unwrap_err();
     let reader = read_raster_file(&Path::new("decks").join("no_such.ras")).unwrap_err();
     assert_eq!((e.line, e.column), (12, 13));
-    assert_eq!(
-        (e.record.as_str(), e.name.as_deref()),
-        ("texture", Some("red"))
-    );
+    assert_eq!((e.record.as_str(), e.name.as_deref()), ("texture", Some("red")));
     assert_eq!(
         e.message,
         format!("cannot read the raster file 'no_such.ras': {reader}")
@@ -446,7 +434,9 @@ fn more_than_sixty_segments() {
         })
         .collect();
     check(
-        &plus(&format!("sweep b red translation bspline at 0 0 0 length 1\n{points}end\n")),
+        &plus(&format!(
+            "sweep b red translation bspline at 0 0 0 length 1\n{points}end\n"
+        )),
         "t.deck:73:2: sweep 'b': more than 60 segments: a bspline contour has one segment per point",
     );
 }
@@ -494,10 +484,7 @@ fn conic_scale_negative() {
 #[test]
 fn scale_on_a_translation_sweep() {
     check(
-        &replacing(
-            6,
-            "sweep wave red translation bspline at 0 0 0 length 2 scale 2",
-        ),
+        &replacing(6, "sweep wave red translation bspline at 0 0 0 length 2 scale 2"),
         "t.deck:6:54: sweep 'wave': only a conic sweep takes 'scale', not a translation sweep",
     );
 }
@@ -590,8 +577,7 @@ fn keyframe_names_an_object_twice() {
 
 #[test]
 fn key_shape_in_two_keyframes() {
-    let sweep3 =
-        "sweep wave3 red translation bspline at 0 0 0 length 1\n 1 0\n 0 1\n -1 0\n 0 -1\nend\n";
+    let sweep3 = "sweep wave3 red translation bspline at 0 0 0 length 1\n 1 0\n 0 1\n -1 0\n 0 -1\nend\n";
     check(
         &plus(&format!(
             "{MORE_SWEEPS}{sweep3}keyframe wave wave2\nkeyframe wave3 wave2\n"
@@ -635,9 +621,7 @@ fn motion_of_a_key_shape() {
 #[test]
 fn keyframe_unknown_expander() {
     check(
-        &plus(&format!(
-            "{MORE_SWEEPS}keyframe wave wave2 expander linear\n"
-        )),
+        &plus(&format!("{MORE_SWEEPS}keyframe wave wave2 expander linear\n")),
         "t.deck:24:30: keyframe 'wave': expected an expander (burtnyk, arclength), found 'linear'",
     );
 }
@@ -676,10 +660,7 @@ fn pattern_not_a_permutation_in_thesis_fidelity_but_accepted_in_listing() {
         "t.deck:14:2: pattern: the value 1 appears twice: the table must be a permutation of 0..3 (erratum 1; the listing fidelity accepts repeats)",
     );
     let s = read(&deck, Fidelity::Listing).unwrap();
-    assert_eq!(
-        s.pattern.map(|p| p.values),
-        Some(vec![vec![0, 1], vec![1, 3]])
-    );
+    assert_eq!(s.pattern.map(|p| p.values), Some(vec![vec![0, 1], vec![1, 3]]));
 }
 
 #[test]
@@ -727,17 +708,8 @@ fn every_prefix_and_mangled_line_reads_without_panicking() {
     // Replace each word in turn by garbage of several kinds.
     let words: Vec<(usize, usize)> = deck
         .char_indices()
-        .filter(|&(i, c)| {
-            !c.is_whitespace() && (i == 0 || deck[..i].ends_with(char::is_whitespace))
-        })
-        .map(|(i, _)| {
-            (
-                i,
-                deck[i..]
-                    .find(char::is_whitespace)
-                    .map_or(deck.len(), |n| i + n),
-            )
-        })
+        .filter(|&(i, c)| !c.is_whitespace() && (i == 0 || deck[..i].ends_with(char::is_whitespace)))
+        .map(|(i, _)| (i, deck[i..].find(char::is_whitespace).map_or(deck.len(), |n| i + n)))
         .collect();
     for &(a, b) in &words {
         for junk in [

@@ -13,14 +13,17 @@ fn law_at_zero_half_one() {
     let want = [
         (Law::Constant, 0.5),
         (Law::Accelerate, 0.292_893_218_813_452_5),
-        (Law::Decelerate, 0.707_106_781_186_547_6),
+        (Law::Decelerate, std::f64::consts::FRAC_1_SQRT_2), // sin(π/4)
         (Law::Smooth, 0.5),
     ];
     for (law, half) in want {
         assert!(LAW(law, 1.0, 0.0).abs() < 1e-15, "{law:?} at 0");
         assert!((LAW(law, 1.0, 0.5) - half).abs() < 1e-12, "{law:?} at ½");
         assert!((LAW(law, 1.0, 1.0) - 1.0).abs() < 1e-15, "{law:?} at 1");
-        assert!((LAW(law, 3.0, 0.5) - 3.0 * half).abs() < 1e-12, "{law:?} scales by MAXVAL");
+        assert!(
+            (LAW(law, 3.0, 0.5) - 3.0 * half).abs() < 1e-12,
+            "{law:?} scales by MAXVAL"
+        );
     }
 }
 
@@ -36,12 +39,20 @@ fn is_permutation(rows: &[Vec<u32>]) -> bool {
 fn fig_2_33_in_both_fidelities() {
     let listing: Vec<Vec<u32>> = fig_2_33(Fidelity::Listing).iter().map(|r| r.to_vec()).collect();
     let thesis: Vec<Vec<u32>> = fig_2_33(Fidelity::Thesis).iter().map(|r| r.to_vec()).collect();
-    assert_eq!(fig_2_33(Fidelity::Listing), [[7, 11, 3, 14], [4, 15, 13, 0], [10, 1, 8, 12], [6, 10, 5, 2]]);
+    assert_eq!(
+        fig_2_33(Fidelity::Listing),
+        [[7, 11, 3, 14], [4, 15, 13, 0], [10, 1, 8, 12], [6, 10, 5, 2]]
+    );
     assert_eq!(listing.iter().flatten().filter(|&&v| v == 10).count(), 2);
     assert!(!listing.iter().flatten().any(|&v| v == 9));
     assert!(!is_permutation(&listing));
     assert!(is_permutation(&thesis));
-    let changed = listing.iter().flatten().zip(thesis.iter().flatten()).filter(|(a, b)| a != b).count();
+    let changed = listing
+        .iter()
+        .flatten()
+        .zip(thesis.iter().flatten())
+        .filter(|(a, b)| a != b)
+        .count();
     assert_eq!(changed, 1);
     for m in 1..=8 {
         assert!(is_permutation(&default_pattern(m, Fidelity::Thesis)), "default {m}×{m}");
@@ -62,7 +73,10 @@ fn clt_table_mean_and_variance() {
         // SE of the mean: σ/√k; of the variance: σ²·√(2/(k−1)) (normal
         // approximation; the uniform's lighter tails make it smaller).
         assert!((mean - mu).abs() < 4.0 * (sigma2 / k).sqrt(), "n={n}: mean {mean}");
-        assert!((var - sigma2).abs() < 4.0 * sigma2 * (2.0 / (k - 1.0)).sqrt(), "n={n}: var {var}");
+        assert!(
+            (var - sigma2).abs() < 4.0 * sigma2 * (2.0 / (k - 1.0)).sqrt(),
+            "n={n}: var {var}"
+        );
         assert!(t.iter().all(|&v| v > 0.0 && v < n as f64));
     }
     assert!(clt_table(0).is_empty());
@@ -75,7 +89,10 @@ fn subpixel_times() {
     let listing = TimeTable::new(4, None, 3, Fidelity::Listing).unwrap();
     // scanline 1, scancol 2: col = 1 mod 4 + 1 = 2, row = 2 mod 4 + 1 = 3.
     assert!((listing.time(1, 2, 0) - 0.1 * FIG_2_33[2][1] as f64).abs() < 1e-15);
-    let max = (1..=4).flat_map(|l| (1..=4).map(move |c| (l, c))).map(|(l, c)| listing.time(l, c, 0)).fold(0.0, f64::max);
+    let max = (1..=4)
+        .flat_map(|l| (1..=4).map(move |c| (l, c)))
+        .map(|(l, c)| listing.time(l, c, 0))
+        .fold(0.0, f64::max);
     assert!((max - 1.5).abs() < 1e-12, "listing reaches 1.5: {max}");
     // Thesis, blur 0: the centres of the strata, (v + ½)/16.
     let t0 = TimeTable::new(4, None, 0, Fidelity::Thesis).unwrap();
@@ -94,7 +111,11 @@ fn subpixel_times() {
     strata.sort_unstable();
     assert_eq!(strata, (0..16).collect::<Vec<_>>());
     // A deck table of another size than the mask does not fit.
-    let p = PatternRecord { pos: Pos::default(), m: 2, values: vec![vec![0, 1], vec![2, 3]] };
+    let p = PatternRecord {
+        pos: Pos::default(),
+        m: 2,
+        values: vec![vec![0, 1], vec![2, 3]],
+    };
     assert!(TimeTable::new(4, Some(&p), 0, Fidelity::Thesis).is_err());
 }
 
@@ -127,7 +148,11 @@ fn motionblur_poses() {
     assert!(close(half.sphereo, DVec3::new(3.0, 2.0, 3.0), 1e-12));
     motion.law = Law::Accelerate;
     let half = motionblur(&obj, &motion, 0.5, Fidelity::Thesis);
-    assert!(close(half.sphereo, DVec3::new(1.0 + 4.0 * 0.292_893_218_813_452_5, 2.0, 3.0), 1e-12));
+    assert!(close(
+        half.sphereo,
+        DVec3::new(1.0 + 4.0 * 0.292_893_218_813_452_5, 2.0, 3.0),
+        1e-12
+    ));
     // A Bezier path passes its ends and, at ½, (P0 + 3P1 + 3P2 + P3)/8.
     motion.law = Law::Constant;
     motion.via = Some([DVec3::new(1.0, 6.0, 3.0), DVec3::new(5.0, 6.0, 3.0)]);
@@ -145,7 +170,14 @@ fn motionblur_poses() {
 /// misses it; the y–z projection sees it.
 #[test]
 fn boundvolume_projections() {
-    let bx = BoundingBox { xmin: -1.0, xmax: 1.0, ymin: -1.0, ymax: 1.0, zmin: -1.0, zmax: 1.0 };
+    let bx = BoundingBox {
+        xmin: -1.0,
+        xmax: 1.0,
+        ymin: -1.0,
+        ymax: 1.0,
+        zmin: -1.0,
+        zmax: 1.0,
+    };
     let through = Ray::new(DVec3::new(-5.0, 0.2, 0.3), DVec3::X);
     assert!(boundvolume(&through, &bx, Fidelity::Listing));
     assert!(boundvolume(&through, &bx, Fidelity::Thesis));
@@ -213,9 +245,20 @@ fn isblur_is_true_for_objects_that_do_not_move() {
 fn moving_square_matches_its_coverage() {
     let m = 8usize;
     let mut s = scene();
-    s.view = View { eyept: DVec3::new(0.0, -1000.0, 0.0), lookpt: DVec3::ZERO, screensize: 16.0, scrndistance: 1000.0 };
-    s.image = ImageSpec { width: 64, height: 4, masksize: m, aliasing: 0.0 };
-    s.surfaces.push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
+    s.view = View {
+        eyept: DVec3::new(0.0, -1000.0, 0.0),
+        lookpt: DVec3::ZERO,
+        screensize: 16.0,
+        scrndistance: 1000.0,
+    };
+    s.image = ImageSpec {
+        width: 64,
+        height: 4,
+        masksize: m,
+        aliasing: 0.0,
+    };
+    s.surfaces
+        .push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
     let (w_sq, x0, d) = (2.0, -5.0, 10.0);
     s.objects.push(block("square", 0, [x0, 0.0, 0.0], [w_sq, 0.01, 20.0]));
     s.motions.push(MotionRecord {
@@ -226,7 +269,10 @@ fn moving_square_matches_its_coverage() {
         via: None,
         law: Law::Constant,
     });
-    s.blur = Some(BlurRecord { pos: Pos::default(), n: 1 });
+    s.blur = Some(BlurRecord {
+        pos: Pos::default(),
+        n: 1,
+    });
     let img = render(&s, &Options::default(), &|| {}).raster;
     let cam = raytrace::raytrace::Camera::new(&s, Fidelity::Thesis);
     let pixel_w = 16.0 / 64.0; // screen 16 wide over 64 pixels, nearly parallel projection
@@ -249,7 +295,10 @@ fn moving_square_matches_its_coverage() {
             let want = cover / (m * m) as f64;
             let got = img.pixels[row * 64 + col][1] as f64 / 255.0;
             worst = worst.max((got - want).abs());
-            assert!((got - want).abs() <= bound, "pixel ({col},{row}): {got} vs {want}, bound {bound}");
+            assert!(
+                (got - want).abs() <= bound,
+                "pixel ({col},{row}): {got} vs {want}, bound {bound}"
+            );
         }
     }
     eprintln!("moving square: worst error {worst:.4}, bound {bound:.4}");
@@ -260,9 +309,15 @@ fn moving_square_matches_its_coverage() {
 #[test]
 fn motion_is_deterministic_and_leaves_static_objects_alone() {
     let mut s = scene();
-    s.image = ImageSpec { width: 32, height: 16, masksize: 2, aliasing: 0.3 };
+    s.image = ImageSpec {
+        width: 32,
+        height: 16,
+        masksize: 2,
+        aliasing: 0.3,
+    };
     s.view.screensize = 8.0;
-    s.surfaces.push(surface(SurfaceAttribute::Light, [0.9, 0.5, 0.2], 0.0, 0.0, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Light, [0.9, 0.5, 0.2], 0.0, 0.0, 0.0, 0.0));
     s.objects.push(sphere("still", 0, [-2.0, 0.0, 0.0], 1.0));
     s.objects.push(sphere("mover", 0, [1.5, 0.0, 0.0], 0.8));
     let still = render(&s, &Options::default(), &|| {}).raster;
@@ -274,7 +329,10 @@ fn motion_is_deterministic_and_leaves_static_objects_alone() {
         via: None,
         law: Law::Smooth,
     });
-    s.blur = Some(BlurRecord { pos: Pos::default(), n: 2 });
+    s.blur = Some(BlurRecord {
+        pos: Pos::default(),
+        n: 2,
+    });
     let images: Vec<_> = [1, 2, 8]
         .into_iter()
         .map(|n| {
@@ -288,7 +346,11 @@ fn motion_is_deterministic_and_leaves_static_objects_alone() {
     // The left half holds only the still sphere.
     for row in 0..16 {
         for col in 0..16 {
-            assert_eq!(images[0].pixels[row * 32 + col], still.pixels[row * 32 + col], "({col},{row})");
+            assert_eq!(
+                images[0].pixels[row * 32 + col],
+                still.pixels[row * 32 + col],
+                "({col},{row})"
+            );
         }
     }
 }

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use raytrace::psout::{
-    compose, default_zoom, distance2, neighbour, pack_rgb, placement, rasters_in_folder,
-    screenshot_path, title, Framebuffer, Lut, SCREEN_HEIGHT, SCREEN_WIDTH,
+    compose, default_zoom, distance2, neighbour, pack_rgb, placement, rasters_in_folder, screenshot_path, title,
+    Framebuffer, Lut, SCREEN_HEIGHT, SCREEN_WIDTH,
 };
 use raytrace::raster::{encode_raster, outputframe, read_raster, Raster};
 
@@ -35,10 +35,7 @@ fn assert_screen(fb: &Framebuffer, raster: &Raster, left: i64, top: i64, zoom: i
     for sy in 0..864i64 {
         for sx in 0..1024i64 {
             let (dx, dy) = (sx - left, sy - top);
-            let inside = dx >= 0
-                && dy >= 0
-                && dx < raster.width as i64 * zoom
-                && dy < raster.height as i64 * zoom;
+            let inside = dx >= 0 && dy >= 0 && dx < raster.width as i64 * zoom && dy < raster.height as i64 * zoom;
             let expected = if inside {
                 let (rx, ry) = ((dx / zoom) as usize, (dy / zoom) as usize);
                 pack_rgb(raster.pixels[ry * raster.width + rx])
@@ -79,10 +76,7 @@ fn a_two_by_two_raster_lands_in_the_centre_at_zooms_one_to_three() {
     assert_eq!(fb.pixels.iter().filter(|&&p| p != 0).count(), 16);
     assert_screen(&fb, &raster, 510, 430, 2);
     // Zoom 3 (also the default for 2×2): a 6×6 block from (509, 429).
-    for fb in [
-        compose(&raster, Some(3), (0, 0)),
-        compose(&raster, None, (0, 0)),
-    ] {
+    for fb in [compose(&raster, Some(3), (0, 0)), compose(&raster, None, (0, 0))] {
         assert_eq!(fb.pixel(509, 429), 0xff0000);
         assert_eq!(fb.pixel(511, 431), 0xff0000);
         assert_eq!(fb.pixel(512, 431), 0x00ff00);
@@ -169,41 +163,18 @@ fn pan_moves_a_clipped_or_zoomed_raster_and_is_clamped_to_the_screen() {
         for pan in [(i64::MIN, 0), (0, i64::MAX), (12345, -777), (-3, 3)] {
             let p = placement(w, h, z, pan);
             let zoom = p.zoom as i64;
-            assert!(
-                p.left < 1024 && p.left + w as i64 * zoom > 0,
-                "{w}×{h} {pan:?}"
-            );
-            assert!(
-                p.top < 864 && p.top + h as i64 * zoom > 0,
-                "{w}×{h} {pan:?}"
-            );
+            assert!(p.left < 1024 && p.left + w as i64 * zoom > 0, "{w}×{h} {pan:?}");
+            assert!(p.top < 864 && p.top + h as i64 * zoom > 0, "{w}×{h} {pan:?}");
         }
     }
 }
 
 /// Big-endian header fields of a raster file.
-fn header(
-    w: u32,
-    h: u32,
-    depth: u32,
-    length: u32,
-    ras_type: u32,
-    maptype: u32,
-    maplength: u32,
-) -> Vec<u8> {
-    [
-        0x59a6_6a95,
-        w,
-        h,
-        depth,
-        length,
-        ras_type,
-        maptype,
-        maplength,
-    ]
-    .iter()
-    .flat_map(|v| v.to_be_bytes())
-    .collect()
+fn header(w: u32, h: u32, depth: u32, length: u32, ras_type: u32, maptype: u32, maplength: u32) -> Vec<u8> {
+    [0x59a6_6a95, w, h, depth, length, ras_type, maptype, maplength]
+        .iter()
+        .flat_map(|v| v.to_be_bytes())
+        .collect()
 }
 
 #[test]
@@ -235,11 +206,7 @@ fn pseudo_random_raster(width: usize, height: usize, seed: u64) -> Raster {
             [s as u8, (s >> 8) as u8, (s >> 16) as u8]
         });
     }
-    Raster {
-        width,
-        height,
-        pixels,
-    }
+    Raster { width, height, pixels }
 }
 
 #[test]
@@ -258,11 +225,7 @@ fn the_lut_has_at_most_n_entries_and_maps_each_colour_to_its_nearest() {
             assert_eq!(distance2(c, m), brute, "N = {n}, colour {c:?}");
             assert!(lut.entries.contains(&m));
             // nearest() picks the first entry at the least distance.
-            let first = lut
-                .entries
-                .iter()
-                .position(|&e| distance2(c, e) == brute)
-                .unwrap();
+            let first = lut.entries.iter().position(|&e| distance2(c, e) == brute).unwrap();
             assert_eq!(lut.nearest(c), first);
         }
         let error: u64 = raster
@@ -301,10 +264,7 @@ fn an_image_with_few_colours_keeps_them_exactly_and_the_lut_is_deterministic() {
     assert_eq!(lut.entries.len(), 4);
     assert_eq!(lut.apply(&raster), raster);
     let big = pseudo_random_raster(40, 40, 3);
-    assert_eq!(
-        Lut::median_cut(&big.pixels, 16),
-        Lut::median_cut(&big.pixels, 16)
-    );
+    assert_eq!(Lut::median_cut(&big.pixels, 16), Lut::median_cut(&big.pixels, 16));
     // The split is at the pixel-weighted median: two blacks against a
     // white and a near-white give black and their mean.
     let bw = Lut::median_cut(&[[0, 0, 0], [255, 255, 255], [0, 0, 0], [250, 250, 250]], 2);
@@ -357,18 +317,9 @@ fn the_folder_listing_steps_through_ras_files_by_name() {
     assert_eq!(step("aa.txt", true).as_deref(), Some("b.ras"));
     let lone = tempfile::tempdir().unwrap();
     std::fs::write(lone.path().join("only.ras"), b"").unwrap();
-    assert_eq!(
-        neighbour(&lone.path().join("only.ras"), true).unwrap(),
-        None
-    );
-    assert_eq!(
-        screenshot_path(&d.join("fig5_6.ras")),
-        d.join("fig5_6.psout.png")
-    );
-    assert_eq!(
-        screenshot_path(Path::new("fig5_6.ras")),
-        Path::new("fig5_6.psout.png")
-    );
+    assert_eq!(neighbour(&lone.path().join("only.ras"), true).unwrap(), None);
+    assert_eq!(screenshot_path(&d.join("fig5_6.ras")), d.join("fig5_6.psout.png"));
+    assert_eq!(screenshot_path(Path::new("fig5_6.ras")), Path::new("fig5_6.psout.png"));
 }
 
 fn psout() -> Command {
@@ -449,10 +400,7 @@ fn bad_raster_files_exit_with_code_2_and_name_the_file() {
             assert!(!stderr.contains("panicked"), "{name}: {stderr}");
         }
     }
-    let out = psout()
-        .arg(dir.path().join("missing.ras"))
-        .output()
-        .unwrap();
+    let out = psout().arg(dir.path().join("missing.ras")).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.ras"));
     assert!(!dir.path().join("never.png").exists());
@@ -552,7 +500,7 @@ fn byte_encode(data: &[u8]) -> Vec<u8> {
         } else if run >= 3 || v == 0x80 {
             out.extend_from_slice(&[0x80, (run - 1) as u8, v]);
         } else {
-            out.extend(std::iter::repeat(v).take(run));
+            out.extend(std::iter::repeat_n(v, run));
         }
         i += run;
     }

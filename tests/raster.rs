@@ -6,8 +6,7 @@ use std::io::Write;
 use std::process::{Command, Stdio};
 
 use raytrace::raster::{
-    encode_raster, outputframe, read_raster, read_raster_file, rgbtochars, Raster, RasterError,
-    MAX_SIDE,
+    encode_raster, outputframe, read_raster, read_raster_file, rgbtochars, Raster, RasterError, MAX_SIDE,
 };
 use raytrace::types::Intensity;
 
@@ -35,11 +34,7 @@ fn test_raster(width: usize, height: usize, seed: u64) -> Raster {
             [v as u8, (v >> 8) as u8, (v >> 16) as u8]
         })
         .collect();
-    Raster {
-        width,
-        height,
-        pixels,
-    }
+    Raster { width, height, pixels }
 }
 
 /// A raster file from its header fields, colour map and (encoded) data.
@@ -78,18 +73,9 @@ fn grey(v: u8) -> [u8; 3] {
 
 #[test]
 fn write_then_read_round_trips_at_odd_and_even_widths() {
-    for (i, &(w, h)) in [
-        (1, 1),
-        (3, 2),
-        (4, 3),
-        (255, 1),
-        (2, 5),
-        (256, 2),
-        (17, 17),
-        (1, 9),
-    ]
-    .iter()
-    .enumerate()
+    for (i, &(w, h)) in [(1, 1), (3, 2), (4, 3), (255, 1), (2, 5), (256, 2), (17, 17), (1, 9)]
+        .iter()
+        .enumerate()
     {
         let raster = test_raster(w, h, i as u64);
         let bytes = encode_raster(&raster);
@@ -98,16 +84,7 @@ fn write_then_read_round_trips_at_odd_and_even_widths() {
         let field = |k: usize| u32::from_be_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
         assert_eq!(
             (0..8).map(field).collect::<Vec<_>>(),
-            [
-                0x59a6_6a95,
-                w as u32,
-                h as u32,
-                24,
-                (row_bytes * h) as u32,
-                1,
-                0,
-                0
-            ],
+            [0x59a6_6a95, w as u32, h as u32, 24, (row_bytes * h) as u32, 1, 0, 0],
             "{w}×{h} header"
         );
         // The first pixel is stored B G R.
@@ -162,10 +139,7 @@ fn outputframe_refuses_an_inconsistent_raster_and_keeps_the_last_good_file() {
         pixels: vec![[0; 3]; MAX_SIDE + 1],
     };
     for bad in [short, empty, wide] {
-        assert!(matches!(
-            outputframe(&path, &bad),
-            Err(RasterError::Inconsistent(_))
-        ));
+        assert!(matches!(outputframe(&path, &bad), Err(RasterError::Inconsistent(_))));
     }
     assert_eq!(read_raster_file(&path).unwrap(), good);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
@@ -210,21 +184,9 @@ fn rgbtochars_clamps_rounds_and_maps_nan_to_zero() {
         (f64::NAN, 0),
     ];
     for (c, byte) in cases {
-        assert_eq!(
-            rgbtochars(Intensity::new(c, 0.0, 1.0)),
-            [byte, 0, 255],
-            "{c}"
-        );
-        assert_eq!(
-            rgbtochars(Intensity::new(1.0, c, 0.0)),
-            [255, byte, 0],
-            "{c}"
-        );
-        assert_eq!(
-            rgbtochars(Intensity::new(0.0, 1.0, c)),
-            [0, 255, byte],
-            "{c}"
-        );
+        assert_eq!(rgbtochars(Intensity::new(c, 0.0, 1.0)), [byte, 0, 255], "{c}");
+        assert_eq!(rgbtochars(Intensity::new(1.0, c, 0.0)), [255, byte, 0], "{c}");
+        assert_eq!(rgbtochars(Intensity::new(0.0, 1.0, c)), [0, 255, byte], "{c}");
     }
 }
 
@@ -298,9 +260,7 @@ fn byte_encoded_runs_cross_the_padded_row_end() {
 #[test]
 fn byte_encoded_twenty_four_bit_with_declared_and_zero_length() {
     // 1×2 at 24 bits: decoded [10 10 80 00 | 10 10 80 00].
-    let encoded = [
-        0x80, 0x01, 0x10, 0x80, 0x00, 0x00, 0x80, 0x01, 0x10, 0x80, 0x00, 0x00,
-    ];
+    let encoded = [0x80, 0x01, 0x10, 0x80, 0x00, 0x00, 0x80, 0x01, 0x10, 0x80, 0x00, 0x00];
     for length in [encoded.len() as u32, 0] {
         let r = read_raster(&file(1, 2, 24, length, 2, 0, &[], &encoded)).unwrap();
         assert_eq!(r.pixels, [[0x80, 0x10, 0x10]; 2], "length {length}");
@@ -339,12 +299,8 @@ fn every_malformed_header_is_an_error() {
     let data = [0u8; 8];
     let mut bad_magic = file(1, 2, 24, 8, 1, 0, &[], &data);
     bad_magic[0] = 0x58;
-    assert_error(&bad_magic, "bad magic", |e| {
-        matches!(e, BadMagic(0x58a6_6a95))
-    });
-    assert_error(b"P6\n1 1\n255\n\0\0\0", "a PPM", |e| {
-        matches!(e, BadMagic(_))
-    });
+    assert_error(&bad_magic, "bad magic", |e| matches!(e, BadMagic(0x58a6_6a95)));
+    assert_error(b"P6\n1 1\n255\n\0\0\0", "a PPM", |e| matches!(e, BadMagic(_)));
     for n in [0, 1, 4, 31] {
         let bytes = &file(1, 2, 24, 8, 1, 0, &[], &data)[..n];
         assert_error(bytes, "short header", |e| matches!(e, Truncated { .. }));
@@ -354,11 +310,7 @@ fn every_malformed_header_is_an_error() {
     assert_error(&file(1, 0, 24, 0, 1, 0, &[], &data), "zero height", size);
     assert_error(&file(16385, 1, 8, 0, 1, 0, &[], &data), "wide", size);
     assert_error(&file(1, 1 << 31, 8, 0, 1, 0, &[], &data), "tall", size);
-    assert_error(
-        &file(u32::MAX, u32::MAX, 32, 0, 2, 0, &[], &data),
-        "huge",
-        size,
-    );
+    assert_error(&file(u32::MAX, u32::MAX, 32, 0, 2, 0, &[], &data), "huge", size);
     for t in [4, 5, 0xffff, u32::MAX] {
         assert_error(
             &file(1, 2, 24, 8, t, 0, &[], &data),
@@ -417,11 +369,7 @@ fn every_malformed_body_is_an_error() {
     // 4×1 at 8 bits: 4 decoded bytes.
     let rle_file = |enc: &[u8], length: u32| file(4, 1, 8, length, 2, 0, &[], enc);
     assert_error(&rle_file(&[0x80, 0x04, 1], 3), "run past end", rle);
-    assert_error(
-        &rle_file(&[0x80, 0x04, 1], 0),
-        "run past end, no length",
-        rle,
-    );
+    assert_error(&rle_file(&[0x80, 0x04, 1], 0), "run past end, no length", rle);
     assert_error(&rle_file(&[1, 0x80, 0x03, 1], 4), "run past end by 1", rle);
     assert_error(&rle_file(&[1, 2, 3, 4, 5], 5), "literal past end", rle);
     assert_error(&rle_file(&[1, 2, 3, 0x80], 4), "cut escape", rle);
@@ -434,16 +382,7 @@ fn every_malformed_body_is_an_error() {
     });
     // A 16384×16384 32-bit header on 40 bytes of runs: refused before any
     // allocation of the 1 GiB image.
-    let huge = file(
-        16384,
-        16384,
-        32,
-        0,
-        2,
-        0,
-        &[],
-        &[0x80, 0xff, 0x00].repeat(13),
-    );
+    let huge = file(16384, 16384, 32, 0, 2, 0, &[], &[0x80, 0xff, 0x00].repeat(13));
     assert_error(&huge, "huge RLE", rle);
     let huge = file(16384, 16384, 32, 0, 1, 0, &[], &[0; 100]);
     assert_error(&huge, "huge raw", trunc);
@@ -454,28 +393,10 @@ fn valid_files() -> Vec<Vec<u8>> {
     let map = [0, 255, 0, 128, 0, 0];
     vec![
         encode_raster(&test_raster(5, 3, 7)),
-        file(
-            5,
-            1,
-            8,
-            6,
-            2,
-            1,
-            &map,
-            &[0x80, 0x02, 0x01, 0x00, 0x01, 0x00],
-        ),
+        file(5, 1, 8, 6, 2, 1, &map, &[0x80, 0x02, 0x01, 0x00, 0x01, 0x00]),
         file(3, 2, 8, 6, 2, 0, &[], &[0x01, 0x80, 0x04, 0x02, 0x03, 0x00]),
         file(2, 1, 32, 8, 3, 0, &[], &[0xee, 1, 2, 3, 0xff, 4, 5, 6]),
-        file(
-            3,
-            2,
-            8,
-            8,
-            1,
-            1,
-            &[1, 2, 3, 4, 5, 6],
-            &[0, 1, 1, 0, 1, 0, 0, 0],
-        ),
+        file(3, 2, 8, 8, 1, 1, &[1, 2, 3, 4, 5, 6], &[0, 1, 1, 0, 1, 0, 0, 0]),
         file(1, 2, 24, 0, 0, 0, &[], &[1, 2, 3, 0, 4, 5, 6, 0]),
     ]
 }
@@ -547,10 +468,7 @@ fn read_raster_file_reads_only_what_the_header_needs() {
     assert_eq!(read_raster_file(&path).unwrap(), raster);
     let path = dir.path().join("short.ras");
     std::fs::write(&path, &bytes[..20]).unwrap();
-    assert!(matches!(
-        read_raster_file(&path),
-        Err(RasterError::Truncated { .. })
-    ));
+    assert!(matches!(read_raster_file(&path), Err(RasterError::Truncated { .. })));
     assert!(matches!(
         read_raster_file(&dir.path().join("missing.ras")),
         Err(RasterError::Io(_))
@@ -608,11 +526,7 @@ fn pillow_reads_the_rasters_the_project_writes() {
             .arg(&path)
             .output()
             .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let text = String::from_utf8(out.stdout).unwrap();
         let mut lines = text.lines();
         assert_eq!(
@@ -620,12 +534,7 @@ fn pillow_reads_the_rasters_the_project_writes() {
             format!("SUN RGB {} {}", raster.width, raster.height)
         );
         let hex = lines.next().unwrap();
-        let expected: String = raster
-            .pixels
-            .iter()
-            .flatten()
-            .map(|b| format!("{b:02x}"))
-            .collect();
+        let expected: String = raster.pixels.iter().flatten().map(|b| format!("{b:02x}")).collect();
         assert_eq!(hex, expected, "raster {k}");
     }
 }
@@ -719,10 +628,7 @@ fn netpbm_reads_the_rasters_the_project_writes_and_writes_ones_the_project_reads
             // pnmtorast -rle falls back to standard when the encoding would
             // be longer (random pixels).
             let ras_type = u32::from_be_bytes(ras[20..24].try_into().unwrap());
-            assert!(
-                ras_type == 1 || (flag == "-rle" && ras_type == 2),
-                "type {ras_type}"
-            );
+            assert!(ras_type == 1 || (flag == "-rle" && ras_type == 2), "type {ras_type}");
             assert_eq!(
                 &read_raster(&ras).unwrap(),
                 raster,

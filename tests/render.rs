@@ -13,7 +13,14 @@ fn load(name: &str, fidelity: Fidelity) -> Scene {
     let path = decks().join(name);
     let src = std::fs::read_to_string(&path).unwrap();
     let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
-    prepare(&mut scene, &Options { fidelity, ..Options::default() }).unwrap();
+    prepare(
+        &mut scene,
+        &Options {
+            fidelity,
+            ..Options::default()
+        },
+    )
+    .unwrap();
     scene
 }
 

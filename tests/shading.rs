@@ -14,14 +14,26 @@ fn opts() -> Options {
 /// `raytrace(aray, 1.0, false, acolor, 1)` in a scene where nothing moves.
 fn trace_one(s: &Scene, ray: &Ray) -> Intensity {
     let poses = rest_poses(s);
-    raytrace(&Snapshot { scene: s, poses: &poses }, ray, 1.0, false, 1, &opts(), &mut TraceStats::default())
+    raytrace(
+        &Snapshot {
+            scene: s,
+            poses: &poses,
+        },
+        ray,
+        1.0,
+        false,
+        1,
+        &opts(),
+        &mut TraceStats::default(),
+    )
 }
 
 /// I = ka·Iobject + kd·cosθ·light·colour at a known angle θ = 60°.
 #[test]
 fn diffuse_term_at_a_known_angle() {
     let mut s = scene();
-    s.surfaces.push(surface(SurfaceAttribute::Opaque, [0.8, 0.6, 0.4], 0.1, 0.7, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Opaque, [0.8, 0.6, 0.4], 0.1, 0.7, 0.0, 0.0));
     s.objects.push(sphere("ball", 0, [0.0, 0.0, 0.0], 1.0));
     let theta = 60f64.to_radians();
     // The hit is (0, −1, 0) with normal −y; the light lies 60° off the normal.
@@ -35,7 +47,8 @@ fn diffuse_term_at_a_known_angle() {
     assert!(close(got, want, 1e-9), "{got} vs {want}");
 
     // A block between the point and the light leaves the ambient term alone.
-    s.surfaces.push(surface(SurfaceAttribute::Opaque, [1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Opaque, [1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0));
     let mid = DVec3::new(0.0, -1.0, 0.0) + l * 5.0;
     s.objects.push(block("wall", 1, mid.to_array(), [1.0, 1.0, 1.0]));
     let got = trace_one(&s, &ray);
@@ -47,7 +60,8 @@ fn diffuse_term_at_a_known_angle() {
 #[test]
 fn shadows_through_crystal_and_transparent() {
     let mut s = scene();
-    s.surfaces.push(surface(SurfaceAttribute::Opaque, [1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Opaque, [1.0, 1.0, 1.0], 0.0, 1.0, 0.0, 0.0));
     s.objects.push(block("floor", 0, [0.0, 0.0, -0.5], [20.0, 20.0, 1.0]));
     s.lights.push(light([0.0, 0.0, 10.0], [1.0, 1.0, 1.0]));
     let mut glass = surface(SurfaceAttribute::Crystal, [0.5, 1.0, 1.0], 0.0, 0.0, 0.0, 0.8);
@@ -73,7 +87,8 @@ fn mirror_reflection_at_45_degrees() {
     let mut mirror = surface(SurfaceAttribute::Mirrored, [1.0, 1.0, 1.0], 0.0, 0.0, 0.8, 0.0);
     mirror.prcntrfl = 0.5;
     s.surfaces.push(mirror);
-    s.surfaces.push(surface(SurfaceAttribute::Light, [1.0, 0.8, 0.6], 0.0, 0.0, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Light, [1.0, 0.8, 0.6], 0.0, 0.0, 0.0, 0.0));
     s.objects.push(block("mirror", 0, [0.0, 0.0, -0.5], [4.0, 4.0, 1.0]));
     s.objects.push(sphere("lamp", 1, [0.0, 5.0, 5.0], 0.1));
     let ray = Ray::new(DVec3::new(0.0, -5.0, 5.0), DVec3::new(0.0, 1.0, -1.0).normalize());
@@ -106,8 +121,16 @@ fn snell_refraction_and_total_internal_reflection() {
 fn refraction_through_a_slab() {
     let mut s = scene();
     s.backgrnd = DVec3::ZERO;
-    s.surfaces.push(surface(SurfaceAttribute::Transparent, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 1.0));
-    s.surfaces.push(surface(SurfaceAttribute::Light, [0.3, 0.9, 0.6], 0.0, 0.0, 0.0, 0.0));
+    s.surfaces.push(surface(
+        SurfaceAttribute::Transparent,
+        [1.0, 1.0, 1.0],
+        0.0,
+        0.0,
+        0.0,
+        1.0,
+    ));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Light, [0.3, 0.9, 0.6], 0.0, 0.0, 0.0, 0.0));
     s.objects.push(block("slab", 0, [0.0, 0.0, -0.5], [20.0, 20.0, 1.0]));
     let sin_t = 45f64.to_radians().sin() / 1.5;
     let tan_t = sin_t / (1.0 - sin_t * sin_t).sqrt();
@@ -127,14 +150,21 @@ fn refraction_through_a_slab() {
 
 fn busy_scene() -> Scene {
     let mut s = scene();
-    s.image = ImageSpec { width: 24, height: 18, masksize: 2, aliasing: 0.5 };
+    s.image = ImageSpec {
+        width: 24,
+        height: 18,
+        masksize: 2,
+        aliasing: 0.5,
+    };
     s.backgrnd = DVec3::new(0.1, 0.1, 0.3);
     s.lights.push(light([5.0, -5.0, 8.0], [1.0, 1.0, 1.0]));
-    s.surfaces.push(surface(SurfaceAttribute::Opaque, [0.9, 0.3, 0.2], 0.1, 0.8, 0.0, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Opaque, [0.9, 0.3, 0.2], 0.1, 0.8, 0.0, 0.0));
     let mut glass = surface(SurfaceAttribute::Transparent, [1.0, 1.0, 1.0], 0.0, 0.1, 0.2, 0.8);
     glass.index = 1.5;
     s.surfaces.push(glass);
-    s.surfaces.push(surface(SurfaceAttribute::Mirrored, [1.0, 1.0, 1.0], 0.1, 0.2, 0.7, 0.0));
+    s.surfaces
+        .push(surface(SurfaceAttribute::Mirrored, [1.0, 1.0, 1.0], 0.1, 0.2, 0.7, 0.0));
     s.objects.push(block("floor", 0, [0.0, 0.0, -1.5], [10.0, 10.0, 1.0]));
     s.objects.push(sphere("glass", 1, [-0.8, 0.0, 0.0], 0.8));
     s.objects.push(sphere("mirror", 2, [1.0, 1.5, 0.0], 0.9));
@@ -165,7 +195,14 @@ fn same_image_for_any_thread_count() {
 fn erratum_13_the_extra_column() {
     let s = busy_scene();
     let thesis = render(&s, &opts(), &|| {});
-    let listing = render(&s, &Options { fidelity: Fidelity::Listing, ..opts() }, &|| {});
+    let listing = render(
+        &s,
+        &Options {
+            fidelity: Fidelity::Listing,
+            ..opts()
+        },
+        &|| {},
+    );
     let (w, h, m) = (s.image.width as u64, s.image.height as u64, s.image.masksize as u64);
     assert_eq!(thesis.primary, w * m * h * m);
     assert_eq!(listing.primary, (w * m + 1) * h * m);
@@ -176,7 +213,12 @@ fn erratum_13_the_extra_column() {
 #[test]
 fn erratum_14_pixel_aspect() {
     let mut s = scene();
-    s.image = ImageSpec { width: 32, height: 16, masksize: 1, aliasing: 0.0 };
+    s.image = ImageSpec {
+        width: 32,
+        height: 16,
+        masksize: 1,
+        aliasing: 0.0,
+    };
     for (fidelity, ratio) in [(Fidelity::Thesis, 1.0), (Fidelity::Listing, 2.0)] {
         let cam = Camera::new(&s, fidelity);
         let a = cam.ray(10.0, 8.0, 0.0, 0.0).dir;
@@ -195,7 +237,15 @@ fn erratum_14_pixel_aspect() {
 fn erratum_15_jitter_cursor() {
     let mut s = busy_scene();
     s.image.aliasing = 1.0;
-    let listing_a = render(&s, &Options { fidelity: Fidelity::Listing, ..opts() }, &|| {}).raster;
+    let listing_a = render(
+        &s,
+        &Options {
+            fidelity: Fidelity::Listing,
+            ..opts()
+        },
+        &|| {},
+    )
+    .raster;
     let thesis_a = render(&s, &opts(), &|| {}).raster;
     s.image.aliasing = 0.0;
     let thesis_0 = render(&s, &opts(), &|| {}).raster;

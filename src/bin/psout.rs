@@ -82,8 +82,7 @@ fn screenshot(out: &Path, raster: &Raster, zoom: Option<u32>) -> Result<(), Fail
 fn screenshot(_out: &Path, _raster: &Raster, _zoom: Option<u32>) -> Result<(), Failure> {
     Err(Failure {
         code: 1,
-        message: "this psout was built without the `png` feature, so --screenshot is not available"
-            .into(),
+        message: "this psout was built without the `png` feature, so --screenshot is not available".into(),
     })
 }
 
@@ -101,9 +100,7 @@ fn no_display(reason: &str) -> Failure {
 
 #[cfg(not(feature = "window"))]
 fn show(_args: &Args, _raster: Raster) -> Result<(), Failure> {
-    Err(no_display(
-        "this psout was built without the `window` feature",
-    ))
+    Err(no_display("this psout was built without the `window` feature"))
 }
 
 /// How far an arrow key pans, in screen pixels.
@@ -116,7 +113,7 @@ fn show(args: &Args, raster: Raster) -> Result<(), Failure> {
     use psout::{SCREEN_HEIGHT, SCREEN_WIDTH};
 
     // `DISPLAY=` (empty) is as good as unset.
-    if std::env::var_os("DISPLAY").map_or(true, |d| d.is_empty()) {
+    if std::env::var_os("DISPLAY").is_none_or(|d| d.is_empty()) {
         return Err(no_display("DISPLAY is not set"));
     }
     let lut = args.lut.map(usize::from);
@@ -151,9 +148,7 @@ fn show(args: &Args, raster: Raster) -> Result<(), Failure> {
                 Key::Down => pan.1 += PAN_STEP,
                 Key::N | Key::P => match step(&path, key == Key::N, lut) {
                     Some((next, r)) => {
-                        zoom = args
-                            .zoom
-                            .unwrap_or_else(|| psout::default_zoom(r.width, r.height));
+                        zoom = args.zoom.unwrap_or_else(|| psout::default_zoom(r.width, r.height));
                         pan = (0, 0);
                         path = next;
                         raster = r;

@@ -84,11 +84,17 @@ struct Failure {
 }
 
 fn input_error(message: impl ToString) -> Failure {
-    Failure { code: 2, message: message.to_string() }
+    Failure {
+        code: 2,
+        message: message.to_string(),
+    }
 }
 
 fn other_error(message: impl ToString) -> Failure {
-    Failure { code: 1, message: message.to_string() }
+    Failure {
+        code: 1,
+        message: message.to_string(),
+    }
 }
 
 fn main() -> ExitCode {
@@ -117,10 +123,12 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     // The deck: text, the name its errors carry, the folder its files are relative to.
     let (source, file_name, deck_dir, stem) = match &cli.deck {
         Some(path) => {
-            let source = std::fs::read_to_string(path)
-                .map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+            let source = std::fs::read_to_string(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("out".into());
+            let stem = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or("out".into());
             (source, path.display().to_string(), dir, stem)
         }
         None => (
@@ -130,8 +138,14 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             "default".to_string(),
         ),
     };
-    let output = cli.output.clone().unwrap_or_else(|| PathBuf::from(format!("raster/{stem}.ras")));
-    let png = cli.png.clone().or_else(|| cli.deck.is_none().then(|| PathBuf::from("raster/default.png")));
+    let output = cli
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("raster/{stem}.ras")));
+    let png = cli
+        .png
+        .clone()
+        .or_else(|| cli.deck.is_none().then(|| PathBuf::from("raster/default.png")));
 
     let mut scene = raytrace::deck::initialize(&source, &file_name, &deck_dir, opts.fidelity).map_err(input_error)?;
     raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| input_error(format!("{file_name}:{e}")))?;
@@ -162,7 +176,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
         }
     }
-    raytrace::raster::outputframe(&output, &render.raster).map_err(|e| other_error(format!("{}: {e}", output.display())))?;
+    raytrace::raster::outputframe(&output, &render.raster)
+        .map_err(|e| other_error(format!("{}: {e}", output.display())))?;
     if let Some(png) = &png {
         write_png(png, &render.raster)?;
     }
@@ -176,7 +191,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             "raytrace: {} → {}{} ({}×{}, {}×{} subpixels, {} rays, {:.2} s)",
             file_name,
             output.display(),
-            png.as_ref().map(|p| format!(" and {}", p.display())).unwrap_or_default(),
+            png.as_ref()
+                .map(|p| format!(" and {}", p.display()))
+                .unwrap_or_default(),
             img.width,
             img.height,
             img.masksize,
@@ -195,5 +212,8 @@ fn write_png(path: &Path, raster: &raytrace::raster::Raster) -> Result<(), Failu
 
 #[cfg(not(feature = "png"))]
 fn write_png(path: &Path, _raster: &raytrace::raster::Raster) -> Result<(), Failure> {
-    Err(input_error(format!("{}: this build has no PNG export (the `png` feature is off)", path.display())))
+    Err(input_error(format!(
+        "{}: this build has no PNG export (the `png` feature is off)",
+        path.display()
+    )))
 }

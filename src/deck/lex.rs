@@ -173,10 +173,7 @@ mod tests {
     #[test]
     fn comments_are_separators_and_keep_positions() {
         let toks = tokenize("a{x\ny}b (* c *)\n  d");
-        let got: Vec<(Tok, u32, u32)> = toks
-            .into_iter()
-            .map(|t| (t.tok, t.pos.line, t.pos.column))
-            .collect();
+        let got: Vec<(Tok, u32, u32)> = toks.into_iter().map(|t| (t.tok, t.pos.line, t.pos.column)).collect();
         assert_eq!(
             got,
             vec![
@@ -218,14 +215,8 @@ mod tests {
 
     #[test]
     fn end_of_file_stands_on_the_last_line() {
-        assert_eq!(
-            tokenize("").last().map(|t| t.pos),
-            Some(Pos { line: 1, column: 1 })
-        );
-        assert_eq!(
-            tokenize("ab\n").last().map(|t| t.pos),
-            Some(Pos { line: 1, column: 3 })
-        );
+        assert_eq!(tokenize("").last().map(|t| t.pos), Some(Pos { line: 1, column: 1 }));
+        assert_eq!(tokenize("ab\n").last().map(|t| t.pos), Some(Pos { line: 1, column: 3 }));
         assert_eq!(
             tokenize("ab\ncd").last().map(|t| t.pos),
             Some(Pos { line: 2, column: 3 })
@@ -240,9 +231,7 @@ mod tests {
 
     #[test]
     fn number_grammar() {
-        for ok in [
-            "2", "-0.5", "+3", "1.5E-3", ".5", "5.", "1e10", "-.25e+2", "007",
-        ] {
+        for ok in ["2", "-0.5", "+3", "1.5E-3", ".5", "5.", "1e10", "-.25e+2", "007"] {
             assert!(is_number(ok), "{ok}");
         }
         for bad in [

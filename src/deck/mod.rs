@@ -147,8 +147,8 @@ use std::path::Path;
 use glam::DMat3;
 
 use crate::types::{
-    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord,
-    MotionRecord, ObjectRecord, PatternRecord, Pos, Scene, SurfaceRecord, View,
+    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord, MotionRecord, ObjectRecord,
+    PatternRecord, Pos, Scene, SurfaceRecord, View,
 };
 use parse::Parser;
 
@@ -179,12 +179,7 @@ fn name_part(name: &Option<String>) -> String {
 /// it in errors, `deck_dir` is the folder `texture` files are relative to,
 /// and `fidelity` decides whether a `pattern` must be a permutation
 /// (erratum 1).
-pub fn initialize(
-    source: &str,
-    file_name: &str,
-    deck_dir: &Path,
-    fidelity: Fidelity,
-) -> Result<Scene, DeckError> {
+pub fn initialize(source: &str, file_name: &str, deck_dir: &Path, fidelity: Fidelity) -> Result<Scene, DeckError> {
     let mut b = Builder {
         p: Parser::new(source, file_name),
         deck_dir,
@@ -335,8 +330,7 @@ impl Builder<'_> {
         // The checks of `delete`, `motion` and `keyframe` keep every entry
         // named below in the scene; a failure here is a bug of this module,
         // reported as a deck error rather than a panic.
-        let lost =
-            |p: &Parser, pos: Pos| p.error_at(pos, "internal error: the object left the scene");
+        let lost = |p: &Parser, pos: Pos| p.error_at(pos, "internal error: the object left the scene");
         let mut motions = Vec::new();
         for m in self.motions {
             let mut record = m.record;
@@ -346,11 +340,7 @@ impl Builder<'_> {
         let mut keyframes = Vec::new();
         for k in self.keyframes {
             let first = final_index[k.first].ok_or_else(|| lost(&self.p, k.pos))?;
-            let rest = k
-                .rest
-                .iter()
-                .map(|&i| self.entries[i].record.clone())
-                .collect();
+            let rest = k.rest.iter().map(|&i| self.entries[i].record.clone()).collect();
             keyframes.push(KeyframeRecord {
                 pos: k.pos,
                 first,

@@ -7,9 +7,7 @@ use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use super::parse::Num;
 use super::{Builder, DeckError, ObjEntry};
-use crate::types::{
-    Axis, CurveKind, ObjectRecord, Pos, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS,
-};
+use crate::types::{Axis, CurveKind, ObjectRecord, Pos, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// The cosine and sine of an angle in degrees; exact for whole multiples of
 /// 90°, so that quarter turns and `axis` give exact matrices.
@@ -80,10 +78,7 @@ pub(super) fn class_name(class: PrimitiveClass) -> &'static str {
 
 /// The largest U² + V² of a point list.
 fn max_r2(points: &[[f64; 2]]) -> f64 {
-    points
-        .iter()
-        .map(|p| p[0] * p[0] + p[1] * p[1])
-        .fold(0.0, f64::max)
+    points.iter().map(|p| p[0] * p[0] + p[1] * p[1]).fold(0.0, f64::max)
 }
 
 /// Why a prism's polygon is refused: the vertex (0-based) and the message.
@@ -108,10 +103,7 @@ pub(super) fn convex_ccw(pts: &[[f64; 2]]) -> Result<Vec<[f64; 2]>, PolygonFault
         if cross.abs() <= 1e-12 * before.length() * after.length() {
             return Err(PolygonFault {
                 vertex: i,
-                message: format!(
-                    "vertex {} is in line with its neighbours or repeats one",
-                    i + 1
-                ),
+                message: format!("vertex {} is in line with its neighbours or repeats one", i + 1),
             });
         }
         turns.push((cross, cross.atan2(before.dot(after))));
@@ -178,10 +170,9 @@ impl Builder<'_> {
         self.p.name = Some(name.clone());
         if let Some(&i) = self.object_index.get(&name) {
             let line = self.entries[i].pos.line;
-            return Err(self.p.error_at(
-                pos,
-                format!("the object name '{name}' is already used on line {line}"),
-            ));
+            return Err(self
+                .p
+                .error_at(pos, format!("the object name '{name}' is already used on line {line}")));
         }
         let (surface, _) = self.surface_ref()?;
         Ok((name, surface))
@@ -346,8 +337,7 @@ impl Builder<'_> {
                         }
                     }
                     let u = if u_radius {
-                        self.p
-                            .number_where("for U (a radius)", ">= 0", |u| u >= 0.0)?
+                        self.p.number_where("for U (a radius)", ">= 0", |u| u >= 0.0)?
                     } else {
                         self.p.number("for U")?
                     };
@@ -378,19 +368,14 @@ impl Builder<'_> {
             orientp = self.axis()?;
         }
         self.p.end_of_line()?;
-        let PointList {
-            points,
-            places,
-            end,
-        } = self.point_list(None, false)?;
+        let PointList { points, places, end } = self.point_list(None, false)?;
         if points.len() < 3 {
             return Err(self.p.error_at(
                 end,
                 format!("a prism needs at least 3 vertices, found {}", points.len()),
             ));
         }
-        let vertex =
-            convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex], f.message))?;
+        let vertex = convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex], f.message))?;
         let radius = (max_r2(&vertex) + height * height).sqrt();
         let shape = Shape::Prism {
             orientp,
@@ -428,10 +413,7 @@ impl Builder<'_> {
         )?;
         let (curve, _) = self.p.choice(
             "a curve",
-            &[
-                ("bspline", CurveKind::Bspline),
-                ("bezier", CurveKind::Bezier),
-            ],
+            &[("bspline", CurveKind::Bspline), ("bezier", CurveKind::Bezier)],
         )?;
         let sphereo = self.at()?;
         let mut length = None;
@@ -450,17 +432,10 @@ impl Builder<'_> {
                     if class != PrimitiveClass::Conic {
                         return Err(self.p.error_at(
                             fpos,
-                            format!(
-                                "only a conic sweep takes 'scale', not a {}",
-                                class_name(class)
-                            ),
+                            format!("only a conic sweep takes 'scale', not a {}", class_name(class)),
                         ));
                     }
-                    scale = Some(
-                        self.p
-                            .number_where("after 'scale'", ">= 0", |s| s >= 0.0)?
-                            .value,
-                    );
+                    scale = Some(self.p.number_where("after 'scale'", ">= 0", |s| s >= 0.0)?.value);
                 }
                 _ => orientt = self.axis()?,
             }
@@ -494,22 +469,19 @@ impl Builder<'_> {
                 message: format!("more than {MAXSEGMENTS} segments: a bezier contour has one segment per 3 points"),
             },
         };
-        let PointList { points, end, .. } =
-            self.point_list(Some(limit), class == PrimitiveClass::Rotation)?;
+        let PointList { points, end, .. } = self.point_list(Some(limit), class == PrimitiveClass::Rotation)?;
         let n = points.len();
         let segment = match curve {
             CurveKind::Bspline if n < 4 => {
-                return Err(self.p.error_at(
-                    end,
-                    format!("a bspline contour needs at least 4 points, found {n}"),
-                ));
+                return Err(self
+                    .p
+                    .error_at(end, format!("a bspline contour needs at least 4 points, found {n}")));
             }
             CurveKind::Bspline => n,
             CurveKind::Bezier if n % 3 != 0 => {
-                return Err(self.p.error_at(
-                    end,
-                    format!("a bezier contour needs a multiple of 3 points, found {n}"),
-                ));
+                return Err(self
+                    .p
+                    .error_at(end, format!("a bezier contour needs a multiple of 3 points, found {n}")));
             }
             CurveKind::Bezier if n < 6 => {
                 return Err(self.p.error_at(
@@ -521,9 +493,7 @@ impl Builder<'_> {
         };
         let radius = match class {
             PrimitiveClass::Rotation => max_r2(&points).sqrt(),
-            PrimitiveClass::Conic => {
-                (max_r2(&points) * scale.max(1.0).powi(2) + length * length).sqrt()
-            }
+            PrimitiveClass::Conic => (max_r2(&points) * scale.max(1.0).powi(2) + length * length).sqrt(),
             _ => (max_r2(&points) + length * length).sqrt(),
         };
         let shape = Shape::Sweep(SweepShape {
@@ -613,10 +583,6 @@ mod tests {
             })
             .collect();
         let fault = convex_ccw(&star).unwrap_err();
-        assert!(
-            fault.message.contains("crosses itself"),
-            "{}",
-            fault.message
-        );
+        assert!(fault.message.contains("crosses itself"), "{}", fault.message);
     }
 }

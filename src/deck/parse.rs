@@ -82,10 +82,7 @@ impl<'a> Parser<'a> {
     }
 
     fn advance(&mut self) {
-        if matches!(
-            self.toks.get(self.i).map(|t| &t.tok),
-            Some(Tok::Word(_) | Tok::Eol)
-        ) {
+        if matches!(self.toks.get(self.i).map(|t| &t.tok), Some(Tok::Word(_) | Tok::Eol)) {
             self.i += 1;
         }
     }
@@ -161,11 +158,7 @@ impl<'a> Parser<'a> {
     }
 
     /// One of the keywords of `options` (any case), as its value.
-    pub fn choice<T: Copy>(
-        &mut self,
-        what: &str,
-        options: &[(&str, T)],
-    ) -> Result<(T, Pos), DeckError> {
+    pub fn choice<T: Copy>(&mut self, what: &str, options: &[(&str, T)]) -> Result<(T, Pos), DeckError> {
         if let Some((w, pos)) = self.peek_word()? {
             if let Some((_, v)) = options.iter().find(|(k, _)| w.eq_ignore_ascii_case(k)) {
                 self.advance();
@@ -186,16 +179,10 @@ impl<'a> Parser<'a> {
             return Err(self.error_at(pos, format!("expected {what}, found the number '{w}'")));
         }
         if !w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return Err(self.error_at(
-                pos,
-                format!("expected {what} (letters, digits and '_'), found '{w}'"),
-            ));
+            return Err(self.error_at(pos, format!("expected {what} (letters, digits and '_'), found '{w}'")));
         }
         if w.len() > STRINGLENGTH {
-            return Err(self.error_at(
-                pos,
-                format!("the name '{w}' is longer than {STRINGLENGTH} characters"),
-            ));
+            return Err(self.error_at(pos, format!("the name '{w}' is longer than {STRINGLENGTH} characters")));
         }
         self.advance();
         Ok((w, pos))
@@ -209,11 +196,7 @@ impl<'a> Parser<'a> {
                 return match w.parse::<f64>() {
                     Ok(value) if value.is_finite() => {
                         self.advance();
-                        Ok(Num {
-                            value,
-                            pos,
-                            text: w,
-                        })
+                        Ok(Num { value, pos, text: w })
                     }
                     _ => Err(self.error_at(pos, format!("the number '{w}' is out of range"))),
                 };
@@ -224,20 +207,12 @@ impl<'a> Parser<'a> {
 
     /// A number that must meet `ok`, described by `range` ("> 0",
     /// "in 0..1").
-    pub fn number_where(
-        &mut self,
-        what: &str,
-        range: &str,
-        ok: impl Fn(f64) -> bool,
-    ) -> Result<Num, DeckError> {
+    pub fn number_where(&mut self, what: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
         let n = self.number(what)?;
         if ok(n.value) {
             Ok(n)
         } else {
-            Err(self.error_at(
-                n.pos,
-                format!("expected a number {range} {what}, found '{}'", n.text),
-            ))
+            Err(self.error_at(n.pos, format!("expected a number {range} {what}, found '{}'", n.text)))
         }
     }
 
@@ -268,10 +243,7 @@ impl<'a> Parser<'a> {
                         self.advance();
                         Ok((v, pos))
                     }
-                    _ => Err(self.error_at(
-                        pos,
-                        format!("expected an integer in {lo}..{hi} {what}, found '{w}'"),
-                    )),
+                    _ => Err(self.error_at(pos, format!("expected an integer in {lo}..{hi} {what}, found '{w}'"))),
                 };
             }
         }

@@ -9,8 +9,8 @@ use super::objects::rotation;
 use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo};
 use crate::raster::read_raster_file;
 use crate::types::{
-    Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint,
-    PaintKind, PatternRecord, Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
+    Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint, PaintKind, PatternRecord,
+    Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
 };
 
 /// The largest `blur N`: the CLT sum costs N uniforms a sample.
@@ -27,10 +27,7 @@ impl Builder<'_> {
     fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
         self.p.error_at(
             pos,
-            format!(
-                "a second '{keyword}' record (the first is on line {})",
-                first.line
-            ),
+            format!("a second '{keyword}' record (the first is on line {})", first.line),
         )
     }
 
@@ -173,18 +170,16 @@ impl Builder<'_> {
         let (name, pos) = self.p.name("a light name")?;
         self.p.name = Some(name.clone());
         if let Some(&(_, line)) = self.light_index.get(&name) {
-            return Err(self.p.error_at(
-                pos,
-                format!("the light name '{name}' is already used on line {line}"),
-            ));
+            return Err(self
+                .p
+                .error_at(pos, format!("the light name '{name}' is already used on line {line}")));
         }
         let x = self.p.number("for X")?.value;
         let y = self.p.number("for Y")?.value;
         let z = self.p.number("for Z")?.value;
         let color = self.rgb(["for R", "for G", "for B"], false)?;
         self.p.end_of_line()?;
-        self.light_index
-            .insert(name.clone(), (self.lights.len(), pos.line));
+        self.light_index.insert(name.clone(), (self.lights.len(), pos.line));
         self.lights.push(LightRecord {
             name,
             position: DVec3::new(x, y, z),
@@ -201,10 +196,9 @@ impl Builder<'_> {
         self.p.name = Some(name.clone());
         if let Some(&i) = self.surface_index.get(&name) {
             let line = self.surface_info[i].pos.line;
-            return Err(self.p.error_at(
-                pos,
-                format!("the surface name '{name}' is already used on line {line}"),
-            ));
+            return Err(self
+                .p
+                .error_at(pos, format!("the surface name '{name}' is already used on line {line}")));
         }
         let (surface, _) = self.p.choice(
             "a surface kind",
@@ -268,11 +262,7 @@ impl Builder<'_> {
 
     /// The surface a `paint` or `texture` record decorates; it may have no
     /// decoration yet.
-    fn decorated_surface(
-        &mut self,
-        keyword: &'static str,
-        record_pos: Pos,
-    ) -> Result<usize, DeckError> {
+    fn decorated_surface(&mut self, keyword: &'static str, record_pos: Pos) -> Result<usize, DeckError> {
         let (i, pos) = self.surface_ref()?;
         self.p.name = Some(self.surfaces[i].name.clone());
         if let Some((line, what)) = self.surface_info[i].decoration {
@@ -325,10 +315,8 @@ impl Builder<'_> {
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
         let raster = read_raster_file(&self.deck_dir.join(&file)).map_err(|e| {
-            self.p.error_at(
-                file_pos,
-                format!("cannot read the raster file '{file}': {e}"),
-            )
+            self.p
+                .error_at(file_pos, format!("cannot read the raster file '{file}': {e}"))
         })?;
         if raster.width == 0
             || raster.height == 0
@@ -407,10 +395,9 @@ impl Builder<'_> {
         let (i, pos) = self.object_ref()?;
         let e = &self.entries[i];
         if let Some(line) = e.motion_line {
-            return Err(self.p.error_at(
-                pos,
-                format!("'{}' already has a motion (line {line})", e.record.name),
-            ));
+            return Err(self
+                .p
+                .error_at(pos, format!("'{}' already has a motion (line {line})", e.record.name)));
         }
         if let Some(line) = e.keyframe_line {
             return Err(self.p.error_at(
@@ -473,8 +460,7 @@ impl Builder<'_> {
         self.p.begin("keyframe");
         let mut shapes: Vec<usize> = Vec::new();
         loop {
-            let at_expander =
-                matches!(self.p.peek_word()?, Some((w, _)) if w.eq_ignore_ascii_case("expander"));
+            let at_expander = matches!(self.p.peek_word()?, Some((w, _)) if w.eq_ignore_ascii_case("expander"));
             if self.p.at_eol()? || at_expander {
                 break;
             }
@@ -546,10 +532,7 @@ impl Builder<'_> {
                 .p
                 .choice(
                     "an expander",
-                    &[
-                        ("burtnyk", Expander::Burtnyk),
-                        ("arclength", Expander::Arclength),
-                    ],
+                    &[("burtnyk", Expander::Burtnyk), ("arclength", Expander::Arclength)],
                 )?
                 .0;
         }
@@ -602,9 +585,7 @@ impl Builder<'_> {
             }
             let mut r = Vec::with_capacity(m);
             for _ in 0..m {
-                let (v, vpos) = self
-                    .p
-                    .integer(&format!("for row {row}"), 0, cells as i64 - 1)?;
+                let (v, vpos) = self.p.integer(&format!("for row {row}"), 0, cells as i64 - 1)?;
                 let v = v as usize;
                 if used[v] {
                     match self.fidelity {

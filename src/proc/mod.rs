@@ -12,7 +12,8 @@ pub mod sweep;
 
 use crate::types::{Fidelity, Painting, Ray};
 
-/// `3.141592654`, the listing's value of π in `rotatetest`.
+/// `3.141592654`, the listing's value of π in `rotatetest`, kept as printed.
+#[allow(clippy::approx_constant)]
 const LISTING_PI: f64 = 3.141592654;
 
 /// `rotatetest(var rae: ray; angle: real)` (unit `proc`, OCR lines
@@ -69,12 +70,8 @@ pub fn startest(x: f64, y: f64, z: f64, cas: i32) -> Option<Painting> {
         _ => return None,
     };
     let w = second;
-    let down = (w - t / 9.0 < 0.0)
-        && (t * x + w + 2.0 * t / 9.0 > 0.0)
-        && (t * x - w - 2.0 * t / 9.0 < 0.0);
-    let up = (w + t / 9.0 > 0.0)
-        && (t * x + w - 2.0 * t / 9.0 < 0.0)
-        && (t * x - w + 2.0 * t / 9.0 > 0.0);
+    let down = (w - t / 9.0 < 0.0) && (t * x + w + 2.0 * t / 9.0 > 0.0) && (t * x - w - 2.0 * t / 9.0 < 0.0);
+    let up = (w + t / 9.0 > 0.0) && (t * x + w - 2.0 * t / 9.0 < 0.0) && (t * x - w + 2.0 * t / 9.0 > 0.0);
     (down || up).then_some(Painting::Star1)
 }
 
@@ -82,6 +79,8 @@ pub fn startest(x: f64, y: f64, z: f64, cas: i32) -> Option<Painting> {
 /// block. The plane is cut into 3×3 tiles (of the scaled coordinates); in
 /// the tiles whose indices sum to an odd number, two triangles make a star.
 /// Erratum 6.
+// The two triangles are the listing's two branches; they stay two.
+#[allow(clippy::if_same_then_else)]
 pub fn floorstar(x: f64, y: f64, lengthx: f64, lengthy: f64, fidelity: Fidelity) -> Option<Painting> {
     let mut tx = x * lengthx;
     let mut ty = y * lengthy;

@@ -40,7 +40,11 @@ pub fn intersect_sphere(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
         return None;
     };
     let point = ray.at(t);
-    Some(LocalHit { t, point, normal: point / radius })
+    Some(LocalHit {
+        t,
+        point,
+        normal: point / radius,
+    })
 }
 
 /// The hit of a ray with a convex solid given as the intersection of
@@ -82,7 +86,11 @@ fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f
     } else {
         return None;
     };
-    Some(LocalHit { t, point: ray.at(t), normal })
+    Some(LocalHit {
+        t,
+        point: ray.at(t),
+        normal,
+    })
 }
 
 /// A box centred on the local origin with edge lengths `lengths`.
@@ -128,7 +136,11 @@ pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin
     let mut best: Option<LocalHit> = None;
     let mut consider = |t: f64, normal: DVec3| {
         if t > tmin && best.is_none_or(|b| t < b.t) {
-            best = Some(LocalHit { t, point: ray.at(t), normal });
+            best = Some(LocalHit {
+                t,
+                point: ray.at(t),
+                normal,
+            });
         }
     };
     let a = d.x * d.x + d.y * d.y;
@@ -174,9 +186,9 @@ pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, o
     match &obj.shape {
         Shape::Sphere => intersect_sphere(obj.radius, &local, tmin),
         Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
-        Shape::Cylinder { cylradius, top, bottom, .. } => {
-            intersect_cylinder(*cylradius, *bottom, *top, &local, tmin)
-        }
+        Shape::Cylinder {
+            cylradius, top, bottom, ..
+        } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
         Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
         Shape::Sweep(sw) => sweep::intersect_sweep(obj.class, sw, &local, tmin, opts),
     }
@@ -245,7 +257,9 @@ pub fn face_coords(obj: &ObjectRecord, local: DVec3, local_normal: DVec3) -> Fac
             };
             FaceCoords { s, t, width, height }
         }
-        Shape::Cylinder { cylradius, top, bottom, .. } if local_normal.z.abs() < 0.5 => {
+        Shape::Cylinder {
+            cylradius, top, bottom, ..
+        } if local_normal.z.abs() < 0.5 => {
             let theta = local.y.atan2(local.x).rem_euclid(std::f64::consts::TAU);
             FaceCoords {
                 s: theta * cylradius,
@@ -256,7 +270,12 @@ pub fn face_coords(obj: &ObjectRecord, local: DVec3, local_normal: DVec3) -> Fac
         }
         _ => {
             let r = obj.radius;
-            FaceCoords { s: local.x + r, t: local.y + r, width: 2.0 * r, height: 2.0 * r }
+            FaceCoords {
+                s: local.x + r,
+                t: local.y + r,
+                width: 2.0 * r,
+                height: 2.0 * r,
+            }
         }
     }
 }

@@ -54,8 +54,18 @@ pub fn block(name: &str, surface: usize, at: [f64; 3], lengths: [f64; 3]) -> Obj
 /// An empty scene: eye at (0, −10, 0) looking at the origin, 16×16, 1 subpixel.
 pub fn scene() -> Scene {
     Scene {
-        view: View { eyept: DVec3::new(0.0, -10.0, 0.0), lookpt: DVec3::ZERO, screensize: 4.0, scrndistance: 5.0 },
-        image: ImageSpec { width: 16, height: 16, masksize: 1, aliasing: 0.0 },
+        view: View {
+            eyept: DVec3::new(0.0, -10.0, 0.0),
+            lookpt: DVec3::ZERO,
+            screensize: 4.0,
+            scrndistance: 5.0,
+        },
+        image: ImageSpec {
+            width: 16,
+            height: 16,
+            masksize: 1,
+            aliasing: 0.0,
+        },
         backgrnd: DVec3::ZERO,
         lights: vec![],
         surfaces: vec![],
@@ -69,7 +79,11 @@ pub fn scene() -> Scene {
 }
 
 pub fn light(at: [f64; 3], color: [f64; 3]) -> LightRecord {
-    LightRecord { name: "l".into(), position: DVec3::from_array(at), color: DVec3::from_array(color) }
+    LightRecord {
+        name: "l".into(),
+        position: DVec3::from_array(at),
+        color: DVec3::from_array(color),
+    }
 }
 
 pub fn close(a: DVec3, b: DVec3, eps: f64) -> bool {

@@ -55,7 +55,13 @@ fn main() -> Result<(), String> {
             }
             Ok(())
         }
-        Command::Bench { deck, runs, threads, robust, listing } => {
+        Command::Bench {
+            deck,
+            runs,
+            threads,
+            robust,
+            listing,
+        } => {
             let opts = Options {
                 fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
@@ -182,7 +188,11 @@ mod tests {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../raster");
         for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
             let shipped = std::fs::read(dir.join(name)).expect("the shipped texture is readable");
-            assert_eq!(shipped, raytrace::raster::encode_raster(&raster), "{name}: run `cargo run -p tools -- texture`");
+            assert_eq!(
+                shipped,
+                raytrace::raster::encode_raster(&raster),
+                "{name}: run `cargo run -p tools -- texture`"
+            );
         }
     }
 }
