@@ -218,6 +218,10 @@ pub fn LAW(op: Law, maxval: f64, fract: f64) -> f64 {
 
 /// The rotation about a world axis by `degrees`.
 fn rotation(axis: Axis, degrees: f64) -> DMat4 {
+    // Most motions turn about one axis or none: skip the others' sin and cos.
+    if degrees == 0.0 {
+        return DMat4::IDENTITY;
+    }
     let a = degrees.to_radians();
     match axis {
         Axis::X => DMat4::from_rotation_x(a),
