@@ -15,10 +15,10 @@
 
 use rayon::prelude::*;
 
-use crate::drt::{motionblur, noise2_table, Isblur, TimeTable, MAXINDEX};
+use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
 use crate::raster::{rgbtochars, Raster};
 use crate::trace::{raytrace, rest_poses, Snapshot, TraceStats};
-use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, View};
+use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, TimeSampler, View};
 
 /// A scene the renderer cannot draw yet or at all.
 #[derive(Debug, thiserror::Error)]
@@ -255,6 +255,12 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
             let mut primary = 0u64;
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
             let mut poses = rest_poses(scene);
+            let row_strata: Vec<Vec<u32>> = match opts.sampler {
+                TimeSampler::Stratified if !moving.is_empty() => {
+                    (0..img.width).map(|x| strata(row * img.width + x, m * m)).collect()
+                }
+                _ => Vec::new(),
+            };
             for sub in 0..m {
                 let scanline = row * m + sub + 1;
                 for scancol in first_col..=camera.virthighx {
@@ -262,7 +268,15 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
                     if !moving.is_empty() {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
-                        let time = times.time(scanline, scancol, k);
+                        let time = match opts.sampler {
+                            TimeSampler::Table => times.time(scanline, scancol, k),
+                            TimeSampler::Random => random_time(k),
+                            TimeSampler::Stratified => {
+                                let c = scancol.max(1) - 1;
+                                let j = sub * m + c % m;
+                                stratified_time(row * img.width + c / m, j, row_strata[c / m][j], m * m)
+                            }
+                        };
                         for mo in &moving {
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }
