@@ -1,2 +1,3 @@
 //! Unit `proc` (being written).
+pub mod robust;
 pub mod sweep;
