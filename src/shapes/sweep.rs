@@ -4,16 +4,25 @@
 //! rotation, and the ray's intersection with them.
 //!
 //! Reconstructed: the thesis prints the procedures this driver calls
-//! (`spline`, `laguerre`, `sorting`, `outrectp`, `roottesting`, unit
-//! `proc`) but not the driver. It follows van Wijk 1984 ("Ray tracing
-//! objects defined by sweeping planar cubic splines", ACM TOG 3(3)) and the
-//! thesis's §2.3, §2.5 and §3.3: per-object and per-segment bounding tests
-//! (`outrectp` for rotation), one polynomial in the curve parameter s per
-//! segment (degree 3 for translation and conic sweeps, 6 for rotation),
-//! its roots by [`laguerre`] or the port's [`real_roots`]
-//! (`Options::solver`), the hits from the roots, and the end caps of
-//! translation and conic sweeps by the parity of the roots before the
-//! cap's ray parameter (`roottesting`, then `sorting`'s position).
+//! (`spline`, `laguerre`, `outrectp`, unit `proc`) but not the driver. It
+//! follows van Wijk 1984 ("Ray tracing objects defined by sweeping planar
+//! cubic splines", ACM TOG 3(3)) and the thesis's §2.3, §2.5 and §3.3:
+//! per-object and per-segment bounding tests (`outrectp` for rotation),
+//! one polynomial in the curve parameter s per segment (degree 3 for
+//! translation and conic sweeps, 6 for rotation), its roots by
+//! [`laguerre`] or the port's [`real_roots`] (`Options::solver`), the hits
+//! from the roots, and the end caps of translation and conic sweeps.
+//!
+//! The caps: van Wijk decides whether a cap point is inside the contour by
+//! the parity of the side roots before the cap's ray parameter, which is
+//! what `roottesting` (make the count even) and `sorting` (the position of
+//! `tmax`) are for. With `laguerre`, which misses roots (docs/
+//! laguerre_misses.md), a wrong parity turns a strip of the cap's plane
+//! outside the contour solid: a hit that is not on the object. The port
+//! asks [`point_in_contour`] instead, so every hit it reports lies on the
+//! surface whatever the solver; a root `laguerre` misses leaves a hole,
+//! never a false surface. `roottesting` and `sorting` are ported and
+//! tested as printed, and not called here.
 //!
 //! Local frame: the sweep axis is local z. Translation and conic sweeps
 //! put the contour (x = U, y = V) in the plane z = 0 and sweep it to
@@ -24,19 +33,15 @@
 //! Everything per ray is allocation-free (fixed arrays).
 
 use crate::proc::robust::real_roots;
-use crate::proc::sweep::{laguerre, outrectp, roottesting, sorting, spline, Root, LAGUERRE_ROOTS};
+use crate::proc::sweep::{laguerre, outrectp, spline, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene, Shape,
     Solver, SweepShape, MAXSEGMENTS,
 };
 
-/// Room for every root one ray can leave on one contour: up to 3 (with
-/// multiplicity) per segment of 60, the `roottesting` copy and a cap.
-const ROOTS_CAP: usize = (MAXSEGMENTS + 1) * 7;
-
-/// A root of segment i within this of s = 1 belongs to segment i + 1 (as
-/// its s ≈ 0), so a ray through a joint counts once; roots down to −this
-/// are kept for the same reason.
+/// Roots are kept in [−this, 1 + this], so that a ray through a joint is
+/// not lost to rounding on both sides of it (it may be found twice: the
+/// nearest hit is the same).
 const JOINT_SLACK: f64 = 1e-9;
 
 /// A root whose hit point is farther than this (relative to the object's
@@ -94,37 +99,31 @@ fn polish(p: &[f64; 7], mut s: f64) -> f64 {
     s
 }
 
-/// The roots in [−JOINT_SLACK, 1) of one segment's polynomial, with their
-/// multiplicities (1 from `laguerre`, which cannot tell).
+/// The roots in [−JOINT_SLACK, 1 + JOINT_SLACK] of one segment's
+/// polynomial.
 struct Found {
     count: usize,
     s: [f64; 6],
-    mult: [u8; 6],
 }
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
 fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
-    let mut out = Found { count: 0, s: [0.0; 6], mult: [1; 6] };
-    let keep = |s: f64| (-JOINT_SLACK..1.0 - JOINT_SLACK).contains(&s);
+    let mut out = Found { count: 0, s: [0.0; 6] };
+    let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     match opts.solver {
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
-            let total = laguerre(n, a, 1.0, -JOINT_SLACK, &mut root, opts.fidelity);
-            for r in &root[..total] {
-                if keep(r.a) && out.count < 6 {
-                    out.s[out.count] = r.a;
-                    out.count += 1;
-                }
+            let total = laguerre(n, a, hi, lo, &mut root, opts.fidelity);
+            for r in &root[..total.min(6)] {
+                out.s[out.count] = r.a;
+                out.count += 1;
             }
         }
         Solver::Robust => {
-            let r = real_roots(n, a, -JOINT_SLACK, 1.0);
-            for (&s, &m) in r.roots().iter().zip(&r.multiplicity) {
-                if keep(s) && out.count < 6 {
-                    out.s[out.count] = s;
-                    out.mult[out.count] = m;
-                    out.count += 1;
-                }
+            let r = real_roots(n, a, lo, hi);
+            for &s in r.roots() {
+                out.s[out.count] = s;
+                out.count += 1;
             }
         }
     }
@@ -418,10 +417,8 @@ fn extrusion(
         return best.map(|b| hit(b.t, b.normal));
     }
 
-    let mut roots = [Root::default(); ROOTS_CAP];
-    let mut number = 0usize;
     let mut best: Option<Best> = None;
-    let mut side: Option<(usize, f64, f64)> = None; // segment, s, k at the best side hit
+    let mut side = false;
     let ztol = 1e-12 * size;
     let fscale = nrm * size + gamma.abs();
     for i in 0..u.len() {
@@ -443,8 +440,8 @@ fn extrusion(
             continue; // a straight segment along the ray's projection: grazing
         }
         let found = solve(3, &f, opts);
-        for j in 0..found.count {
-            let s = polish(&f, found.s[j]);
+        for &s0 in &found.s[..found.count] {
+            let s = polish(&f, s0);
             let (uu, vv) = (ev(cu, s), ev(cv, s));
             let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
             let den = ex * ex + ey * ey;
@@ -455,57 +452,36 @@ fn extrusion(
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
             let residual = (p.x - k * uu).hypot(p.y - k * vv);
-            if !(residual <= RESIDUAL_TOL * size) {
-                continue;
-            }
-            let (tu, tv) = tangent(cu, cv, s, size);
-            let nn = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
-            let c = if nn == DVec3::ZERO { 0.0 } else { d.dot(nn) / (dn * nn.length()) };
-            let b = horner(&f, s).1;
-            for _ in 0..found.mult[j] {
-                if number < ROOTS_CAP - 2 {
-                    roots[number] = Root { a: t, b, c };
-                    number += 1;
-                }
-            }
-            if p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
-                best = Some(Best { t, normal: nn });
-                side = Some((i, s, k));
+            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
+                let (tu, tv) = tangent(cu, cv, s, size);
+                let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
+                best = Some(Best { t, normal });
+                side = true;
             }
         }
     }
 
-    // The caps: inside the contour where an odd number of crossings of the
-    // ray's projection lie before the cap's parameter (after the conic
-    // ray's start, inside where its vanishing point is).
+    // The caps, where the ray's point lies inside the (scaled) contour.
     if d.z != 0.0 {
-        roottesting(&mut number, &mut roots, 0);
-        let start_inside = k1 != 0.0 && point_in_contour(u, v, d.x / k1, d.y / k1);
         for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
-            if conic && sw.scale == 0.0 && zc == len {
+            let k = 1.0 + kappa * zc;
+            if k == 0.0 {
                 continue; // the cap is the apex: a ray through it took the path above
             }
-            let tmax = (zc - o.z) / d.z;
-            if !closer(&best, tmax, tmin) || number >= ROOTS_CAP {
+            let t = (zc - o.z) / d.z;
+            if !closer(&best, t, tmin) {
                 continue;
             }
-            roots[number] = Root { a: tmax, b: 0.0, c: 0.0 };
-            let Some(pos) = sorting(tmax, number + 1, &mut roots) else {
-                continue;
-            };
-            roots.copy_within(pos + 1..number + 1, pos);
-            if start_inside ^ (pos % 2 == 1) {
-                best = Some(Best { t: tmax, normal: DVec3::new(0.0, 0.0, nz) });
-                side = None;
+            let p = o + d * t;
+            if point_in_contour(u, v, p.x / k, p.y / k) {
+                best = Some(Best { t, normal: DVec3::new(0.0, 0.0, nz) });
+                side = false;
             }
         }
     }
 
     let b = best?;
-    let normal = match side {
-        Some(_) => b.normal * orientation(u, v),
-        None => b.normal,
-    };
+    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))
 }
