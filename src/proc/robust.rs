@@ -81,7 +81,11 @@ fn zero_tol(p: &[f64; 7], m: usize, x: f64) -> f64 {
 fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let secant = x0 - f0 * (x1 - x0) / (f1 - f0);
-    let mut x = if secant > x0 && secant < x1 { secant } else { 0.5 * (x0 + x1) };
+    let mut x = if secant > x0 && secant < x1 {
+        secant
+    } else {
+        0.5 * (x0 + x1)
+    };
     for _ in 0..200 {
         let (fx, dfx) = eval2(p, m, x);
         if fx == 0.0 {
@@ -95,7 +99,11 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
         }
         let (lo, hi) = if a < b { (a, b) } else { (b, a) };
         let newton = x - fx / dfx;
-        let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let next = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
         let scale = x.abs().max(next.abs()).max(f64::MIN_POSITIVE);
         if (next - x).abs() <= 2.0 * EPS * scale || hi - lo <= 4.0 * EPS * lo.abs().max(hi.abs()) {
             return next;
@@ -162,7 +170,7 @@ fn level_roots(p: &[f64; 7], m: usize, lo: f64, hi: f64, crit: &RealRoots) -> Re
 /// Nothing is found for non-finite input or an empty interval.
 pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
     let n = n.min(MAX_DEGREE);
-    if !(lo <= hi) || !lo.is_finite() || !hi.is_finite() || a[..=n].iter().any(|c| !c.is_finite()) {
+    if !lo.is_finite() || !hi.is_finite() || lo > hi || a[..=n].iter().any(|c| !c.is_finite()) {
         return RealRoots::NONE;
     }
     let mut c = [0.0; 7];
@@ -178,7 +186,10 @@ pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
         deg -= 1;
     }
     if deg == 0 {
-        return RealRoots { identically_zero: c[0] == 0.0, ..RealRoots::NONE };
+        return RealRoots {
+            identically_zero: c[0] == 0.0,
+            ..RealRoots::NONE
+        };
     }
     // The derivatives: polys[k] is p⁽ᵏ⁾, of degree deg − k.
     let mut polys = [[0.0; 7]; MAX_DEGREE];

@@ -49,7 +49,8 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
             a[1] + xi
                 * (2.0 * a[2]
                     + xi * (3.0 * a[3] + xi * (4.0 * a[4] + xi * (5.0 * a[5] + 6.0 * a[6] * xi)))),
-            a[2] * 2.0 + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
+            a[2] * 2.0
+                + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
         ),
         _ => {
             let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
@@ -254,13 +255,13 @@ pub fn spline(
 ) {
     match bezier {
         CurveKind::Bspline => {
-            u.a = (one * (-1.0) + two * 3.0 + three * (-3.0) + four) / 6.0;
+            u.a = (-one + two * 3.0 + three * (-3.0) + four) / 6.0;
             u.b = (one * 3.0 + two * (-6.0) + three * 3.0) / 6.0;
             u.c = (one * (-3.0) + three * 3.0) / 6.0;
             u.d = (one + two * 4.0 + three) / 6.0;
         }
         CurveKind::Bezier => {
-            u.a = one * (-1.0) + two * 3.0 + three * (-3.0) + four;
+            u.a = -one + two * 3.0 + three * (-3.0) + four;
             u.b = one * 3.0 + two * (-6.0) + three * 3.0;
             u.c = one * (-3.0) + two * 3.0;
             u.d = one;
@@ -269,7 +270,11 @@ pub fn spline(
     u.first = 0.0;
     u.last = 1.0;
     let (temp1, temp2) = if one > two { (two, one) } else { (one, two) };
-    let (temp3, temp4) = if three > four { (four, three) } else { (three, four) };
+    let (temp3, temp4) = if three > four {
+        (four, three)
+    } else {
+        (three, four)
+    };
     u.min = if temp1 < temp3 { temp1 } else { temp3 };
     u.max = if temp2 < temp4 { temp4 } else { temp2 };
     let widen = |lo: &mut f64, hi: &mut f64| {
@@ -284,7 +289,9 @@ pub fn spline(
         (1, PrimitiveClass::Translation | PrimitiveClass::Conic | PrimitiveClass::Rotation) => {
             widen(&mut bbox.xmin, &mut bbox.xmax)
         }
-        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => widen(&mut bbox.ymin, &mut bbox.ymax),
+        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => {
+            widen(&mut bbox.ymin, &mut bbox.ymax)
+        }
         (2, PrimitiveClass::Rotation) => widen(&mut bbox.zmin, &mut bbox.zmax),
         _ => {}
     }
@@ -385,9 +392,9 @@ pub fn roottesting(number: &mut usize, root: &mut [Root], temp: usize) -> RootTe
     // least |c|, the first on ties; for one root both are the same copy.
     let mut pick = temp;
     let mut temp1 = root[temp].c;
-    for i in temp + 1..end {
-        if root[i].c.abs() < temp1.abs() {
-            temp1 = root[i].c;
+    for (i, r) in root.iter().enumerate().take(end).skip(temp + 1) {
+        if r.c.abs() < temp1.abs() {
+            temp1 = r.c;
             pick = i;
         }
     }
@@ -417,7 +424,17 @@ mod tests {
         // b = (0 − 36 + 36)/6 = 0, c = (0 + 36)/6 = 6, d = (0 + 24 + 12)/6 = 6.
         let mut u = Coeff::default();
         let mut bx = empty_box();
-        spline(CurveKind::Bspline, 0.0, 6.0, 12.0, 30.0, &mut u, PrimitiveClass::Translation, 1, &mut bx);
+        spline(
+            CurveKind::Bspline,
+            0.0,
+            6.0,
+            12.0,
+            30.0,
+            &mut u,
+            PrimitiveClass::Translation,
+            1,
+            &mut bx,
+        );
         assert_eq!((u.a, u.b, u.c, u.d), (2.0, 0.0, 6.0, 6.0));
         assert_eq!((u.first, u.last, u.min, u.max), (0.0, 1.0, 0.0, 30.0));
         assert_eq!((bx.xmin, bx.xmax), (0.0, 30.0));
@@ -430,7 +447,17 @@ mod tests {
         // c = −3 + 6 = 3, d = 1.
         let mut u = Coeff::default();
         let mut bx = empty_box();
-        spline(CurveKind::Bezier, 1.0, 2.0, 4.0, 3.0, &mut u, PrimitiveClass::Rotation, 2, &mut bx);
+        spline(
+            CurveKind::Bezier,
+            1.0,
+            2.0,
+            4.0,
+            3.0,
+            &mut u,
+            PrimitiveClass::Rotation,
+            2,
+            &mut bx,
+        );
         assert_eq!((u.a, u.b, u.c, u.d), (-4.0, 3.0, 3.0, 1.0));
         assert_eq!((u.min, u.max), (1.0, 4.0));
         // flag 2 of a rotation widens z, not y.
@@ -474,7 +501,9 @@ mod tests {
             assert_eq!(l.a, t.a);
             let x = t.a;
             let cubic = a[1] + 2.0 * a[2] * x + 3.0 * a[3] * x * x;
-            let sextic: f64 = (1..=6).map(|k| k as f64 * a[k] * x.powi(k as i32 - 1)).sum();
+            let sextic: f64 = (1..=6)
+                .map(|k| k as f64 * a[k] * x.powi(k as i32 - 1))
+                .sum();
             assert!((l.b - cubic).abs() < 1e-12, "listing keeps the cubic's f′");
             assert!((t.b - sextic).abs() < 1e-12, "thesis takes the sextic's f′");
             assert!((l.b - t.b).abs() > 1e-6, "the two differ at {x}");
@@ -512,8 +541,14 @@ mod tests {
 
     #[test]
     fn sorting_orders_and_finds_tmax() {
-        let mut r: Vec<Root> =
-            [3.0, 1.0, 2.0, 0.5].iter().map(|&a| Root { a, b: 10.0 * a, c: a + 100.0 }).collect();
+        let mut r: Vec<Root> = [3.0, 1.0, 2.0, 0.5]
+            .iter()
+            .map(|&a| Root {
+                a,
+                b: 10.0 * a,
+                c: a + 100.0,
+            })
+            .collect();
         let pos = sorting(2.0, 4, &mut r);
         let a: Vec<f64> = r.iter().map(|x| x.a).collect();
         assert_eq!(a, vec![0.5, 1.0, 2.0, 3.0]);
@@ -522,7 +557,18 @@ mod tests {
         assert_eq!(sorting(7.0, 4, &mut r), None);
         // The printed swap leaves `.c` behind: the first swap (3 ↔ 1)
         // gives slot 1 the record of 1 and slot 2 keeps its own c (of 1).
-        let mut q = vec![Root { a: 3.0, b: 0.0, c: 3.0 }, Root { a: 1.0, b: 0.0, c: 1.0 }];
+        let mut q = vec![
+            Root {
+                a: 3.0,
+                b: 0.0,
+                c: 3.0,
+            },
+            Root {
+                a: 1.0,
+                b: 0.0,
+                c: 1.0,
+            },
+        ];
         sorting(0.0, 2, &mut q);
         assert_eq!((q[0].a, q[0].c, q[1].a, q[1].c), (1.0, 1.0, 3.0, 1.0));
     }
@@ -533,8 +579,16 @@ mod tests {
         // d = 1; vertex (hu, hv) = (1, 0).
         let (a, b, c, d, hu, hv) = (1.0, 0.0, 1.0, 1.0, 1.0, 0.0);
         let rect = |umin: f64, umax: f64, vmin: f64, vmax: f64| {
-            let u = Coeff { min: umin, max: umax, ..Coeff::default() };
-            let v = Coeff { min: vmin, max: vmax, ..Coeff::default() };
+            let u = Coeff {
+                min: umin,
+                max: umax,
+                ..Coeff::default()
+            };
+            let v = Coeff {
+                min: vmin,
+                max: vmax,
+                ..Coeff::default()
+            };
             outrectp(&u, &v, a, b, c, d, hu, hv)
         };
         // Wholly inside the ray's radius: out.
@@ -570,7 +624,13 @@ mod tests {
 
     #[test]
     fn roottesting_three_roots_copies_least_c() {
-        let mut r = [rec(9.0, 0.0), rec(1.0, 0.5), rec(2.0, -0.01), rec(3.0, 0.2), Root::default()];
+        let mut r = [
+            rec(9.0, 0.0),
+            rec(1.0, 0.5),
+            rec(2.0, -0.01),
+            rec(3.0, 0.2),
+            Root::default(),
+        ];
         // temp = 1: the object's roots are r[1..4].
         let mut n = 3;
         assert_eq!(roottesting(&mut n, &mut r, 1), RootTest::Fixed);

@@ -35,8 +35,8 @@
 use crate::proc::robust::real_roots;
 use crate::proc::sweep::{laguerre, outrectp, spline, Root, LAGUERRE_ROOTS};
 use crate::types::{
-    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene, Shape,
-    Solver, SweepShape, MAXSEGMENTS,
+    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene,
+    Shape, Solver, SweepShape, MAXSEGMENTS,
 };
 
 /// Roots are kept in [−this, 1 + this], so that a ray through a joint is
@@ -91,7 +91,7 @@ fn polish(p: &[f64; 7], mut s: f64) -> f64 {
         }
         let next = s - f / df;
         let (nf, ndf) = horner(p, next);
-        if !(nf.abs() < f.abs()) {
+        if nf.is_nan() || nf.abs() >= f.abs() {
             break;
         }
         (s, f, df) = (next, nf, ndf);
@@ -108,7 +108,10 @@ struct Found {
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
 fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
-    let mut out = Found { count: 0, s: [0.0; 6] };
+    let mut out = Found {
+        count: 0,
+        s: [0.0; 6],
+    };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     match opts.solver {
         Solver::Laguerre => {
@@ -209,8 +212,16 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut prev_sign = above(g0);
         let mut prev_at = Some(cu.d);
         let mut prev_s = 0.0;
-        let roots = if r.identically_zero { &[][..] } else { r.roots() };
-        let mut flip = |sign: bool, at: Option<f64>, s_mid: f64, prev_sign: &mut bool, prev_at: &mut Option<f64>| {
+        let roots = if r.identically_zero {
+            &[][..]
+        } else {
+            r.roots()
+        };
+        let mut flip = |sign: bool,
+                        at: Option<f64>,
+                        s_mid: f64,
+                        prev_sign: &mut bool,
+                        prev_at: &mut Option<f64>| {
             if sign != *prev_sign {
                 let loc = at.or(*prev_at).unwrap_or_else(|| ev(cu, s_mid));
                 if loc > x {
@@ -222,13 +233,31 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         };
         for &s in roots.iter().filter(|&&s| s > 0.0 && s < 1.0) {
             let mid = 0.5 * (prev_s + s);
-            flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+            flip(
+                above(ev(cv, mid) - y),
+                None,
+                mid,
+                &mut prev_sign,
+                &mut prev_at,
+            );
             flip(true, Some(ev(cu, s)), s, &mut prev_sign, &mut prev_at);
             prev_s = s;
         }
         let mid = 0.5 * (prev_s + 1.0);
-        flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
-        flip(above(g1), Some(u[next].d), 1.0, &mut prev_sign, &mut prev_at);
+        flip(
+            above(ev(cv, mid) - y),
+            None,
+            mid,
+            &mut prev_sign,
+            &mut prev_at,
+        );
+        flip(
+            above(g1),
+            Some(u[next].d),
+            1.0,
+            &mut prev_sign,
+            &mut prev_at,
+        );
     }
     inside
 }
@@ -255,7 +284,9 @@ fn ray_meets_box(ray: &Ray, tmin: f64, lo: DVec3, hi: DVec3) -> bool {
 /// The largest coordinate of the box: the object's size for relative
 /// tolerances.
 fn box_size(b: &BoundingBox) -> f64 {
-    [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax].iter().fold(0.0f64, |m, x| m.max(x.abs()))
+    [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 /// The intersection of a ray with a sweep object: the nearest hit with
@@ -287,14 +318,26 @@ pub fn intersect_sweep(
     tmin: f64,
     opts: &Options,
 ) -> Option<LocalHit> {
-    let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
-    if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
+    let n = sweep
+        .segment
+        .min(sweep.u.len())
+        .min(sweep.v.len())
+        .min(MAXSEGMENTS);
+    if n == 0
+        || !ray.origin.is_finite()
+        || !ray.dir.is_finite()
+        || ray.dir == DVec3::ZERO
+        || tmin.is_nan()
+    {
         return None;
     }
     let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
     let mut size = box_size(&sweep.bbox);
     if !(size > 0.0 && size.is_finite()) {
-        size = u.iter().chain(v).fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
+        size = u
+            .iter()
+            .chain(v)
+            .fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
         size = size.max(sweep.length.abs());
     }
     if !(size > 0.0 && size.is_finite()) {
@@ -314,7 +357,12 @@ pub fn intersect_sweep(
             extrusion(u, v, sweep, conic, size, ray, tmin, opts)
         }
         PrimitiveClass::Rotation => {
-            let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
+            let r = b
+                .xmin
+                .abs()
+                .max(b.xmax.abs())
+                .max(b.ymin.abs())
+                .max(b.ymax.abs());
             let lo = DVec3::new(-r, -r, b.zmin) - pad;
             let hi = DVec3::new(r, r, b.zmax) + pad;
             if boxed && !ray_meets_box(ray, tmin, lo, hi) {
@@ -376,9 +424,17 @@ fn extrusion(
     let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
     let k0 = 1.0 + kappa * o.z;
     let k1 = kappa * d.z;
-    let apex_z = if kappa != 0.0 { Some(-1.0 / kappa) } else { None };
+    let apex_z = if kappa != 0.0 {
+        Some(-1.0 / kappa)
+    } else {
+        None
+    };
     let apex_in = apex_z.is_some_and(|z| (0.0..=len).contains(&z));
-    let hit = |t: f64, normal: DVec3| LocalHit { t, point: o + d * t, normal };
+    let hit = |t: f64, normal: DVec3| LocalHit {
+        t,
+        point: o + d * t,
+        normal,
+    };
 
     // A ray in the plane of the apex: the contour is a point there.
     if conic && d.z.abs() <= PARALLEL_TOL * dn && k0.abs() <= PARALLEL_TOL {
@@ -411,7 +467,10 @@ fn extrusion(
             let t = (zc - o.z) / d.z;
             let at_apex = conic && sw.scale == 0.0 && zc == len;
             if (inside || at_apex) && closer(&best, t, tmin) {
-                best = Some(Best { t, normal: DVec3::new(0.0, 0.0, nz) });
+                best = Some(Best {
+                    t,
+                    normal: DVec3::new(0.0, 0.0, nz),
+                });
             }
         }
         return best.map(|b| hit(b.t, b.normal));
@@ -424,8 +483,10 @@ fn extrusion(
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         // The segment's box against the line α X + β Y + γ = 0.
-        let gmin = gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
-        let gmax = gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
+        let gmin =
+            gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
+        let gmax =
+            gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
         let gpad = 1e-12 * fscale;
         if gmin > gpad || gmax < -gpad {
             continue;
@@ -445,14 +506,18 @@ fn extrusion(
             let (uu, vv) = (ev(cu, s), ev(cv, s));
             let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
             let den = ex * ex + ey * ey;
-            if !(den > 1e-24 * dn * dn) {
+            if den.is_nan() || den <= 1e-24 * dn * dn {
                 continue; // the ray runs along the generator through this point
             }
             let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
             let residual = (p.x - k * uu).hypot(p.y - k * vv);
-            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
+            if residual <= RESIDUAL_TOL * size
+                && p.z >= -ztol
+                && p.z <= len + ztol
+                && closer(&best, t, tmin)
+            {
                 let (tu, tv) = tangent(cu, cv, s, size);
                 let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
                 best = Some(Best { t, normal });
@@ -474,14 +539,21 @@ fn extrusion(
             }
             let p = o + d * t;
             if point_in_contour(u, v, p.x / k, p.y / k) {
-                best = Some(Best { t, normal: DVec3::new(0.0, 0.0, nz) });
+                best = Some(Best {
+                    t,
+                    normal: DVec3::new(0.0, 0.0, nz),
+                });
                 side = false;
             }
         }
     }
 
     let b = best?;
-    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
+    let normal = if side {
+        b.normal * orientation(u, v)
+    } else {
+        b.normal
+    };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))
 }
@@ -497,7 +569,11 @@ fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> f64 {
 /// sweep, from (s, t); kept only while the residual falls.
 fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f64, f64, f64) {
     let (o, d) = (ray.origin, ray.dir);
-    let (a, b, c) = (d.x * d.x + d.y * d.y, 2.0 * (o.x * d.x + o.y * d.y), o.x * o.x + o.y * o.y);
+    let (a, b, c) = (
+        d.x * d.x + d.y * d.y,
+        2.0 * (o.x * d.x + o.y * d.y),
+        o.x * o.x + o.y * o.y,
+    );
     let mut res = revolve_residual(u, v, ray, s, t);
     for _ in 0..5 {
         if res == 0.0 {
@@ -516,7 +592,7 @@ fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f
         let ds = (-g2 * j11 + g1 * j21) / det;
         let (ns, nt) = (s + ds, t + dt);
         let nres = revolve_residual(u, v, ray, ns, nt);
-        if !(nres < res) {
+        if nres.is_nan() || nres >= res {
             break;
         }
         (s, t, res) = (ns, nt, nres);
@@ -529,7 +605,11 @@ fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f
 fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) -> DVec3 {
     let (tu, tv) = tangent(u, v, s, size);
     let r = p.x.hypot(p.y);
-    let (ex, ey) = if r > 1e-12 * size { (p.x / r, p.y / r) } else { (1.0, 0.0) };
+    let (ex, ey) = if r > 1e-12 * size {
+        (p.x / r, p.y / r)
+    } else {
+        (1.0, 0.0)
+    };
     DVec3::new(tv * ex, tv * ey, -tu) * sign
 }
 
@@ -541,7 +621,14 @@ fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) 
 /// heights measured from o_z). On the contour r = U(s), w = V(s) − o_z:
 ///   A (V − o_z)² + B d_z (V − o_z) + d_z² (C − U²) = 0,
 /// a sextic in s.
-fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
+fn revolve(
+    u: &[Coeff],
+    v: &[Coeff],
+    size: f64,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
     let dn = d.length();
     let a = d.x * d.x + d.y * d.y;
@@ -557,7 +644,8 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
             return;
         }
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
-        if res <= RESIDUAL_TOL * size && (-1e-6..=1.0 + 1e-6).contains(&s) && closer(best, t, tmin) {
+        if res <= RESIDUAL_TOL * size && (-1e-6..=1.0 + 1e-6).contains(&s) && closer(best, t, tmin)
+        {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size, sign);
             *best = Some(Best { t, normal });
         }
@@ -624,8 +712,16 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
             let (ha, hb, hc, hd) = (a, b * dz, c * dz * dz, dz * dz);
             let hv = -hb / (2.0 * ha);
             let hu = (c - b * b / (4.0 * a)).max(0.0).sqrt();
-            let pu = Coeff { min: cu.min - pad, max: cu.max + pad, ..*cu };
-            let pv = Coeff { min: cv.min - o.z - pad, max: cv.max - o.z + pad, ..*cv };
+            let pu = Coeff {
+                min: cu.min - pad,
+                max: cu.max + pad,
+                ..*cu
+            };
+            let pv = Coeff {
+                min: cv.min - o.z - pad,
+                max: cv.max - o.z + pad,
+                ..*cv
+            };
             if outrectp(&pu, &pv, ha, hb, hc, hd, hu, hv) {
                 continue;
             }
@@ -659,7 +755,11 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
     }
     let bst = best?;
     let normal = bst.normal.try_normalize()?;
-    Some(LocalHit { t: bst.t, point: ray.at(bst.t), normal })
+    Some(LocalHit {
+        t: bst.t,
+        point: ray.at(bst.t),
+        normal,
+    })
 }
 
 /// An empty box, to be widened.
@@ -715,8 +815,12 @@ fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox {
     for i in 0..segments {
         let p = segment_points(sw.curve, &sw.points, i);
         let (mut cu, mut cv) = (Coeff::default(), Coeff::default());
-        spline(sw.curve, p[0][0], p[1][0], p[2][0], p[3][0], &mut cu, class, 1, &mut sbox);
-        spline(sw.curve, p[0][1], p[1][1], p[2][1], p[3][1], &mut cv, class, 2, &mut sbox);
+        spline(
+            sw.curve, p[0][0], p[1][0], p[2][0], p[3][0], &mut cu, class, 1, &mut sbox,
+        );
+        spline(
+            sw.curve, p[0][1], p[1][1], p[2][1], p[3][1], &mut cv, class, 2, &mut sbox,
+        );
         sw.u.push(cu);
         sw.v.push(cv);
     }
@@ -776,7 +880,11 @@ fn own_box(class: PrimitiveClass, sw: &SweepShape, sbox: &BoundingBox) -> Boundi
 /// sweep of a class gets the union of the class's boxes, with a rotation
 /// box's x (and y) the radius range min U … max U as `spline` writes it.
 pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
-    let classes = [PrimitiveClass::Translation, PrimitiveClass::Conic, PrimitiveClass::Rotation];
+    let classes = [
+        PrimitiveClass::Translation,
+        PrimitiveClass::Conic,
+        PrimitiveClass::Rotation,
+    ];
     let mut class_box = [empty_box(); 3];
     for obj in &mut scene.objects {
         let class = obj.class;
