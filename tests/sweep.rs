@@ -1725,3 +1725,88 @@ fn laguerre_edge_on_rotation_band() {
         ]
     );
 }
+
+/// The conic sweep of the B-spline circle against the analytic frustum
+/// x² + y² = (R k(z))², and the Bezier sphere against the sphere: the
+/// per-segment bounds (`outrectp` for rotation) lose no hit, and each hit
+/// is within the contour's own deviation.
+#[test]
+fn frustum_and_sphere_match_their_quadrics() {
+    let (r, len, scale) = (1.0, 2.0, 0.5);
+    let fr = sweep(PrimitiveClass::Conic, CurveKind::Bspline, circle_points(r), len, scale);
+    let sp = sweep(PrimitiveClass::Rotation, CurveKind::Bezier, sphere_points(r), 0.0, 1.0);
+    let dev_fr = contour_deviation(&fr, |x, y| x.hypot(y) - r);
+    let dev_sp = contour_deviation(&sp, |x, y| if x < 1e-12 { 0.0 } else { x.hypot(y) - r });
+    assert!(dev_sp > 1e-5 && dev_sp < 1e-3, "{dev_sp}");
+    let kappa = (scale - 1.0) / len;
+    let frustum = |ray: &Ray| -> Option<(f64, DVec3)> {
+        let (o, d) = (ray.origin, ray.dir);
+        let (k0, k1) = (1.0 + kappa * o.z, kappa * d.z);
+        let a = d.x * d.x + d.y * d.y - r * r * k1 * k1;
+        let b = 2.0 * (o.x * d.x + o.y * d.y - r * r * k0 * k1);
+        let c = o.x * o.x + o.y * o.y - r * r * k0 * k0;
+        let mut best: Option<(f64, DVec3)> = None;
+        let disc = b * b - 4.0 * a * c;
+        if disc >= 0.0 && a != 0.0 {
+            for t in [(-b - disc.sqrt()) / (2.0 * a), (-b + disc.sqrt()) / (2.0 * a)] {
+                let p = ray.at(t);
+                if t > 1e-9 && (0.0..=len).contains(&p.z) && best.map_or(true, |x| t < x.0) {
+                    let k = 1.0 + kappa * p.z;
+                    let n = DVec3::new(p.x, p.y, -r * r * k * kappa).normalize();
+                    best = Some((t, n));
+                }
+            }
+        }
+        for (zc, nz, rad) in [(0.0, -1.0, r), (len, 1.0, r * scale)] {
+            let t = (zc - o.z) / d.z;
+            let p = ray.at(t);
+            if t > 1e-9 && p.x.hypot(p.y) <= rad && best.map_or(true, |x| t < x.0) {
+                best = Some((t, DVec3::new(0.0, 0.0, nz)));
+            }
+        }
+        best
+    };
+    let sphere = |ray: &Ray| -> Option<(f64, DVec3)> {
+        let (o, d) = (ray.origin, ray.dir);
+        let b = o.dot(d);
+        let disc = b * b - (o.length_squared() - r * r);
+        if disc < 0.0 {
+            return None;
+        }
+        let t = -b - disc.sqrt();
+        (t > 1e-9).then(|| (t, ray.at(t) / r))
+    };
+    let mut rng = Rng(17);
+    for (class, sw, dev, quadric) in [
+        (PrimitiveClass::Conic, &fr, dev_fr, &frustum as &dyn Fn(&Ray) -> Option<(f64, DVec3)>),
+        (PrimitiveClass::Rotation, &sp, dev_sp, &sphere),
+    ] {
+        let mut compared = 0;
+        for _ in 0..2000 {
+            let ray = random_ray(&mut rng, sw, class);
+            let Some((tq, nq)) = quadric(&ray) else { continue };
+            let cos = ray.dir.dot(nq).abs();
+            if cos < 0.3 || nq.z.abs() > 0.999 {
+                continue; // grazing, or a cap (where near the rim the side may come first)
+            }
+            let h = intersect_sweep(class, sw, &ray, 1e-9, &ROBUST)
+                .unwrap_or_else(|| panic!("{class:?}: missed a quadric hit at t = {tq}"));
+            assert!((h.t - tq).abs() <= 1.5 * dev / cos + 1e-9, "{class:?}: {} vs {tq}", h.t);
+            assert!(h.normal.dot(nq) > 0.95);
+            compared += 1;
+        }
+        assert!(compared > 500, "{class:?}: {compared}");
+    }
+}
+
+/// The largest |f(U, V)| on the contour, sampled densely.
+fn contour_deviation(sw: &SweepShape, f: impl Fn(f64, f64) -> f64) -> f64 {
+    let mut dev = 0.0f64;
+    for i in 0..sw.segment {
+        for j in 0..=1000 {
+            let s = j as f64 / 1000.0;
+            dev = dev.max(f(ev(&sw.u[i], s), ev(&sw.v[i], s)).abs());
+        }
+    }
+    dev
+}
