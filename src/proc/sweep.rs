@@ -201,20 +201,32 @@ pub fn laguerre(
 /// the position (0-based) of the last record whose `.a` equals `tmax`, or
 /// `None` where the listing would leave `pos` as it was.
 ///
-/// As printed, a swap moves the whole record j to i but only `.a` and `.b`
-/// of record i to j, so record j keeps its own `.c`: after a swap both
-/// carry j's `.c`. The sweep driver calls [`roottesting`], which reads
-/// `.c`, before it sorts.
-pub fn sorting(tmax: f64, number: usize, roots: &mut [Root]) -> Option<usize> {
+/// Erratum 17 (proposed, docs/sweep_notes.md): the listing's swap moves
+/// the whole record j to i but only `.a` and `.b` of record i to j, so
+/// record j keeps its own `.c` and both end up with j's (`Listing`); Ch. 4
+/// says the procedure sorts the records by `root.a`, and `Thesis` swaps
+/// whole records. The sweep driver does not call `sorting` (see
+/// `shapes::sweep`).
+pub fn sorting(tmax: f64, number: usize, roots: &mut [Root], fidelity: Fidelity) -> Option<usize> {
     let number = number.min(roots.len());
     for i in 0..number.saturating_sub(1) {
         for j in i + 1..number {
             if roots[i].a > roots[j].a {
-                let temp = roots[i].a;
-                let temp2 = roots[i].b;
-                roots[i] = roots[j];
-                roots[j].a = temp;
-                roots[j].b = temp2;
+                match fidelity {
+                    // Erratum 17, listing: `temp := roots[i].a; temp2 :=
+                    // roots[i].b; roots[i] := roots[j]; roots[j].a := temp;
+                    // roots[j].b := temp2` — `.c` stays behind.
+                    Fidelity::Listing => {
+                        let temp = roots[i].a;
+                        let temp2 = roots[i].b;
+                        roots[i] = roots[j];
+                        roots[j].a = temp;
+                        roots[j].b = temp2;
+                    }
+                    // Thesis (Ch. 4: "sort the records of roots by
+                    // root.a"): the records trade places.
+                    Fidelity::Thesis => roots.swap(i, j),
+                }
             }
         }
     }
@@ -541,36 +553,48 @@ mod tests {
 
     #[test]
     fn sorting_orders_and_finds_tmax() {
-        let mut r: Vec<Root> = [3.0, 1.0, 2.0, 0.5]
-            .iter()
-            .map(|&a| Root {
-                a,
-                b: 10.0 * a,
-                c: a + 100.0,
-            })
-            .collect();
-        let pos = sorting(2.0, 4, &mut r);
-        let a: Vec<f64> = r.iter().map(|x| x.a).collect();
-        assert_eq!(a, vec![0.5, 1.0, 2.0, 3.0]);
-        assert!(r.iter().all(|x| x.b == 10.0 * x.a), ".b travels with .a");
-        assert_eq!(pos, Some(2));
-        assert_eq!(sorting(7.0, 4, &mut r), None);
-        // The printed swap leaves `.c` behind: the first swap (3 ↔ 1)
-        // gives slot 1 the record of 1 and slot 2 keeps its own c (of 1).
-        let mut q = vec![
-            Root {
-                a: 3.0,
-                b: 0.0,
-                c: 3.0,
-            },
-            Root {
-                a: 1.0,
-                b: 0.0,
-                c: 1.0,
-            },
-        ];
-        sorting(0.0, 2, &mut q);
+        for fid in [Fidelity::Listing, Fidelity::Thesis] {
+            let mut r: Vec<Root> = [3.0, 1.0, 2.0, 0.5]
+                .iter()
+                .map(|&a| Root {
+                    a,
+                    b: 10.0 * a,
+                    c: a + 100.0,
+                })
+                .collect();
+            let pos = sorting(2.0, 4, &mut r, fid);
+            let a: Vec<f64> = r.iter().map(|x| x.a).collect();
+            assert_eq!(a, vec![0.5, 1.0, 2.0, 3.0]);
+            assert!(r.iter().all(|x| x.b == 10.0 * x.a), ".b travels with .a");
+            assert_eq!(pos, Some(2));
+            assert_eq!(sorting(7.0, 4, &mut r, fid), None);
+        }
+    }
+
+    #[test]
+    fn sorting_erratum_17_c_stays_behind() {
+        // The swap of 3 and 1: the listing gives slot 1 the record of 1 and
+        // slot 2 keeps its own c (of 1); the thesis swaps whole records.
+        let rec = || {
+            vec![
+                Root {
+                    a: 3.0,
+                    b: 0.0,
+                    c: 3.0,
+                },
+                Root {
+                    a: 1.0,
+                    b: 0.0,
+                    c: 1.0,
+                },
+            ]
+        };
+        let mut q = rec();
+        sorting(0.0, 2, &mut q, Fidelity::Listing);
         assert_eq!((q[0].a, q[0].c, q[1].a, q[1].c), (1.0, 1.0, 3.0, 1.0));
+        let mut q = rec();
+        sorting(0.0, 2, &mut q, Fidelity::Thesis);
+        assert_eq!((q[0].a, q[0].c, q[1].a, q[1].c), (1.0, 1.0, 3.0, 3.0));
     }
 
     #[test]

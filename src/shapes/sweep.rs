@@ -644,7 +644,9 @@ fn revolve(
             return;
         }
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
-        if res <= RESIDUAL_TOL * size && (-1e-6..=1.0 + 1e-6).contains(&s) && closer(best, t, tmin)
+        if res <= RESIDUAL_TOL * size
+            && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s)
+            && closer(best, t, tmin)
         {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size, sign);
             *best = Some(Best { t, normal });
