@@ -317,7 +317,9 @@ fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
 }
 
 /// The lines the listing writes to `debugf` for a frame: one per scanline
-/// of the subpixel raster, `kfTIRcnt`, and the frame's end.
+/// of the subpixel raster, `kfTIRcnt`, and the frame's end; and the count of
+/// `roottesting`'s `**** impossible ****` (erratum 8), which the listing
+/// wrote to standard output.
 pub fn debug_log(scene: &Scene, render: &Render) -> String {
     use std::fmt::Write;
     let mut s = String::new();
@@ -325,6 +327,8 @@ pub fn debug_log(scene: &Scene, render: &Render) -> String {
         let _ = writeln!(s, " scanline={scanline:5}");
     }
     let _ = writeln!(s, "kfTIRcnt={:9}", render.stats.kftircnt);
+    // What the listing wrote to standard output from `roottesting`, counted.
+    let _ = writeln!(s, "**** impossible ****{:9}", crate::proc::sweep::roottesting_impossible_count());
     let _ = writeln!(s);
     let _ = writeln!(s, "FRAME NUMBER{:4}---DONE", 1);
     s
