@@ -1,12 +1,14 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
-//! `bench` times the renderer on a deck (medians, never asserted in tests).
+//! `bench` times the renderer on a deck; `chart` draws the speed/accuracy
+//! chart; `stability` writes the root solvers' stability report. Timings
+//! are measured and printed, never asserted in tests.
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
-use raytrace::raster::{outputframe, Raster};
+use raytrace::raster::outputframe;
 use raytrace::types::{Fidelity, Options, Solver};
+use tools::textures::{nec_card, test_card};
 
 #[derive(Parser)]
 #[command(name = "tools", about = "Tools of the TR-88-036 port")]
@@ -42,6 +44,25 @@ enum Command {
         #[arg(long)]
         listing: bool,
     },
+    /// Draw the speed/accuracy chart: time samplers (error against render
+    /// time) and root solvers (silhouette pixels wrong against time per ray).
+    Chart {
+        /// Where to write speed_accuracy.png and speed_accuracy.svg.
+        #[arg(long, default_value = "docs")]
+        dir: PathBuf,
+        /// The width and height of every render of the chart, in pixels.
+        #[arg(long, default_value_t = 96)]
+        size: usize,
+        /// Timed renders a point (the median is plotted).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
+    /// Write the stability report of the root solvers on hard cases.
+    Stability {
+        /// The report to write.
+        #[arg(long, default_value = "docs/STABILITY.md")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> Result<(), String> {
@@ -67,133 +88,9 @@ fn main() -> Result<(), String> {
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
                 ..Options::default()
             };
-            bench(&deck, runs.max(1), threads, &opts)
+            tools::bench::bench(&deck, runs.max(1), threads, &opts)
         }
-    }
-}
-
-/// A 64×64 test card: eight colour bars over the top half, a grey ramp,
-/// and a black frame with a white diagonal, so that a pasted picture shows
-/// its orientation (which way is up, which is left) at a glance.
-fn test_card(width: usize, height: usize) -> Raster {
-    const BARS: [[u8; 3]; 8] = [
-        [255, 255, 255],
-        [255, 255, 0],
-        [0, 255, 255],
-        [0, 255, 0],
-        [255, 0, 255],
-        [255, 0, 0],
-        [0, 0, 255],
-        [0, 0, 0],
-    ];
-    let mut pixels = Vec::with_capacity(width * height);
-    for y in 0..height {
-        for x in 0..width {
-            let frame = x < 2 || y < 2 || x >= width - 2 || y >= height - 2;
-            let diagonal = y >= height / 2 && (x as i64 - (y - height / 2) as i64 * 2).abs() <= 1;
-            let px = if frame {
-                [0, 0, 0]
-            } else if diagonal {
-                [255, 255, 255]
-            } else if y < height / 2 {
-                BARS[x * BARS.len() / width]
-            } else {
-                let g = (x * 255 / (width - 1)) as u8;
-                [g, g, g / 2]
-            };
-            pixels.push(px);
-        }
-    }
-    Raster { width, height, pixels }
-}
-
-/// The letters N, E, C in blue on white, 96×48, for the advertising cube
-/// of Fig. 5.5. Each letter is drawn from strokes on a 5×7 grid.
-fn nec_card() -> Raster {
-    const GLYPHS: [[&str; 7]; 3] = [
-        ["X...X", "XX..X", "XX..X", "X.X.X", "X..XX", "X..XX", "X...X"],
-        ["XXXXX", "X....", "X....", "XXXX.", "X....", "X....", "XXXXX"],
-        [".XXXX", "X....", "X....", "X....", "X....", "X....", ".XXXX"],
-    ];
-    let (cell, width, height) = (4usize, 96usize, 48usize);
-    let (left, top) = (6usize, 10usize);
-    let mut pixels = vec![[255u8, 255, 255]; width * height];
-    for (g, glyph) in GLYPHS.iter().enumerate() {
-        for (row, line) in glyph.iter().enumerate() {
-            for (col, ch) in line.bytes().enumerate() {
-                if ch != b'X' {
-                    continue;
-                }
-                let x0 = left + g * (6 * cell + 4) + col * cell;
-                let y0 = top + row * cell;
-                for y in y0..y0 + cell {
-                    for x in x0..x0 + cell {
-                        pixels[y * width + x] = [20, 40, 170];
-                    }
-                }
-            }
-        }
-    }
-    Raster { width, height, pixels }
-}
-
-fn bench(deck: &Path, runs: usize, threads: Option<usize>, opts: &Options) -> Result<(), String> {
-    let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
-    let dir = deck.parent().unwrap_or(Path::new("."));
-    let name = deck.display().to_string();
-    let mut scene = raytrace::deck::initialize(&source, &name, dir, opts.fidelity).map_err(|e| e.to_string())?;
-    raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| e.to_string())?;
-    let warm = pool.install(|| raytrace::raytrace::render(&scene, opts, &|| {}));
-    let mut secs = Vec::with_capacity(runs);
-    for _ in 0..runs {
-        let t = Instant::now();
-        let r = pool.install(|| raytrace::raytrace::render(&scene, opts, &|| {}));
-        secs.push(t.elapsed().as_secs_f64());
-        if r.raster != warm.raster {
-            return Err("a render differs from the warm-up: the renderer is not deterministic".into());
-        }
-    }
-    secs.sort_by(f64::total_cmp);
-    let median = secs[secs.len() / 2];
-    let img = &scene.image;
-    println!(
-        "{name}: {}×{}, {}×{} subpixels, {} threads, {:?} {:?}: median {:.4} s, fastest {:.4} s, slowest {:.4} s over {} runs; {} rays a render, {:.0} rays/s",
-        img.width,
-        img.height,
-        img.masksize,
-        img.masksize,
-        pool.current_num_threads(),
-        opts.fidelity,
-        opts.solver,
-        median,
-        secs[0],
-        secs[secs.len() - 1],
-        runs,
-        warm.stats.rays,
-        warm.stats.rays as f64 / median
-    );
-    Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The texture rasters in raster/ are what `tools texture` writes.
-    #[test]
-    fn shipped_textures_are_the_tools_output() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../raster");
-        for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
-            let shipped = std::fs::read(dir.join(name)).expect("the shipped texture is readable");
-            assert_eq!(
-                shipped,
-                raytrace::raster::encode_raster(&raster),
-                "{name}: run `cargo run -p tools -- texture`"
-            );
-        }
+        Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Stability { out } => tools::stability::run(&out),
     }
 }

@@ -1,0 +1,545 @@
+//! `tools chart`: the speed/accuracy chart, docs/speed_accuracy.png and .svg.
+//!
+//! Panel 1, time samplers: for each motion-blurred deck of
+//! [`BLUR_DECKS`](crate::decks::BLUR_DECKS) and each way of choosing the
+//! subpixel times, the RMSE of the float image (`render_colours`) against
+//! a reference of 1024 stratified time samples a pixel (mask 32), against
+//! the median render time (all threads), at 1, 4, 16 and 64 samples a
+//! pixel (mask 1, 2, 4, 8).
+//!
+//! Panel 2, root solvers: for each sweep deck of
+//! [`SOLVER_DECKS`](crate::decks::SOLVER_DECKS) and each solver, the share
+//! of silhouette pixels whose colour differs (by more than
+//! [`DIFFER`] in a channel) from a reference rendered with the robust
+//! solver at mask 16, at masks 1, 2, 4 and 8, against the time per ray
+//! (one thread, timed at mask 4: a ray's cost does not depend on the mask).
+//!
+//! Every render of the chart is `size`×`size` pixels (96 by default), so
+//! the whole chart takes a minute or two on two cores.
+
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use raytrace::raytrace::{render, render_colours};
+use raytrace::types::{Fidelity, Options, Scene, Solver, TimeSampler};
+
+use crate::decks::{prepared, BLUR_DECKS, SOLVER_DECKS};
+use crate::measure::{differing, is_sweep, probe_objects, rmse, silhouette, time_median};
+
+/// One way of choosing the subpixel times.
+#[derive(Clone, Copy, Debug)]
+pub struct Sampling {
+    pub label: &'static str,
+    pub fidelity: Fidelity,
+    pub sampler: TimeSampler,
+}
+
+/// The four samplers of panel 1: the listing's table (times `pattern·0.1`,
+/// up to 6.3 at mask 8: erratum 2, so its error is large by design), the
+/// thesis's table with the CLT jitter of the deck's `blur`, plain random
+/// times, and stratified times.
+pub const SAMPLINGS: [Sampling; 4] = [
+    Sampling {
+        label: "listing table",
+        fidelity: Fidelity::Listing,
+        sampler: TimeSampler::Table,
+    },
+    Sampling {
+        label: "thesis table + CLT",
+        fidelity: Fidelity::Thesis,
+        sampler: TimeSampler::Table,
+    },
+    Sampling {
+        label: "random",
+        fidelity: Fidelity::Thesis,
+        sampler: TimeSampler::Random,
+    },
+    Sampling {
+        label: "stratified",
+        fidelity: Fidelity::Thesis,
+        sampler: TimeSampler::Stratified,
+    },
+];
+
+/// The masks of panel 1: 1, 4, 16 and 64 samples a pixel.
+pub const BLUR_MASKS: [usize; 4] = [1, 2, 4, 8];
+/// Panel 1's reference: 32×32 = 1024 stratified time samples a pixel.
+pub const BLUR_REFERENCE_MASK: usize = 32;
+/// The masks of panel 2.
+pub const SOLVER_MASKS: [usize; 4] = [1, 2, 4, 8];
+/// The mask of panel 2's timing renders.
+pub const TIMING_MASK: usize = 4;
+/// Panel 2's reference: the robust solver at 16×16 rays a pixel.
+pub const SOLVER_REFERENCE_MASK: usize = 16;
+/// The probe rays a pixel (k×k) that decide which pixels are silhouette.
+pub const PROBE: usize = 8;
+/// A pixel differs when some channel is off by more than this (about 13
+/// steps of an 8-bit channel: well above the noise of the shading, well
+/// below a coverage change of one subpixel in four on a silhouette).
+pub const DIFFER: f64 = 0.05;
+
+/// A point of panel 1.
+#[derive(Clone, Debug)]
+pub struct BlurPoint {
+    pub deck: &'static str,
+    pub sampling: usize,
+    pub mask: usize,
+    pub secs: f64,
+    pub rmse: f64,
+}
+
+/// A point of panel 2.
+#[derive(Clone, Debug)]
+pub struct SolverPoint {
+    pub deck: &'static str,
+    pub solver: Solver,
+    pub mask: usize,
+    /// Median render time over all rays traced, one thread.
+    pub secs_per_ray: f64,
+    pub silhouette: usize,
+    /// Silhouette pixels differing from the reference.
+    pub differ_silhouette: usize,
+    /// All pixels differing from the reference.
+    pub differ_all: usize,
+    /// Silhouette pixels differing from the robust solver's image at the
+    /// same mask (the same rays): the solver's own share.
+    pub differ_same_rays: usize,
+}
+
+fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
+    Options {
+        fidelity,
+        solver,
+        sampler,
+    }
+}
+
+/// Panel 1's measurements.
+pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> {
+    let mut out = Vec::new();
+    for &deck in BLUR_DECKS {
+        let ref_opts = opts(Fidelity::Thesis, Solver::Laguerre, TimeSampler::Stratified);
+        let ref_scene = prepared(deck, &ref_opts, Some((size, size, BLUR_REFERENCE_MASK)))?;
+        eprintln!("{deck}: reference, {BLUR_REFERENCE_MASK}×{BLUR_REFERENCE_MASK} stratified");
+        let reference = render_colours(&ref_scene, &ref_opts);
+        for (si, s) in SAMPLINGS.iter().enumerate() {
+            let o = opts(s.fidelity, Solver::Laguerre, s.sampler);
+            for mask in BLUR_MASKS {
+                let scene = prepared(deck, &o, Some((size, size, mask)))?;
+                let (secs, img) = time_median(runs, || render_colours(&scene, &o));
+                let e = rmse(&img, &reference);
+                eprintln!("{deck}: {:<20} {:>3} spp: {secs:.4} s, RMSE {e:.5}", s.label, mask * mask);
+                out.push(BlurPoint {
+                    deck,
+                    sampling: si,
+                    mask,
+                    secs,
+                    rmse: e,
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The indices of a scene's sweep objects.
+fn sweeps_of(scene: &Scene) -> Vec<usize> {
+    (0..scene.objects.len()).filter(|&i| is_sweep(scene.objects[i].class)).collect()
+}
+
+/// Panel 2's measurements.
+pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, String> {
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let mut out = Vec::new();
+    for &deck in SOLVER_DECKS {
+        let robust = opts(Fidelity::Thesis, Solver::Robust, TimeSampler::Table);
+        let ref_scene = prepared(deck, &robust, Some((size, size, SOLVER_REFERENCE_MASK)))?;
+        eprintln!("{deck}: reference, robust at {SOLVER_REFERENCE_MASK}×{SOLVER_REFERENCE_MASK}");
+        let reference = render_colours(&ref_scene, &robust);
+        let sweeps = sweeps_of(&ref_scene);
+        let seen = probe_objects(&ref_scene, PROBE, &robust);
+        let sil = silhouette(&seen, |o| sweeps.contains(&o));
+        let count = |v: &[bool], only_sil: bool| v.iter().zip(&sil).filter(|(d, s)| **d && (**s || !only_sil)).count();
+        let n_sil = sil.iter().filter(|s| **s).count();
+        // The cost of a ray is the solver's and the deck's, not the mask's:
+        // one timing a solver, on the renders at TIMING_MASK.
+        let timing_scene = prepared(deck, &robust, Some((size, size, TIMING_MASK)))?;
+        let mut per_ray = [0.0; 2];
+        for (k, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
+            let o = opts(Fidelity::Thesis, solver, TimeSampler::Table);
+            let rays = render(&timing_scene, &o, &|| {}).stats.rays.max(1);
+            let (secs, _) = one.install(|| time_median(runs, || render_colours(&timing_scene, &o)));
+            per_ray[k] = secs / rays as f64;
+        }
+        for mask in SOLVER_MASKS {
+            let scene = prepared(deck, &robust, Some((size, size, mask)))?;
+            let robust_img = render_colours(&scene, &robust);
+            for (k, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
+                let o = opts(Fidelity::Thesis, solver, TimeSampler::Table);
+                let img = render_colours(&scene, &o);
+                let d_ref = differing(&img, &reference, DIFFER);
+                let d_same = differing(&img, &robust_img, DIFFER);
+                let p = SolverPoint {
+                    deck,
+                    solver,
+                    mask,
+                    secs_per_ray: per_ray[k],
+                    silhouette: n_sil,
+                    differ_silhouette: count(&d_ref, true),
+                    differ_all: count(&d_ref, false),
+                    differ_same_rays: count(&d_same, true),
+                };
+                eprintln!(
+                    "{deck}: {solver:?} mask {mask}: {:.3} µs/ray, {}/{} silhouette px differ ({} same rays), {} px in all",
+                    p.secs_per_ray * 1e6,
+                    p.differ_silhouette,
+                    p.silhouette,
+                    p.differ_same_rays,
+                    p.differ_all
+                );
+                out.push(p);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The chart's size in pixels.
+const WIDTH: u32 = 1500;
+const HEIGHT: u32 = 640;
+
+const SAMPLING_COLOURS: [RGBColor; 4] = [
+    RGBColor(200, 40, 40),
+    RGBColor(40, 90, 200),
+    RGBColor(230, 140, 20),
+    RGBColor(30, 150, 60),
+];
+const SOLVER_COLOURS: [RGBColor; 2] = [RGBColor(200, 40, 40), RGBColor(40, 90, 200)];
+
+/// A log range holding every value with a margin; 0 and below are left out.
+fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !(lo.is_finite() && hi > 0.0) {
+        return (1e-3, 1.0);
+    }
+    (lo / 1.6, hi * 1.6)
+}
+
+/// A log axis's tick label: 1, 2 and 5 times a power of ten, in as few
+/// digits as they need; the other ticks stay unlabelled.
+fn tick(v: f64) -> String {
+    if !(v > 0.0 && v.is_finite()) {
+        return String::new();
+    }
+    let e = v.log10().floor();
+    let m = v / 10f64.powf(e);
+    let lead = [1.0, 2.0, 5.0].into_iter().find(|d| (m - d).abs() < 1e-6 * d);
+    match lead {
+        Some(d) => {
+            let decimals = if e < 0.0 { (-e) as usize } else { 0 };
+            format!("{:.*}", decimals, d * 10f64.powf(e))
+        }
+        None => String::new(),
+    }
+}
+
+/// One series of a panel: its label, colour, marker and points.
+struct Series {
+    label: String,
+    colour: RGBColor,
+    marker: usize,
+    points: Vec<(f64, f64)>,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+    floor: Option<f64>,
+    note: &str,
+    legend: SeriesLabelPosition,
+    x_room: f64,
+) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("{e:?}");
+    let (area, strip) = area.split_vertically(area.dim_in_pixel().1 - 28);
+    let area = &area;
+    let (x0, x1) = log_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    let x1 = x1 * x_room;
+    let (mut y0, y1) = log_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    if let Some(f) = floor {
+        y0 = y0.min(f / 1.6);
+    }
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(48)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 14))
+        .bold_line_style(BLACK.mix(0.25))
+        .light_line_style(BLACK.mix(0.06))
+        .axis_desc_style(("sans-serif", 15))
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .draw()
+        .map_err(err)?;
+    for s in series {
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .map(|&(x, y)| (x, if y > 0.0 { y } else { floor.unwrap_or(y0) }))
+            .collect();
+        let (colour, m) = (s.colour, s.marker);
+        chart
+            .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
+            .map_err(err)?
+            .label(s.label.clone())
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(-6, 0), (14, 0)], colour.stroke_width(2))
+                    + Circle::new((4, 0), if m == 0 { 4 } else { 0 }, colour.filled())
+                    + TriangleMarker::new((4, 0), if m == 1 { 6 } else { 0 }, colour.filled())
+                    + Cross::new((4, 0), if m == 2 { 5 } else { 0 }, colour.stroke_width(2))
+                    + Rectangle::new([(0, -4), (8, 4)], if m == 3 { colour.filled() } else { colour.mix(0.0).filled() })
+            });
+        // The markers: filled circle, triangle, cross, square, by deck.
+        let fill = colour.filled();
+        let at = pts.iter().copied();
+        match m % 4 {
+            0 => chart.draw_series(at.map(|p| Circle::new(p, 5, fill))).map(|_| ()),
+            1 => chart.draw_series(at.map(|p| TriangleMarker::new(p, 7, fill))).map(|_| ()),
+            2 => chart.draw_series(at.map(|p| Cross::new(p, 6, colour.stroke_width(2)))).map(|_| ()),
+            _ => chart
+                .draw_series(at.map(|p| EmptyElement::at(p) + Rectangle::new([(-5, -5), (5, 5)], fill)))
+                .map(|_| ()),
+        }
+        .map_err(err)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(legend)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 13))
+        .draw()
+        .map_err(err)?;
+    strip
+        .draw(&Text::new(
+            note.to_string(),
+            (24, 4),
+            ("sans-serif", 13).into_font().color(&BLACK.mix(0.75)),
+        ))
+        .map_err(err)?;
+    Ok(())
+}
+
+/// Draws both panels on `root`.
+pub fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    blur: &[BlurPoint],
+    solvers: &[SolverPoint],
+    size: usize,
+) -> Result<(), String> {
+    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
+    let (left, right) = root.split_horizontally(WIDTH / 2);
+    let mut s1 = Vec::new();
+    for (di, &deck) in BLUR_DECKS.iter().enumerate() {
+        for (si, s) in SAMPLINGS.iter().enumerate() {
+            let points: Vec<(f64, f64)> = blur
+                .iter()
+                .filter(|p| p.deck == deck && p.sampling == si)
+                .map(|p| (p.secs, p.rmse))
+                .collect();
+            s1.push(Series {
+                label: format!("{deck} · {}", s.label),
+                colour: SAMPLING_COLOURS[si],
+                marker: di,
+                points,
+            });
+        }
+    }
+    panel(
+        &left,
+        "Time samplers: error against render time",
+        "render time, s (median, 2 threads)",
+        "RMSE against 1024 samples a pixel",
+        &s1,
+        None,
+        &format!("{size}×{size} pixels; left to right on each line: 1, 4, 16, 64 samples a pixel"),
+        SeriesLabelPosition::LowerLeft,
+        1.0,
+    )?;
+    let mut s2 = Vec::new();
+    for (di, &deck) in SOLVER_DECKS.iter().enumerate() {
+        for (ki, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
+            let points: Vec<(f64, f64)> = solvers
+                .iter()
+                .filter(|p| p.deck == deck && p.solver == solver)
+                .map(|p| (p.secs_per_ray * 1e6, 100.0 * p.differ_silhouette as f64 / p.silhouette.max(1) as f64))
+                .collect();
+            s2.push(Series {
+                label: format!("{deck} · {}", if solver == Solver::Laguerre { "laguerre" } else { "robust" }),
+                colour: SOLVER_COLOURS[ki],
+                marker: di,
+                points,
+            });
+        }
+    }
+    let floor = s2
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .filter(|v| *v > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    panel(
+        &right,
+        "Root solvers: silhouette errors against cost",
+        "time per ray, µs (median, one thread)",
+        "silhouette pixels differing from the reference, %",
+        &s2,
+        floor.is_finite().then_some(floor / 2.0),
+        &format!(
+            "{size}×{size}; top to bottom on each line: 1, 4, 16, 64 rays a pixel; reference: robust, 256 rays a pixel; 0 drawn at the bottom"
+        ),
+        SeriesLabelPosition::UpperRight,
+        3.0,
+    )?;
+    root.present().map_err(|e| format!("{e:?}"))
+}
+
+/// Measures, prints the figures, and writes `dir`/speed_accuracy.png and .svg.
+pub fn run(dir: &Path, size: usize, runs: usize) -> Result<(), String> {
+    crate::fonts::register()?;
+    let blur = measure_blur(size, runs)?;
+    let solvers = measure_solvers(size, runs)?;
+    print!("{}", tables(&blur, &solvers, size));
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let png = dir.join("speed_accuracy.png");
+    let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
+        draw(&root, &blur, &solvers, size)?;
+    }
+    image::save_buffer(&png, &buf, WIDTH, HEIGHT, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("{}: {e}", png.display()))?;
+    let svg = dir.join("speed_accuracy.svg");
+    {
+        let root = SVGBackend::new(&svg, (WIDTH, HEIGHT)).into_drawing_area();
+        draw(&root, &blur, &solvers, size)?;
+    }
+    println!("wrote {} and {}", png.display(), svg.display());
+    Ok(())
+}
+
+/// The measurements as Markdown tables.
+pub fn tables(blur: &[BlurPoint], solvers: &[SolverPoint], size: usize) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "\nTime samplers, {size}×{size} (render time: median, all threads)\n");
+    let _ = writeln!(s, "| deck | sampler | samples a pixel | render time (s) | RMSE |");
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for p in blur {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.4} | {:.4} |",
+            p.deck,
+            SAMPLINGS[p.sampling].label,
+            p.mask * p.mask,
+            p.secs,
+            p.rmse
+        );
+    }
+    let _ = writeln!(s, "\nRoot solvers, {size}×{size} (time per ray: median, one thread)\n");
+    let _ = writeln!(
+        s,
+        "| deck | solver | mask | µs a ray | silhouette pixels | differ from reference | same rays as robust: differ | all pixels differing |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for p in solvers {
+        let _ = writeln!(
+            s,
+            "| {} | {:?} | {} | {:.3} | {} | {} ({:.1} %) | {} | {} |",
+            p.deck,
+            p.solver,
+            p.mask,
+            p.secs_per_ray * 1e6,
+            p.silhouette,
+            p.differ_silhouette,
+            100.0 * p.differ_silhouette as f64 / p.silhouette.max(1) as f64,
+            p.differ_same_rays,
+            p.differ_all
+        );
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_label_1_2_5() {
+        assert_eq!(tick(0.01), "0.01");
+        assert_eq!(tick(0.05), "0.05");
+        assert_eq!(tick(2.0), "2");
+        assert_eq!(tick(100.0), "100");
+        assert_eq!(tick(0.03), "");
+        assert_eq!(tick(0.0), "");
+    }
+
+    #[test]
+    fn log_range_brackets_the_positive_values() {
+        let (lo, hi) = log_range([0.0, 0.01, 2.0, f64::NAN].into_iter());
+        assert!(lo < 0.01 && lo > 0.001 && hi > 2.0 && hi < 4.0);
+        assert_eq!(log_range([0.0].into_iter()), (1e-3, 1.0));
+    }
+
+    /// The chart draws from made-up points without error, into a buffer.
+    #[test]
+    fn draws_from_points() {
+        crate::fonts::register().unwrap();
+        let blur: Vec<BlurPoint> = (0..4)
+            .flat_map(|s| {
+                BLUR_MASKS.map(|m| BlurPoint {
+                    deck: BLUR_DECKS[0],
+                    sampling: s,
+                    mask: m,
+                    secs: 0.001 * (m * m) as f64,
+                    rmse: 0.1 / m as f64,
+                })
+            })
+            .collect();
+        let solvers: Vec<SolverPoint> = SOLVER_MASKS
+            .iter()
+            .map(|&m| SolverPoint {
+                deck: SOLVER_DECKS[0],
+                solver: Solver::Laguerre,
+                mask: m,
+                secs_per_ray: 1e-6,
+                silhouette: 100,
+                differ_silhouette: 10 / m,
+                differ_all: 12,
+                differ_same_rays: 1,
+            })
+            .collect();
+        let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
+        let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
+        draw(&root, &blur, &solvers, 96).unwrap();
+        drop(root);
+        // Something other than white was drawn: the axes, text, lines.
+        assert!(buf.iter().any(|&b| b < 128));
+    }
+}

@@ -1,0 +1,155 @@
+//! The decks the measurements use, and how they are read and resized.
+//!
+//! Every list below is a plain slice of deck names: the key-frame decks of
+//! Figs. 5.10–5.12 join each list with one line each once the `paper` unit
+//! lands (today `raytrace::prepare` refuses their `keyframe` record).
+
+use std::path::{Path, PathBuf};
+
+use raytrace::types::{Fidelity, Options, Scene};
+
+/// The decks of Chapter 5, rendered as they are by the benches. Add
+/// `"fig5_10"`, `"fig5_11"`, `"fig5_12"` here when the key-frame decks land.
+pub const CHAPTER5: &[&str] = &[
+    "fig5_1", "fig5_2", "fig5_3", "fig5_4", "fig5_5", "fig5_6", "fig5_7", "fig5_8", "fig5_9",
+];
+
+/// The motion-blurred decks of the chart's first panel (time samplers).
+/// Add `"fig5_10"` here when the key-frame decks land.
+pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9"];
+
+/// The sweep decks of the chart's second panel (root solvers): one of each
+/// kind of sweep (translation, conic, rotation) and the deliberately hard
+/// view of a rotation sweep seen edge-on.
+pub const SOLVER_DECKS: &[&str] = &["fig5_6", "fig5_7", "fig5_8", "stress_edge_on"];
+
+/// The three sweep kinds for the rays-per-second bench: translation,
+/// conic, rotation.
+pub const SWEEP_KINDS: &[&str] = &["fig5_6", "fig5_7", "fig5_8"];
+
+/// The folder of the shipped decks, legacy_pascal/decks.
+pub fn deck_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../legacy_pascal/decks")
+}
+
+/// The path of a shipped deck by name (`fig5_3`), or the path itself when
+/// `name` names a file.
+pub fn deck_path(name: &str) -> PathBuf {
+    let p = Path::new(name);
+    if p.extension().is_some() || p.components().count() > 1 {
+        p.to_path_buf()
+    } else {
+        deck_dir().join(format!("{name}.deck"))
+    }
+}
+
+/// Reads a deck (a shipped deck's name or a path) for a fidelity.
+pub fn load(name: &str, fidelity: Fidelity) -> Result<Scene, String> {
+    let path = deck_path(name);
+    let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    load_source(&source, &path.display().to_string(), path.parent().unwrap_or(Path::new(".")), fidelity)
+}
+
+/// Reads deck text: `file_name` names it in errors, `dir` is where its
+/// `texture` files are looked for.
+pub fn load_source(source: &str, file_name: &str, dir: &Path, fidelity: Fidelity) -> Result<Scene, String> {
+    raytrace::deck::initialize(source, file_name, dir, fidelity).map_err(|e| e.to_string())
+}
+
+/// A scene ready to render with `opts`: read, resized to `width`×`height`
+/// with `mask`×`mask` subpixels when `size` is given, and prepared.
+pub fn prepared(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Result<Scene, String> {
+    let mut scene = load(name, opts.fidelity)?;
+    if let Some((w, h, m)) = size {
+        resize(&mut scene, w, h, m);
+    }
+    raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
+    Ok(scene)
+}
+
+/// Sets the image to `width`×`height` pixels of `mask`×`mask` subpixels;
+/// the view (the window on the screen plane) stays, so the picture is the
+/// same at another resolution. A deck's `pattern` record fits one mask
+/// only, so it is dropped when the mask changes (the default table of
+/// that mask is used).
+pub fn resize(scene: &mut Scene, width: usize, height: usize, mask: usize) {
+    if scene.image.masksize != mask {
+        scene.pattern = None;
+    }
+    scene.image.width = width;
+    scene.image.height = height;
+    scene.image.masksize = mask;
+}
+
+/// The deck of the segment-count bench: a translation sweep whose contour
+/// is a closed uniform B-spline of `n` control points on a circle of
+/// radius 1.2 (so `n` segments), extruded 1.2 up z, on a checker floor,
+/// seen as fig5_6 is. `n` must be 3..=60 (`MAXSEGMENTS`).
+pub fn circle_sweep_deck(n: usize, width: usize, height: usize, mask: usize) -> String {
+    let mut s = format!(
+        "{{ A translation sweep of a B-spline circle of {n} points. }}\n\
+         view eye 0 -7 4 look 0 0 0.6 screen 2.9 distance 5\n\
+         image {width} {height} mask {mask}\n\
+         background 0.1 0.1 0.2\n\
+         light sun 5 -6 10 1 1 1\n\
+         surface grnd opaque color 0.8 0.8 0.8 ka 0.2 kd 0.8 ks 0 kt 0\n\
+         paint grnd floor scale 1 1 color 0.2 0.2 0.5\n\
+         surface red opaque color 0.8 0.25 0.15 ka 0.15 kd 0.75 ks 0.1 kt 0\n\
+         block floor grnd at 0 0 -0.25 size 14 14 0.5\n\
+         sweep drum red translation bspline at 0 0 0 length 1.2 axis z\n"
+    );
+    for j in 0..n {
+        let a = std::f64::consts::TAU * j as f64 / n as f64;
+        s.push_str(&format!("  {:.6} {:.6}\n", 1.2 * a.cos(), 1.2 * a.sin()));
+    }
+    s.push_str("end\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every deck the measurements name reads and prepares.
+    #[test]
+    fn every_listed_deck_prepares() {
+        let mut names: Vec<&str> = CHAPTER5.to_vec();
+        names.extend(BLUR_DECKS);
+        names.extend(SOLVER_DECKS);
+        for name in names {
+            prepared(name, &Options::default(), Some((8, 8, 1))).unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
+    }
+
+    /// The generated circle deck has n segments, for each count the bench uses.
+    #[test]
+    fn circle_sweep_deck_has_n_segments() {
+        for n in [4, 8, 15, 30, 60] {
+            let text = circle_sweep_deck(n, 16, 16, 1);
+            let mut scene = load_source(&text, "circle", Path::new("."), Fidelity::Thesis).unwrap();
+            raytrace::raytrace::prepare(&mut scene, &Options::default()).unwrap();
+            let sweep = scene
+                .objects
+                .iter()
+                .find_map(|o| match &o.shape {
+                    raytrace::types::Shape::Sweep(s) => Some(s),
+                    _ => None,
+                })
+                .expect("a sweep");
+            assert_eq!(sweep.segment, n);
+            assert_eq!(sweep.points.len(), n);
+        }
+    }
+
+    /// Resizing keeps the view and sets the mask; a pattern record of another
+    /// mask is dropped.
+    #[test]
+    fn resize_sets_the_image() {
+        let mut scene = load("fig5_3", Fidelity::Thesis).unwrap();
+        let view = scene.view.clone();
+        resize(&mut scene, 96, 64, 8);
+        assert_eq!((scene.image.width, scene.image.height, scene.image.masksize), (96, 64, 8));
+        assert_eq!(scene.view, view);
+        assert!(scene.pattern.is_none());
+    }
+}

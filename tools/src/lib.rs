@@ -1,0 +1,10 @@
+//! The tools of the port, as a library so that the benches
+//! (tools/benches/) share the deck helpers with the command line.
+
+pub mod bench;
+pub mod chart;
+pub mod decks;
+pub mod fonts;
+pub mod measure;
+pub mod stability;
+pub mod textures;

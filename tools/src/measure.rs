@@ -1,0 +1,146 @@
+//! What the chart measures: image error, silhouettes, medians of timings.
+
+use std::time::Instant;
+
+use raytrace::raytrace::Camera;
+use raytrace::trace::{intersect, rest_poses, Snapshot};
+use raytrace::types::{Intensity, Options, PrimitiveClass, Scene};
+
+/// The root mean square of the differences of two float images, over
+/// every pixel and channel. Images of different sizes have no RMSE (NaN).
+pub fn rmse(a: &[Intensity], b: &[Intensity]) -> f64 {
+    if a.len() != b.len() || a.is_empty() {
+        return f64::NAN;
+    }
+    let sum: f64 = a.iter().zip(b).map(|(x, y)| (*x - *y).length_squared()).sum();
+    (sum / (3 * a.len()) as f64).sqrt()
+}
+
+/// The median of some samples (the upper one of an even count); NaN for none.
+pub fn median(samples: &[f64]) -> f64 {
+    if samples.is_empty() {
+        return f64::NAN;
+    }
+    let mut s = samples.to_vec();
+    s.sort_by(f64::total_cmp);
+    s[s.len() / 2]
+}
+
+/// Runs `f` once untimed, then `runs` times timed; the median in seconds
+/// and the last result.
+pub fn time_median<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut last = f();
+    let mut secs = Vec::with_capacity(runs.max(1));
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        last = std::hint::black_box(f());
+        secs.push(t.elapsed().as_secs_f64());
+    }
+    (median(&secs), last)
+}
+
+/// Whether an object is a sweep (translation, conic, rotation).
+pub fn is_sweep(class: PrimitiveClass) -> bool {
+    matches!(
+        class,
+        PrimitiveClass::Translation | PrimitiveClass::Conic | PrimitiveClass::Rotation
+    )
+}
+
+/// What each pixel's probe rays see: for every pixel (row-major), the
+/// first object each of its `k`×`k` rays meets (`None`: the background),
+/// through the subpixel centres, objects at rest. The scene's image size is
+/// kept; its mask is ignored (the probe has its own `k`).
+pub fn probe_objects(scene: &Scene, k: usize, opts: &Options) -> Vec<Vec<Option<usize>>> {
+    use rayon::prelude::*;
+    let mut probe = scene.clone();
+    probe.image.masksize = k;
+    let camera = Camera::new(&probe, opts.fidelity);
+    let poses = rest_poses(scene);
+    let snap = Snapshot { scene, poses: &poses };
+    let (w, h) = (scene.image.width, scene.image.height);
+    (0..w * h)
+        .into_par_iter()
+        .map(|p| {
+            let (x, y) = (p % w, p / w);
+            let mut seen = Vec::with_capacity(k * k);
+            for sy in 0..k {
+                for sx in 0..k {
+                    let ray = camera.ray((x * k + sx + 1) as f64, (y * k + sy + 1) as f64, 0.0, 0.0);
+                    seen.push(intersect(&snap, &ray, opts).map(|hit| hit.object));
+                }
+            }
+            seen
+        })
+        .collect()
+}
+
+/// The silhouette pixels: those whose probe rays do not all see the same
+/// thing, one of them seeing an object for which `of_interest` holds.
+pub fn silhouette(seen: &[Vec<Option<usize>>], of_interest: impl Fn(usize) -> bool) -> Vec<bool> {
+    seen.iter()
+        .map(|rays| {
+            let mixed = rays.windows(2).any(|w| w[0] != w[1]);
+            mixed && rays.iter().any(|r| r.is_some_and(&of_interest))
+        })
+        .collect()
+}
+
+/// The pixels where two images differ by more than `threshold` in some channel.
+pub fn differing(a: &[Intensity], b: &[Intensity], threshold: f64) -> Vec<bool> {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (*x - *y).abs().max_element() > threshold)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rmse_of_identical_images_is_zero() {
+        let a = vec![Intensity::new(0.1, 0.5, 0.9); 16];
+        assert_eq!(rmse(&a, &a), 0.0);
+    }
+
+    /// One channel of one pixel of four off by 0.6: √(0.36 / 12).
+    #[test]
+    fn rmse_of_a_known_difference() {
+        let a = vec![Intensity::ZERO; 4];
+        let mut b = a.clone();
+        b[2].y = 0.6;
+        assert!((rmse(&a, &b) - (0.36f64 / 12.0).sqrt()).abs() < 1e-15);
+        assert!(rmse(&a, &b[..3]).is_nan());
+    }
+
+    #[test]
+    fn median_of_odd_and_even_counts() {
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 3.0);
+        assert!(median(&[]).is_nan());
+    }
+
+    /// A known 3-pixel image: all background, half object 0 and half
+    /// background, all object 0; and a pixel split between objects 1 and 2.
+    #[test]
+    fn silhouette_of_a_known_image() {
+        let seen = vec![
+            vec![None; 4],
+            vec![Some(0), Some(0), None, None],
+            vec![Some(0); 4],
+            vec![Some(1), Some(2), Some(2), Some(2)],
+        ];
+        assert_eq!(silhouette(&seen, |o| o == 0), vec![false, true, false, false]);
+        assert_eq!(silhouette(&seen, |o| o == 2), vec![false, false, false, true]);
+        assert_eq!(silhouette(&seen, |_| true), vec![false, true, false, true]);
+    }
+
+    #[test]
+    fn differing_pixels_by_threshold() {
+        let a = vec![Intensity::ZERO; 3];
+        let b = vec![Intensity::ZERO, Intensity::new(0.0, 0.0, 0.02), Intensity::new(-0.2, 0.0, 0.0)];
+        assert_eq!(differing(&a, &b, 0.05), vec![false, false, true]);
+        assert_eq!(differing(&a, &b, 0.01), vec![false, true, true]);
+    }
+}
