@@ -187,11 +187,29 @@ pub fn expanding2(int: &mut PaperPair, obj1: &mut SweepShape, obj2: &mut SweepSh
     getdistance(&int.p2u, &int.p2v, s2, &mut dist4);
     let fidelity = int.fidelity;
     let result = if s1 < s2 {
-        let r = more2(&dist3, &dist4, s1, s2, &mut int.p1u, &mut int.p1v, fidelity, &mut int.messages);
+        let r = more2(
+            &dist3,
+            &dist4,
+            s1,
+            s2,
+            &mut int.p1u,
+            &mut int.p1v,
+            fidelity,
+            &mut int.messages,
+        );
         obj1.segment = s2;
         r
     } else {
-        let r = more2(&dist4, &dist3, s2, s1, &mut int.p2u, &mut int.p2v, fidelity, &mut int.messages);
+        let r = more2(
+            &dist4,
+            &dist3,
+            s2,
+            s1,
+            &mut int.p2u,
+            &mut int.p2v,
+            fidelity,
+            &mut int.messages,
+        );
         obj2.segment = s1;
         r
     };

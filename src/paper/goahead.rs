@@ -5,9 +5,7 @@ use super::{
     contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, union, PaperError,
     PaperMessage, PaperPair, Sdirection,
 };
-use crate::types::{
-    Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS,
-};
+use crate::types::{Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// What a count of Burtnyk's rule counts (erratum 10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -222,7 +220,11 @@ fn check_contour(int: usize, obj: &ObjectRecord, sweep: &SweepShape, which: &'st
             coefficients: sweep.u.len().min(sweep.v.len()),
         });
     }
-    let finite = |c: &Coeff| [c.a, c.b, c.c, c.d, c.min, c.max, c.first, c.last].iter().all(|x| x.is_finite());
+    let finite = |c: &Coeff| {
+        [c.a, c.b, c.c, c.d, c.min, c.max, c.first, c.last]
+            .iter()
+            .all(|x| x.is_finite())
+    };
     if !sweep.u[..n].iter().chain(&sweep.v[..n]).all(finite)
         || !obj.sphereo.is_finite()
         || !obj.angle.is_finite()

@@ -134,8 +134,9 @@ fn prepare(int: &PaperPair, obj: &mut SweepShape) {
 /// The box of a contour from its segments' `min`, `max`.
 fn segments_box(int: &PaperPair, obj: &SweepShape) -> crate::types::BoundingBox {
     let range = |p: &[Coeff]| {
-        p.iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c.min), hi.max(c.max)))
+        p.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(c.min), hi.max(c.max))
+        })
     };
     contour_box(int.class, &int.first_shape, range(&obj.u), range(&obj.v))
 }

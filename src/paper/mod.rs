@@ -396,8 +396,8 @@ pub fn chain_time(pairs: usize, time: f64) -> (usize, f64) {
     (k, scaled - k as f64)
 }
 
-/// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k (from
-/// 1) goes from the k-th shape to the next. The in-between object is A's
+/// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k,
+/// numbered from 1, goes from the k-th shape to the next. The in-between object is A's
 /// record; each pair's pose goes from its first shape's pose to its last's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PaperChain {
@@ -461,7 +461,10 @@ impl PaperChain {
     /// The union of the pairs' boxes (each in its own pair's local frame;
     /// the frames agree when the key shapes share `orientt`).
     pub fn bbox(&self) -> BoundingBox {
-        self.pairs.iter().skip(1).fold(self.pairs[0].bbox, |b, p| union(&b, &p.bbox))
+        self.pairs
+            .iter()
+            .skip(1)
+            .fold(self.pairs[0].bbox, |b, p| union(&b, &p.bbox))
     }
 }
 
