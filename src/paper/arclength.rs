@@ -29,8 +29,8 @@ pub fn plus(
         return;
     }
     let n = nu as usize;
-    if *k == 0 || *k + n > MAXSEGMENTS {
-        *k += n + 1;
+    if *k == 0 || k.checked_add(n).is_none_or(|end| end > MAXSEGMENTS) {
+        *k = k.saturating_add(n).saturating_add(1);
         return;
     }
     tu[*k] = *pu;

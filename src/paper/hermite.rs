@@ -118,17 +118,20 @@ pub fn Rvalue1(p: &Coeff, t: f64) -> f64 {
 
 /// Give `obj` the in-between's frame and `snu` segments, reusing its
 /// vectors (no allocation once their capacity is 60, [`PaperPair::scratch`]).
-fn prepare(int: &PaperPair, obj: &mut SweepShape) {
+fn prepare(int: &PaperPair, obj: &mut SweepShape) -> usize {
+    // `snu` ≤ 60 for every pair `goahead` builds; a hand-made one is clamped.
+    let snu = int.snu.min(MAXSEGMENTS);
     let f = &int.first_shape;
     obj.orientt = f.orientt;
     obj.curve = f.curve;
     obj.length = f.length;
     obj.scale = f.scale;
-    obj.segment = int.snu;
+    obj.segment = snu;
     obj.u.clear();
-    obj.u.resize(int.snu, Coeff::default());
+    obj.u.resize(snu, Coeff::default());
     obj.v.clear();
-    obj.v.resize(int.snu, Coeff::default());
+    obj.v.resize(snu, Coeff::default());
+    snu
 }
 
 /// The box of a contour from its segments' `min`, `max`.
@@ -163,9 +166,9 @@ fn segments_box(int: &PaperPair, obj: &SweepShape) -> crate::types::BoundingBox 
 pub fn Hermite(int: &PaperPair, t: f64, obj: &mut SweepShape) {
     let t2 = t * t;
     let t3 = t2 * t;
-    prepare(int, obj);
+    let snu = prepare(int, obj);
     let row = |h: &Mh, r: usize| h[r][0] * t3 + h[r][1] * t2 + h[r][2] * t + h[r][3];
-    for i in 1..=int.snu {
+    for i in 1..=snu {
         let (hx, hy) = (&int.hmx[i], &int.hmy[i]);
         let mut u = Coeff {
             a: row(hx, 0),
@@ -281,7 +284,7 @@ pub fn getpath(n1: usize, n2: usize, h: &Mh, dist: &Distarray, path: &mut Sdirec
     if n1 == 0 {
         return;
     }
-    for i in (n1 + 1)..=n2.saturating_sub(1).min(MAXSEGMENTS) {
+    for i in n1.saturating_add(1)..=n2.saturating_sub(1).min(MAXSEGMENTS) {
         let s1 = dist[i - 1] - dist[n1 - 1];
         let s2 = s1 * s1;
         let s3 = s2 * s1;
@@ -323,8 +326,8 @@ pub fn saving1(n: usize, u: &Sdirection, v: &Sdirection, uu: &mut Sdirection, vv
 /// in [`Hermite`]; the box is `goahead`'s in `Fidelity::Listing`, from the
 /// segments' bounds in `Fidelity::Thesis` (erratum 9).
 pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
-    prepare(int, obj);
-    for i in 1..=int.snu {
+    let snu = prepare(int, obj);
+    for i in 1..=snu {
         if time == 0.0 {
             obj.u[i - 1] = reparam(&int.p3u[i]);
             obj.v[i - 1] = reparam(&int.p3v[i]);
@@ -406,5 +409,37 @@ mod tests {
         // Out-of-range counts visit nothing past 60.
         getpath(59, 1000, &h, &dist, &mut path);
         getpath(0, 10, &h, &dist, &mut path);
+    }
+
+    #[test]
+    fn a_hand_made_pair_past_60_is_clamped() {
+        let first = crate::types::SweepShape {
+            orientt: crate::types::Axis::Z,
+            curve: crate::types::CurveKind::Bspline,
+            points: vec![],
+            segment: 0,
+            u: vec![],
+            v: vec![],
+            length: 1.0,
+            scale: 1.0,
+            bbox: Default::default(),
+        };
+        let obj = ObjectRecord {
+            name: "x".into(),
+            class: crate::types::PrimitiveClass::Translation,
+            surface: 0,
+            transfm: Default::default(),
+            inverse: Default::default(),
+            sphereo: Default::default(),
+            angle: Default::default(),
+            radius: 1.0,
+            shape: crate::types::Shape::Sweep(first.clone()),
+        };
+        let mut pair = PaperPair::empty(1, &obj, &first, crate::types::Expander::Burtnyk, Fidelity::Thesis);
+        pair.snu = 100;
+        let mut out = pair.scratch();
+        Hermite(&pair, 0.5, &mut out);
+        do34(0.0, &pair, &mut out);
+        assert_eq!(out.segment, MAXSEGMENTS);
     }
 }

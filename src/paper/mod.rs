@@ -401,7 +401,8 @@ pub fn chain_time(pairs: usize, time: f64) -> (usize, f64) {
 /// record; each pair's pose goes from its first shape's pose to its last's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PaperChain {
-    pub pairs: Vec<PaperPair>,
+    /// At least one pair (the constructors refuse an empty chain).
+    pairs: Vec<PaperPair>,
 }
 
 impl PaperChain {
@@ -432,6 +433,11 @@ impl PaperChain {
             .get(record.first)
             .ok_or(PaperError::NoSuchObject { index: record.first })?;
         PaperChain::new(first, &record.rest, record.expander, fidelity)
+    }
+
+    /// The pairs, pair k (from 1) at index k − 1.
+    pub fn pairs(&self) -> &[PaperPair] {
+        &self.pairs
     }
 
     /// The pair and local time of shutter time `time` ([`chain_time`]).
