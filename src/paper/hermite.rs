@@ -96,21 +96,21 @@ pub fn patch(h: &Mh, s: f64, t: f64) -> f64 {
 }
 
 /// `coor2(u: coeff; co: real): real` (nested in `Hermite`, OCR lines
-/// 2614–2622): the point at t = `(first + last)*co`. Only the listing's
+/// 2613–2621): the point at t = `(first + last)*co`. Only the listing's
 /// commented-out debug output calls it.
 pub fn coor2(u: &Coeff, co: f64) -> f64 {
     let t = (u.first + u.last) * co;
     u.d + t * (u.c + t * (u.b + u.a * t))
 }
 
-/// `coor1(u: coeff): real` (nested in `Hermite`, OCR lines 2624–2628): the
+/// `coor1(u: coeff): real` (nested in `Hermite`, OCR lines 2623–2627): the
 /// point at `last`. Only the commented-out debug output calls it.
 pub fn coor1(u: &Coeff) -> f64 {
     u.d + u.last * (u.c + u.last * (u.b + u.a * u.last))
 }
 
 /// `Rvalue1(p: coeff; t: real): real` (nested in `Hermite`, OCR lines
-/// 2630–2634): the second derivative `2*b + t*6*a`. Not called.
+/// 2629–2633): the second derivative `2*b + t*6*a`. Not called.
 #[allow(non_snake_case)]
 pub fn Rvalue1(p: &Coeff, t: f64) -> f64 {
     2.0 * p.b + t * 6.0 * p.a
@@ -343,7 +343,7 @@ pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
 }
 
 /// The in-between contour of pair `int` at `time`, as the `paper = 1`
-/// branch of `motionblur` (unit `drt`, OCR lines 2172–2178) chooses it:
+/// branch of `motionblur` (unit `drt`, OCR lines 2177–2183) chooses it:
 /// `if (time=0) or (time=1) then do34(time,int,object) else
 /// Hermite(int,time,object)`.
 pub fn inbetween(int: &PaperPair, time: f64, obj: &mut SweepShape) {

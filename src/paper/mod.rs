@@ -327,7 +327,7 @@ impl PaperPair {
     }
 
     /// The pose of the in-between object at `time`: the `paper = 1` branch
-    /// of `motionblur` (unit `drt`, OCR lines 2139–2152):
+    /// of `motionblur` (unit `drt`, OCR lines 2139–2159):
     /// `sphereo := temp1.sphereo + time*diff[int]` (FIRST's position plus
     /// `time` times `diff`, erratum 4 in `diff`), then the turn.
     ///
