@@ -1056,7 +1056,7 @@ fn odd_contours_never_panic() {
     };
     let mut made = 0;
     for _ in 0..400 {
-        let mut contour = |n: usize, next: &mut dyn FnMut() -> u64| -> SweepShape {
+        let contour = |n: usize, next: &mut dyn FnMut() -> u64| -> SweepShape {
             let scale = [1e-9, 1.0, 1e6][(next() % 3) as usize];
             let pts: Vec<[f64; 2]> = (0..n)
                 .map(|_| match next() % 5 {

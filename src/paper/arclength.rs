@@ -55,7 +55,7 @@ pub fn plus(
 /// length, gets `n2 − n1` more, where the other contour (`n2` segments,
 /// shares `d2`) has its starts. Erratum 8.
 ///
-/// 1. Segment i (covering [d1[i−1], d1[i])) counts the other contour's
+/// 1. Segment i (covering d1\[i−1\] ≤ share < d1\[i\]) counts the other contour's
 ///    starts `d2[j]` in its range: `temp[i]` = that count − 1 points to add.
 /// 2. A segment with none (`temp[i] = -1`) takes one from the nearest
 ///    segment to its left with points to spare, else to its right; if

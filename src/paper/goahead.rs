@@ -291,7 +291,7 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
 /// segment, `Hmx[int,i]`, `Hmy[int,i]`; last `delete(obj2^.name)`.
 ///
 /// Here `obj1` (FIRST) and `obj2` (LAST) are not changed: the deck has
-/// already moved LAST out of the scene (its `delete`, see [`delete`]) and
+/// already moved LAST out of the scene (its `delete`, see [`delete`](super::delete)) and
 /// the expanded count is [`PaperPair::snu`].
 ///
 /// Erratum 9 (`goahead`'s part): the listing widens the class box `tbox`
