@@ -62,28 +62,34 @@ const OPTS: [Options; 4] = [
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Laguerre,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Laguerre,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Robust,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Robust,
+        sampler: TimeSampler::Table,
     },
 ];
 
 const ROBUST: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Robust,
+    sampler: TimeSampler::Table,
 };
 const LAGUERRE: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Laguerre,
+    sampler: TimeSampler::Table,
 };
 
 fn scene_with(objects: Vec<ObjectRecord>) -> Scene {

@@ -201,6 +201,9 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         if cu.max < x {
             continue; // every change on this segment is left of x
         }
+        if y < cv.min || y > cv.max {
+            continue; // V stays on one side of y (the convex hull): no change of sign
+        }
         let next = (i + 1) % n;
         let g0 = v[i].d - y;
         let g1 = v[next].d - y;
