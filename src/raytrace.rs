@@ -281,7 +281,11 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }
                     }
-                    let snap = Snapshot { scene, poses: &poses };
+                    let snap = Snapshot {
+                        scene,
+                        objects: &scene.objects,
+                        poses: &poses,
+                    };
                     let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
                     primary += 1;
                     if scancol >= 1 {
@@ -328,7 +332,11 @@ pub fn debug_log(scene: &Scene, render: &Render) -> String {
     }
     let _ = writeln!(s, "kfTIRcnt={:9}", render.stats.kftircnt);
     // What the listing wrote to standard output from `roottesting`, counted.
-    let _ = writeln!(s, "**** impossible ****{:9}", crate::proc::sweep::roottesting_impossible_count());
+    let _ = writeln!(
+        s,
+        "**** impossible ****{:9}",
+        crate::proc::sweep::roottesting_impossible_count()
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "FRAME NUMBER{:4}---DONE", 1);
     s

@@ -46,11 +46,8 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
         ),
         6 => (
             a[0] + xi * (a[1] + xi * (a[2] + xi * (a[3] + xi * (a[4] + xi * (a[5] + a[6] * xi))))),
-            a[1] + xi
-                * (2.0 * a[2]
-                    + xi * (3.0 * a[3] + xi * (4.0 * a[4] + xi * (5.0 * a[5] + 6.0 * a[6] * xi)))),
-            a[2] * 2.0
-                + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
+            a[1] + xi * (2.0 * a[2] + xi * (3.0 * a[3] + xi * (4.0 * a[4] + xi * (5.0 * a[5] + 6.0 * a[6] * xi)))),
+            a[2] * 2.0 + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
         ),
         _ => {
             let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
@@ -282,11 +279,7 @@ pub fn spline(
     u.first = 0.0;
     u.last = 1.0;
     let (temp1, temp2) = if one > two { (two, one) } else { (one, two) };
-    let (temp3, temp4) = if three > four {
-        (four, three)
-    } else {
-        (three, four)
-    };
+    let (temp3, temp4) = if three > four { (four, three) } else { (three, four) };
     u.min = if temp1 < temp3 { temp1 } else { temp3 };
     u.max = if temp2 < temp4 { temp4 } else { temp2 };
     let widen = |lo: &mut f64, hi: &mut f64| {
@@ -301,9 +294,7 @@ pub fn spline(
         (1, PrimitiveClass::Translation | PrimitiveClass::Conic | PrimitiveClass::Rotation) => {
             widen(&mut bbox.xmin, &mut bbox.xmax)
         }
-        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => {
-            widen(&mut bbox.ymin, &mut bbox.ymax)
-        }
+        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => widen(&mut bbox.ymin, &mut bbox.ymax),
         (2, PrimitiveClass::Rotation) => widen(&mut bbox.zmin, &mut bbox.zmax),
         _ => {}
     }
@@ -513,9 +504,7 @@ mod tests {
             assert_eq!(l.a, t.a);
             let x = t.a;
             let cubic = a[1] + 2.0 * a[2] * x + 3.0 * a[3] * x * x;
-            let sextic: f64 = (1..=6)
-                .map(|k| k as f64 * a[k] * x.powi(k as i32 - 1))
-                .sum();
+            let sextic: f64 = (1..=6).map(|k| k as f64 * a[k] * x.powi(k as i32 - 1)).sum();
             assert!((l.b - cubic).abs() < 1e-12, "listing keeps the cubic's f′");
             assert!((t.b - sextic).abs() < 1e-12, "thesis takes the sextic's f′");
             assert!((l.b - t.b).abs() > 1e-6, "the two differ at {x}");
@@ -575,20 +564,7 @@ mod tests {
     fn sorting_erratum_17_c_stays_behind() {
         // The swap of 3 and 1: the listing gives slot 1 the record of 1 and
         // slot 2 keeps its own c (of 1); the thesis swaps whole records.
-        let rec = || {
-            vec![
-                Root {
-                    a: 3.0,
-                    b: 0.0,
-                    c: 3.0,
-                },
-                Root {
-                    a: 1.0,
-                    b: 0.0,
-                    c: 1.0,
-                },
-            ]
-        };
+        let rec = || vec![Root { a: 3.0, b: 0.0, c: 3.0 }, Root { a: 1.0, b: 0.0, c: 1.0 }];
         let mut q = rec();
         sorting(0.0, 2, &mut q, Fidelity::Listing);
         assert_eq!((q[0].a, q[0].c, q[1].a, q[1].c), (1.0, 1.0, 3.0, 1.0));

@@ -35,8 +35,8 @@
 use crate::proc::robust::real_roots;
 use crate::proc::sweep::{laguerre, outrectp, spline, Root, LAGUERRE_ROOTS};
 use crate::types::{
-    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene,
-    Shape, Solver, SweepShape, MAXSEGMENTS,
+    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene, Shape, Solver,
+    SweepShape, MAXSEGMENTS,
 };
 
 /// Roots are kept in [−this, 1 + this], so that a ray through a joint is
@@ -108,10 +108,7 @@ struct Found {
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
 fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
-    let mut out = Found {
-        count: 0,
-        s: [0.0; 6],
-    };
+    let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     match opts.solver {
         Solver::Laguerre => {
@@ -215,16 +212,8 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut prev_sign = above(g0);
         let mut prev_at = Some(cu.d);
         let mut prev_s = 0.0;
-        let roots = if r.identically_zero {
-            &[][..]
-        } else {
-            r.roots()
-        };
-        let mut flip = |sign: bool,
-                        at: Option<f64>,
-                        s_mid: f64,
-                        prev_sign: &mut bool,
-                        prev_at: &mut Option<f64>| {
+        let roots = if r.identically_zero { &[][..] } else { r.roots() };
+        let mut flip = |sign: bool, at: Option<f64>, s_mid: f64, prev_sign: &mut bool, prev_at: &mut Option<f64>| {
             if sign != *prev_sign {
                 let loc = at.or(*prev_at).unwrap_or_else(|| ev(cu, s_mid));
                 if loc > x {
@@ -236,31 +225,13 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         };
         for &s in roots.iter().filter(|&&s| s > 0.0 && s < 1.0) {
             let mid = 0.5 * (prev_s + s);
-            flip(
-                above(ev(cv, mid) - y),
-                None,
-                mid,
-                &mut prev_sign,
-                &mut prev_at,
-            );
+            flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
             flip(true, Some(ev(cu, s)), s, &mut prev_sign, &mut prev_at);
             prev_s = s;
         }
         let mid = 0.5 * (prev_s + 1.0);
-        flip(
-            above(ev(cv, mid) - y),
-            None,
-            mid,
-            &mut prev_sign,
-            &mut prev_at,
-        );
-        flip(
-            above(g1),
-            Some(u[next].d),
-            1.0,
-            &mut prev_sign,
-            &mut prev_at,
-        );
+        flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+        flip(above(g1), Some(u[next].d), 1.0, &mut prev_sign, &mut prev_at);
     }
     inside
 }
@@ -321,17 +292,8 @@ pub fn intersect_sweep(
     tmin: f64,
     opts: &Options,
 ) -> Option<LocalHit> {
-    let n = sweep
-        .segment
-        .min(sweep.u.len())
-        .min(sweep.v.len())
-        .min(MAXSEGMENTS);
-    if n == 0
-        || !ray.origin.is_finite()
-        || !ray.dir.is_finite()
-        || ray.dir == DVec3::ZERO
-        || tmin.is_nan()
-    {
+    let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
+    if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
         return None;
     }
     let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
@@ -360,12 +322,7 @@ pub fn intersect_sweep(
             extrusion(u, v, sweep, conic, size, ray, tmin, opts)
         }
         PrimitiveClass::Rotation => {
-            let r = b
-                .xmin
-                .abs()
-                .max(b.xmax.abs())
-                .max(b.ymin.abs())
-                .max(b.ymax.abs());
+            let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
             let lo = DVec3::new(-r, -r, b.zmin) - pad;
             let hi = DVec3::new(r, r, b.zmax) + pad;
             if boxed && !ray_meets_box(ray, tmin, lo, hi) {
@@ -427,11 +384,7 @@ fn extrusion(
     let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
     let k0 = 1.0 + kappa * o.z;
     let k1 = kappa * d.z;
-    let apex_z = if kappa != 0.0 {
-        Some(-1.0 / kappa)
-    } else {
-        None
-    };
+    let apex_z = if kappa != 0.0 { Some(-1.0 / kappa) } else { None };
     let apex_in = apex_z.is_some_and(|z| (0.0..=len).contains(&z));
     let hit = |t: f64, normal: DVec3| LocalHit {
         t,
@@ -486,10 +439,8 @@ fn extrusion(
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         // The segment's box against the line α X + β Y + γ = 0.
-        let gmin =
-            gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
-        let gmax =
-            gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
+        let gmin = gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
+        let gmax = gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
         let gpad = 1e-12 * fscale;
         if gmin > gpad || gmax < -gpad {
             continue;
@@ -516,11 +467,7 @@ fn extrusion(
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
             let residual = (p.x - k * uu).hypot(p.y - k * vv);
-            if residual <= RESIDUAL_TOL * size
-                && p.z >= -ztol
-                && p.z <= len + ztol
-                && closer(&best, t, tmin)
-            {
+            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
                 let (tu, tv) = tangent(cu, cv, s, size);
                 let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
                 best = Some(Best { t, normal });
@@ -552,11 +499,7 @@ fn extrusion(
     }
 
     let b = best?;
-    let normal = if side {
-        b.normal * orientation(u, v)
-    } else {
-        b.normal
-    };
+    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))
 }
@@ -624,14 +567,7 @@ fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) 
 /// heights measured from o_z). On the contour r = U(s), w = V(s) − o_z:
 ///   A (V − o_z)² + B d_z (V − o_z) + d_z² (C − U²) = 0,
 /// a sextic in s.
-fn revolve(
-    u: &[Coeff],
-    v: &[Coeff],
-    size: f64,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-) -> Option<LocalHit> {
+fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
     let dn = d.length();
     let a = d.x * d.x + d.y * d.y;
@@ -647,10 +583,7 @@ fn revolve(
             return;
         }
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
-        if res <= RESIDUAL_TOL * size
-            && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s)
-            && closer(best, t, tmin)
-        {
+        if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin) {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size, sign);
             *best = Some(Best { t, normal });
         }
