@@ -199,6 +199,45 @@ impl TimeTable {
     }
 }
 
+/// A uniform in [0, 1) from a 64-bit key: the SplitMix64 finaliser (Steele,
+/// Lea & Flood 2014). The samplers that are not the thesis's draw from it,
+/// so a sample's value depends on its index only, whatever the thread.
+pub fn hashed_uniform(key: u64) -> f64 {
+    let mut z = key.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// `--sampler random`: an independent uniform time for the `k`-th subpixel
+/// of the scan order. Not the thesis's method.
+pub fn random_time(k: usize) -> f64 {
+    hashed_uniform(k as u64)
+}
+
+/// `--sampler stratified`: the strata of pixel `pixel`'s n subpixels, a
+/// permutation π of 0..n drawn for that pixel (Fisher–Yates on
+/// [`hashed_uniform`]): every pixel sees each of the n strata once, and
+/// neighbouring pixels see them in unrelated orders, so no pattern repeats
+/// across the image. Not the thesis's method.
+pub fn strata(pixel: usize, n: usize) -> Vec<u32> {
+    let mut perm: Vec<u32> = (0..n as u32).collect();
+    let key = (pixel as u64) << 24;
+    for i in 0..n.saturating_sub(1) {
+        let r = i + (hashed_uniform(key + i as u64) * (n - i) as f64) as usize;
+        perm.swap(i, r.min(n - 1));
+    }
+    perm
+}
+
+/// `--sampler stratified`: the time of subpixel `j` of pixel `pixel`,
+/// a uniform place in its stratum `stratum` of n. Not the thesis's method.
+pub fn stratified_time(pixel: usize, j: usize, stratum: u32, n: usize) -> f64 {
+    let key = ((pixel as u64) << 24) ^ 0x00A5_A5A5 ^ ((j as u64) << 1) ^ (1 << 63);
+    (stratum as f64 + hashed_uniform(key)) / n as f64
+}
+
 /// `LAW(OP, MAXVAL, FRACT)` of Fig. 3.2 (§3.2.2, OCR lines 720–733): how
 /// far along a path a key frame is at the fraction FRACT of the time.
 #[allow(non_snake_case)]
@@ -218,6 +257,10 @@ pub fn LAW(op: Law, maxval: f64, fract: f64) -> f64 {
 
 /// The rotation about a world axis by `degrees`.
 fn rotation(axis: Axis, degrees: f64) -> DMat4 {
+    // Most motions turn about one axis or none: skip the others' sin and cos.
+    if degrees == 0.0 {
+        return DMat4::IDENTITY;
+    }
     let a = degrees.to_radians();
     match axis {
         Axis::X => DMat4::from_rotation_x(a),

@@ -15,10 +15,10 @@
 
 use rayon::prelude::*;
 
-use crate::drt::{motionblur, noise2_table, Isblur, TimeTable, MAXINDEX};
+use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
 use crate::raster::{rgbtochars, Raster};
 use crate::trace::{raytrace, rest_poses, Snapshot, TraceStats};
-use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, View};
+use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, TimeSampler, View};
 
 /// A scene the renderer cannot draw yet or at all.
 #[derive(Debug, thiserror::Error)]
@@ -255,6 +255,12 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
             let mut primary = 0u64;
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
             let mut poses = rest_poses(scene);
+            let row_strata: Vec<Vec<u32>> = match opts.sampler {
+                TimeSampler::Stratified if !moving.is_empty() => {
+                    (0..img.width).map(|x| strata(row * img.width + x, m * m)).collect()
+                }
+                _ => Vec::new(),
+            };
             for sub in 0..m {
                 let scanline = row * m + sub + 1;
                 for scancol in first_col..=camera.virthighx {
@@ -262,12 +268,24 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
                     if !moving.is_empty() {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
-                        let time = times.time(scanline, scancol, k);
+                        let time = match opts.sampler {
+                            TimeSampler::Table => times.time(scanline, scancol, k),
+                            TimeSampler::Random => random_time(k),
+                            TimeSampler::Stratified => {
+                                let c = scancol.max(1) - 1;
+                                let j = sub * m + c % m;
+                                stratified_time(row * img.width + c / m, j, row_strata[c / m][j], m * m)
+                            }
+                        };
                         for mo in &moving {
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }
                     }
-                    let snap = Snapshot { scene, poses: &poses };
+                    let snap = Snapshot {
+                        scene,
+                        objects: &scene.objects,
+                        poses: &poses,
+                    };
                     let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
                     primary += 1;
                     if scancol >= 1 {
@@ -303,7 +321,9 @@ fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
 }
 
 /// The lines the listing writes to `debugf` for a frame: one per scanline
-/// of the subpixel raster, `kfTIRcnt`, and the frame's end.
+/// of the subpixel raster, `kfTIRcnt`, and the frame's end; and the count of
+/// `roottesting`'s `**** impossible ****` (erratum 8), which the listing
+/// wrote to standard output.
 pub fn debug_log(scene: &Scene, render: &Render) -> String {
     use std::fmt::Write;
     let mut s = String::new();
@@ -311,6 +331,12 @@ pub fn debug_log(scene: &Scene, render: &Render) -> String {
         let _ = writeln!(s, " scanline={scanline:5}");
     }
     let _ = writeln!(s, "kfTIRcnt={:9}", render.stats.kftircnt);
+    // What the listing wrote to standard output from `roottesting`, counted.
+    let _ = writeln!(
+        s,
+        "**** impossible ****{:9}",
+        crate::proc::sweep::roottesting_impossible_count()
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "FRAME NUMBER{:4}---DONE", 1);
     s

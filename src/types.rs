@@ -383,11 +383,28 @@ pub enum Solver {
     Robust,
 }
 
+/// How each subpixel's time is chosen (`--sampler`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TimeSampler {
+    /// The pattern lookup table of §2.6.4 (Fig. 2.33) with the CLT jitter
+    /// of §2.6.5, as the fidelity reads them: the thesis's method and the
+    /// default.
+    #[default]
+    Table,
+    /// An independent uniform time for every subpixel; not the thesis's.
+    Random,
+    /// One uniform time in each of the M² strata of the shutter, the strata
+    /// dealt to the subpixels by a permutation of the pixel's own, as
+    /// renderers later came to do; not the thesis's.
+    Stratified,
+}
+
 /// How to render: the choices that are not part of the scene.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Options {
     pub fidelity: Fidelity,
     pub solver: Solver,
+    pub sampler: TimeSampler,
 }
 
 /// A point light (the base program's, not printed): deck `light`.

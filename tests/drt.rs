@@ -243,6 +243,12 @@ fn isblur_is_true_for_objects_that_do_not_move() {
 /// |pixel − mean_k |I_k|| ≤ 2/M² + 2w/D + 1/255 (rounding to a byte).
 #[test]
 fn moving_square_matches_its_coverage() {
+    for sampler in [TimeSampler::Table, TimeSampler::Stratified] {
+        moving_square(sampler);
+    }
+}
+
+fn moving_square(sampler: TimeSampler) {
     let m = 8usize;
     let mut s = scene();
     s.view = View {
@@ -273,7 +279,15 @@ fn moving_square_matches_its_coverage() {
         pos: Pos::default(),
         n: 1,
     });
-    let img = render(&s, &Options::default(), &|| {}).raster;
+    let img = render(
+        &s,
+        &Options {
+            sampler,
+            ..Options::default()
+        },
+        &|| {},
+    )
+    .raster;
     let cam = raytrace::raytrace::Camera::new(&s, Fidelity::Thesis);
     let pixel_w = 16.0 / 64.0; // screen 16 wide over 64 pixels, nearly parallel projection
     let bound = 2.0 / (m * m) as f64 + 2.0 * pixel_w / d + 1.0 / 255.0;
@@ -301,7 +315,7 @@ fn moving_square_matches_its_coverage() {
             );
         }
     }
-    eprintln!("moving square: worst error {worst:.4}, bound {bound:.4}");
+    eprintln!("moving square, {sampler:?}: worst error {worst:.4}, bound {bound:.4}");
 }
 
 /// The same image for 1, 2 and 8 threads with motion; a static object
@@ -352,5 +366,43 @@ fn motion_is_deterministic_and_leaves_static_objects_alone() {
                 "({col},{row})"
             );
         }
+    }
+}
+
+/// The samplers that are not the thesis's: random times are uniform on
+/// [0,1); stratified times put one time in each of a pixel's n strata, in
+/// an order that differs from pixel to pixel.
+#[test]
+fn random_and_stratified_times() {
+    let t: Vec<f64> = (0..4000).map(random_time).collect();
+    assert!(t.iter().all(|v| (0.0..1.0).contains(v)));
+    let mean = t.iter().sum::<f64>() / t.len() as f64;
+    assert!((mean - 0.5).abs() < 4.0 * (1.0 / 12.0 / 4000f64).sqrt(), "{mean}");
+    for n in [1usize, 4, 16, 64] {
+        let mut orders = std::collections::HashSet::new();
+        for pixel in 0..50 {
+            let perm = strata(pixel, n);
+            let mut seen: Vec<usize> = (0..n)
+                .map(|j| {
+                    let time = stratified_time(pixel, j, perm[j], n);
+                    assert!((0.0..1.0).contains(&time));
+                    (time * n as f64) as usize
+                })
+                .collect();
+            orders.insert(seen.clone());
+            seen.sort_unstable();
+            assert_eq!(seen, (0..n).collect::<Vec<_>>(), "pixel {pixel}, n {n}");
+        }
+        // 4 strata have 24 orders; 16 and more have more orders than pixels here.
+        let want = match n {
+            1 => 1,
+            4 => 15,
+            _ => 45,
+        };
+        assert!(
+            orders.len() >= want,
+            "n {n}: only {} orders over 50 pixels",
+            orders.len()
+        );
     }
 }

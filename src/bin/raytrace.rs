@@ -8,7 +8,7 @@ use std::time::Instant;
 use clap::{Parser, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use raytrace::types::{Fidelity, Options, Solver};
+use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
 
 /// The scene rendered when no deck is named: legacy_pascal/decks/default.deck.
 const DEFAULT_DECK: &str = include_str!("../../legacy_pascal/decks/default.deck");
@@ -52,6 +52,12 @@ struct Cli {
     #[arg(long, value_enum, default_value_t = SolverArg::Laguerre)]
     solver: SolverArg,
 
+    /// How each subpixel's time is chosen: the thesis's pattern table with its CLT jitter
+    /// (table), an independent uniform time (random), or one time in each stratum of the
+    /// shutter in a per-pixel order (stratified). Only table is the thesis's.
+    #[arg(long, value_enum, default_value_t = SamplerArg::Table)]
+    sampler: SamplerArg,
+
     /// Worker threads [default: one per core]; the image is the same for any number.
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -69,6 +75,13 @@ struct Cli {
 enum FidelityArg {
     Listing,
     Thesis,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum SamplerArg {
+    Table,
+    Random,
+    Stratified,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -117,6 +130,11 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         solver: match cli.solver {
             SolverArg::Laguerre => Solver::Laguerre,
             SolverArg::Robust => Solver::Robust,
+        },
+        sampler: match cli.sampler {
+            SamplerArg::Table => TimeSampler::Table,
+            SamplerArg::Random => TimeSampler::Random,
+            SamplerArg::Stratified => TimeSampler::Stratified,
         },
     };
 

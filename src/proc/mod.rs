@@ -1,13 +1,15 @@
 //! Unit `proc` of the thesis (listing in the OCR text, lines 1437–2035):
 //! `rotatetest`, `floortest`, `startest`, `floorstar` here, in the
 //! listing's order; `laguerre`, `sorting`, `spline`, `outrectp` and
-//! `roottesting` in [`sweep`].
+//! `roottesting` in [`sweep`]; a second root solver, not the thesis's, in
+//! [`robust`].
 //!
 //! The pattern procedures of the listing set the global `painting`; here
 //! they return the [`Painting`] they would set, or `None` where the listing
 //! leaves `painting` as it was. The listing reads the pattern scale from the
 //! globals `lengthx`, `lengthy`; here they are arguments.
 
+pub mod robust;
 pub mod sweep;
 
 use crate::types::{Fidelity, Painting, Ray};

@@ -65,6 +65,7 @@ fn main() -> Result<(), String> {
             let opts = Options {
                 fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
+                ..Options::default()
             };
             bench(&deck, runs.max(1), threads, &opts)
         }
