@@ -1,43 +1,17 @@
 //! Unit `paper` (§3.1–3.3): the Hermite matrices, the expanders, the
 //! in-between contours, the poses and the boxes of key-frame pairs, in both
-//! fidelities (errata 4, 8, 9, 10, 17, 18).
+//! fidelities (errata 4, 8, 9, 10, 18, 19).
 
 use raytrace::paper::*;
+use raytrace::proc::sweep::spline;
+use raytrace::shapes::sweep::intersect_sweep;
 use raytrace::types::*;
 
 // ---------------------------------------------------------------- fixtures
 
-/// The curve of `spline` (unit `proc`) for four control values.
-fn spline(curve: CurveKind, p: [f64; 4]) -> Coeff {
-    let (a, b, c, d) = match curve {
-        CurveKind::Bspline => (
-            (-p[0] + 3.0 * p[1] - 3.0 * p[2] + p[3]) / 6.0,
-            (3.0 * p[0] - 6.0 * p[1] + 3.0 * p[2]) / 6.0,
-            (-3.0 * p[0] + 3.0 * p[2]) / 6.0,
-            (p[0] + 4.0 * p[1] + p[2]) / 6.0,
-        ),
-        CurveKind::Bezier => (
-            -p[0] + 3.0 * p[1] - 3.0 * p[2] + p[3],
-            3.0 * p[0] - 6.0 * p[1] + 3.0 * p[2],
-            -3.0 * p[0] + 3.0 * p[1],
-            p[0],
-        ),
-    };
-    Coeff {
-        a,
-        b,
-        c,
-        d,
-        max: p.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
-        min: p.iter().cloned().fold(f64::INFINITY, f64::min),
-        first: 0.0,
-        last: 1.0,
-    }
-}
-
-/// A sweep with `u`, `v`, `segment`, `bbox` filled as the sweep module
-/// fills them (B-spline: segment i uses points i..i+3 wrapping; Bezier:
-/// P[3i..3i+3 mod 3k]).
+/// A sweep with `u`, `v`, `segment`, `bbox` filled by `spline` (unit
+/// `proc`) as the sweep module fills them (B-spline: segment i uses points
+/// i..i+3 wrapping; Bezier: P[3i..3i+3 mod 3k]), 2 long.
 fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
     let n = points.len();
     let segment = match curve {
@@ -48,22 +22,24 @@ fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
         CurveKind::Bspline => points[(i + k) % n],
         CurveKind::Bezier => points[(3 * i + k) % (3 * segment)],
     };
-    let mut u = Vec::new();
-    let mut v = Vec::new();
-    for i in 0..segment {
-        u.push(spline(curve, [0, 1, 2, 3].map(|k| at(i, k)[0])));
-        v.push(spline(curve, [0, 1, 2, 3].map(|k| at(i, k)[1])));
-    }
-    let lo = |c: &[Coeff]| c.iter().map(|c| c.min).fold(f64::INFINITY, f64::min);
-    let hi = |c: &[Coeff]| c.iter().map(|c| c.max).fold(f64::NEG_INFINITY, f64::max);
-    let bbox = BoundingBox {
-        xmin: lo(&u),
-        xmax: hi(&u),
-        ymin: lo(&v),
-        ymax: hi(&v),
+    let mut bbox = BoundingBox {
+        xmin: f64::INFINITY,
+        xmax: f64::NEG_INFINITY,
+        ymin: f64::INFINITY,
+        ymax: f64::NEG_INFINITY,
         zmin: 0.0,
         zmax: 2.0,
     };
+    let (mut u, mut v) = (Vec::new(), Vec::new());
+    let class = PrimitiveClass::Translation;
+    for i in 0..segment {
+        let p = [0, 1, 2, 3].map(|k| at(i, k));
+        let (mut cu, mut cv) = (Coeff::default(), Coeff::default());
+        spline(curve, p[0][0], p[1][0], p[2][0], p[3][0], &mut cu, class, 1, &mut bbox);
+        spline(curve, p[0][1], p[1][1], p[2][1], p[3][1], &mut cv, class, 2, &mut bbox);
+        u.push(cu);
+        v.push(cv);
+    }
     SweepShape {
         orientt: Axis::Z,
         curve,
@@ -381,10 +357,10 @@ fn do34_and_hermite_agree_at_the_ends_in_thesis_fidelity() {
     }
 }
 
-/// Erratum 17: the listing's patches reproduce the key shapes only where
+/// Erratum 18: the listing's patches reproduce the key shapes only where
 /// no segment was cut and the contour has no corner.
 #[test]
-fn erratum_17_listing_patches_miss_cut_segments_and_corners() {
+fn erratum_18_listing_patches_miss_cut_segments_and_corners() {
     let gaps: Vec<(&str, f64)> = end_pairs(Fidelity::Listing)
         .iter()
         .map(|(name, pair)| (*name, max_gap(pair, 0.0, 0.0).max(max_gap(pair, 1.0, 1.0))))
@@ -757,7 +733,7 @@ fn erratum_4_difference_in_both_fidelities() {
 }
 
 #[test]
-fn erratum_18_the_angle_over_the_shutter() {
+fn erratum_19_the_angle_over_the_shutter() {
     let first = key(
         "a",
         PrimitiveClass::Translation,
@@ -1100,4 +1076,94 @@ fn odd_contours_never_panic() {
         }
     }
     assert!(made > 100, "only {made} pairs");
+}
+
+/// The first crossing of the 2-D ray (x0, y0) + d·(dx, dy), d > 0, with the
+/// contour, by sampling each segment finely and bisecting sign changes.
+fn first_crossing(u: &[Coeff], v: &[Coeff], x0: f64, y0: f64, dx: f64, dy: f64) -> Option<f64> {
+    let f = |i: usize, s: f64| (x(&u[i], s) - x0) * dy - (x(&v[i], s) - y0) * dx;
+    let mut best: Option<f64> = None;
+    for i in 0..u.len() {
+        const N: usize = 4000;
+        for k in 0..N {
+            let (mut a, mut b) = (k as f64 / N as f64, (k + 1) as f64 / N as f64);
+            let (fa, fb) = (f(i, a), f(i, b));
+            if fa == 0.0 || fa * fb >= 0.0 {
+                continue;
+            }
+            for _ in 0..60 {
+                let m = 0.5 * (a + b);
+                if (f(i, m) < 0.0) == (fa < 0.0) {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            let s = 0.5 * (a + b);
+            let d = (x(&u[i], s) - x0) * dx + (x(&v[i], s) - y0) * dy;
+            if d > 1e-9 && best.is_none_or(|b| d < b) {
+                best = Some(d);
+            }
+        }
+    }
+    best
+}
+
+/// The contours `Hermite` and `do34` write are what the sweep intersection
+/// needs: rays across the in-between translation sweep (in the plane z = 1,
+/// so no cap) hit it where its contour is, at every time, in thesis
+/// fidelity. In listing fidelity a fast pair's per-segment bounds (the
+/// merged bounds ± 2, erratum 9) cull crossings: holes in the object.
+#[test]
+fn inbetween_contours_meet_the_sweep_intersection() {
+    let opts = Options {
+        solver: Solver::Robust,
+        ..Options::default()
+    };
+    let mut rays: Vec<(f64, f64, f64, f64)> = (0..60)
+        .map(|k| {
+            let th = std::f64::consts::TAU * k as f64 / 60.0 + 0.1;
+            let off = (k % 7) as f64 - 3.0;
+            // From 30 away toward the contour, offset sideways.
+            let (dx, dy) = (-th.cos(), -th.sin());
+            (30.0 * th.cos() - off * dy, 30.0 * th.sin() + off * dx, dx, dy)
+        })
+        .collect();
+    // Down the lines x = −12 … 12 and across the lines y = −12 … 12.
+    for k in 0..97 {
+        let c = -12.0 + 0.25 * k as f64 + 0.01;
+        rays.push((c, 30.0, 0.0, -1.0));
+        rays.push((-30.0, c, 1.0, 0.0));
+    }
+    let mut misses = [0usize; 2];
+    let mut hits = [0usize; 2];
+    for (fi, f) in [Fidelity::Thesis, Fidelity::Listing].into_iter().enumerate() {
+        let first = translation("a", [0.0; 3], wobbly(7, 0.2, 0.0));
+        let last = translation("b", [40.0, 0.0, -24.0], bezier_flower(5, 3.0));
+        let pair = goahead(1, &first, &last, Expander::Arclength, f).unwrap();
+        let mut out = pair.scratch();
+        for t in [0.0, 0.1, 0.21, 0.5, 0.79, 0.9, 1.0] {
+            inbetween(&pair, t, &mut out);
+            for &(x0, y0, dx, dy) in &rays {
+                let truth = first_crossing(&out.u, &out.v, x0, y0, dx, dy);
+                let ray = Ray::new(DVec3::new(x0, y0, 1.0), DVec3::new(dx, dy, 0.0));
+                let got = intersect_sweep(PrimitiveClass::Translation, &out, &ray, 1e-9, &opts);
+                match (truth, got) {
+                    (Some(d), Some(h)) if (h.t - d).abs() < 1e-6 => {
+                        hits[fi] += 1;
+                        assert!((h.point.z - 1.0).abs() < 1e-9 && h.normal.z.abs() < 1e-9);
+                    }
+                    // The first crossing culled: no hit, or a later one.
+                    (Some(d), got) => {
+                        assert!(got.is_none_or(|h| h.t > d), "{f:?} t {t}: a hit before the contour");
+                        misses[fi] += 1;
+                    }
+                    (None, got) => assert!(got.is_none(), "{f:?} t {t}: a hit where the contour is not"),
+                }
+            }
+        }
+    }
+    assert_eq!(misses[0], 0, "thesis fidelity missed crossings");
+    assert!(hits[0] > 100);
+    assert!(misses[1] > 0, "listing fidelity culled nothing");
 }

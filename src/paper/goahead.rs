@@ -246,7 +246,7 @@ fn check_contour(int: usize, obj: &ObjectRecord, sweep: &SweepShape, which: &'st
 /// The corner curves of segment i's patch at s = 0 and s = 1 for one key
 /// shape's contour `p` (`next` the index of the following segment).
 ///
-/// Erratum 17 (the port's reading; the lead may renumber): the listing
+/// Erratum 18 (the port's reading; the lead may renumber): the listing
 /// passes `p[i]` and `p[next]`; `getmatrix` takes the position and the
 /// s-tangent of each at its `first`, so the tangent at s = 1 is segment
 /// i + 1's at its start, and both are derivatives by the original
@@ -273,7 +273,7 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
 /// `goahead(int; var obj1, obj2)` (unit `paper`, §3.2.3, §3.3, OCR lines
 /// 2413–2552): "to calculate the in-between figure from obj1 and obj2":
 /// everything key-frame pair `int` (from 1) needs before the scanline loop.
-/// Errata 4, 8, 9, 17.
+/// Errata 4, 8, 9, 18.
 ///
 /// The steps, as printed: `initM`; if the counts differ, `expanding`
 /// (`expander` Burtnyk) or `expanding2` (Arclength), else `saving` both;

@@ -34,7 +34,7 @@ pub const MH_T: Mh = [
 /// of the two start points, `Rvalue(path1, 0)`, `Rvalue(path1, 1)`,
 /// `Rvalue(path2, 0)`, `Rvalue(path2, 1)`; the s-tangents of the four
 /// curves at their `first`, `Rvalue(p, p.first)`; the twists 0
-/// (§3.2.3 (d)). Returns H (the listing's `var H`). Erratum 17 is in what
+/// (§3.2.3 (d)). Returns H (the listing's `var H`). Erratum 18 is in what
 /// `goahead` passes.
 pub fn getmatrix(p00: &Coeff, p10: &Coeff, p01: &Coeff, p11: &Coeff, path1: &Coeff, path2: &Coeff) -> Mh {
     let mut h: Mh = [[0.0; 4]; 4];

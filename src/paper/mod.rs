@@ -331,7 +331,7 @@ impl PaperPair {
     /// `sphereo := temp1.sphereo + time*diff[int]` (FIRST's position plus
     /// `time` times `diff`, erratum 4 in `diff`), then the turn.
     ///
-    /// Erratum 18 (the port's reading; the lead may renumber): the listing
+    /// Erratum 19 (the port's reading; the lead may renumber): the listing
     /// calls `rotate(name,xaxis,0,0,0,angle.x)`, FIRST's own x angle at any
     /// time, with the y and z turns by `diffangle` commented out, so
     /// `diffangle` is computed and never read. `Fidelity::Listing` composes
