@@ -824,7 +824,14 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         PrimitiveClass::Rotation,
     ];
     let mut class_box = [empty_box(); 3];
-    for obj in &mut scene.objects {
+    // The later key shapes of a keyframe record stood in the Pascal's table
+    // too until `goahead` deleted them: they get coefficients and widen
+    // the class's box like every other sweep.
+    let Scene { objects, keyframes, .. } = scene;
+    for obj in objects
+        .iter_mut()
+        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+    {
         let class = obj.class;
         let Some(ci) = classes.iter().position(|&c| c == class) else {
             continue;
@@ -853,7 +860,10 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         // Erratum 9, listing: `spline` widens the one global box of the
         // class (`tbox`, `cbox`, `rbox`), which every object of it uses.
         Fidelity::Listing => {
-            for obj in &mut scene.objects {
+            for obj in objects
+                .iter_mut()
+                .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+            {
                 let Some(ci) = classes.iter().position(|&c| c == obj.class) else {
                     continue;
                 };

@@ -24,6 +24,24 @@ enum Command {
         #[arg(default_value = "raster")]
         dir: PathBuf,
     },
+    /// A filmstrip of a deck with key frames: the scene at fixed instants of the
+    /// shutter (no blur), side by side in one PNG, to see the in-between shapes.
+    Frames {
+        /// The deck.
+        deck: PathBuf,
+        /// The PNG to write.
+        #[arg(long, default_value = "frames.png")]
+        out: PathBuf,
+        /// The instants, in [0, 1].
+        #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5,0.75,1")]
+        times: Vec<f64>,
+        /// Width and height of each frame, in pixels.
+        #[arg(long, default_value_t = 160)]
+        size: usize,
+        /// Follow the listings instead of the thesis.
+        #[arg(long)]
+        listing: bool,
+    },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
         /// The deck [default: legacy_pascal/decks/default.deck].
@@ -54,6 +72,16 @@ fn main() -> Result<(), String> {
                 println!("wrote {} ({}×{})", out.display(), raster.width, raster.height);
             }
             Ok(())
+        }
+        Command::Frames {
+            deck,
+            out,
+            times,
+            size,
+            listing,
+        } => {
+            let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
+            frames(&deck, &out, &times, size.clamp(8, 1024), fidelity)
         }
         Command::Bench {
             deck,
@@ -135,6 +163,56 @@ fn nec_card() -> Raster {
         }
     }
     Raster { width, height, pixels }
+}
+
+/// The scene of `deck` at each instant of `times`: every moving object at
+/// its pose then, every key-frame object at its in-between shape and pose,
+/// rendered still and laid side by side.
+fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
+    use raytrace::types::Shape;
+    let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
+    let dir = deck.parent().unwrap_or(Path::new("."));
+    let opts = Options {
+        fidelity,
+        ..Options::default()
+    };
+    let mut scene =
+        raytrace::deck::initialize(&source, &deck.display().to_string(), dir, fidelity).map_err(|e| e.to_string())?;
+    raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| e.to_string())?;
+    let chains = raytrace::raytrace::key_frame_chains(&scene, fidelity).map_err(|e| e.to_string())?;
+    scene.image.width = size;
+    scene.image.height = size;
+    let mut strip = Raster {
+        width: size * times.len().max(1),
+        height: size,
+        pixels: vec![[0; 3]; size * size * times.len().max(1)],
+    };
+    for (i, &t) in times.iter().enumerate() {
+        let mut still = scene.clone();
+        for mo in &scene.motions {
+            let pose = raytrace::drt::motionblur(&scene.objects[mo.object], mo, t, fidelity);
+            let obj = &mut still.objects[mo.object];
+            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+        }
+        for (k, chain) in &chains {
+            let obj = &mut still.objects[scene.keyframes[*k].first];
+            let mut contour = chain.scratch();
+            chain.inbetween(t, &mut contour);
+            obj.shape = Shape::Sweep(contour);
+            let pose = chain.pose(t);
+            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+        }
+        still.motions.clear();
+        still.keyframes.clear();
+        let r = raytrace::raytrace::render(&still, &opts, &|| {}).raster;
+        for y in 0..size {
+            let row = y * strip.width + i * size;
+            strip.pixels[row..row + size].copy_from_slice(&r.pixels[y * size..(y + 1) * size]);
+        }
+    }
+    raytrace::raster::write_png(out, &strip).map_err(|e| format!("{}: {e}", out.display()))?;
+    println!("wrote {} ({} frames at t = {:?})", out.display(), times.len(), times);
+    Ok(())
 }
 
 fn bench(deck: &Path, runs: usize, threads: Option<usize>, opts: &Options) -> Result<(), String> {
