@@ -44,8 +44,8 @@ enum Command {
     },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
-        /// The deck [default: legacy_pascal/decks/default.deck].
-        #[arg(default_value = "legacy_pascal/decks/default.deck")]
+        /// The deck [default: legacy_pascal/decks/still_life.deck].
+        #[arg(default_value = "legacy_pascal/decks/still_life.deck")]
         deck: PathBuf,
         /// How many timed runs (after one untimed warm-up).
         #[arg(long, default_value_t = 11)]
