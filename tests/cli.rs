@@ -187,7 +187,8 @@ fn no_deck_renders_the_embedded_default() {
     let png = std::fs::read(dir.path().join("raster/default.png")).unwrap();
     assert!(png.starts_with(b"\x89PNG"));
     // The blue letters are in the picture.
-    assert!(r.pixels.iter().filter(|p| p[2] > p[0] + 60 && p[2] > p[1] + 40).count() > 200);
+    let blue = |p: &&[u8; 3]| p[2] as i32 > p[0] as i32 + 60 && p[2] as i32 > p[1] as i32 + 40;
+    assert!(r.pixels.iter().filter(blue).count() > 200);
     // The deck it embeds (include_str! of this file) is the key-frame chain.
     let file = decks().join("nec_morph.deck");
     let scene = raytrace::deck::initialize(
