@@ -15,7 +15,14 @@ const KEY_FRAME_DECKS: [&str; 4] = ["fig5_10.deck", "fig5_11.deck", "fig5_12.dec
 fn load(name: &str, fidelity: Fidelity) -> Scene {
     let src = std::fs::read_to_string(decks().join(name)).unwrap();
     let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
-    prepare(&mut scene, &Options { fidelity, ..Options::default() }).unwrap();
+    prepare(
+        &mut scene,
+        &Options {
+            fidelity,
+            ..Options::default()
+        },
+    )
+    .unwrap();
     scene
 }
 
@@ -57,9 +64,18 @@ fn still_at(scene: &Scene, t: f64) -> Scene {
 fn render_draws_the_in_between_shape() {
     for name in KEY_FRAME_DECKS {
         let mut scene = load(name, Fidelity::Thesis);
-        scene.image = ImageSpec { width: 64, height: 64, masksize: 1, aliasing: 0.0 };
+        scene.image = ImageSpec {
+            width: 64,
+            height: 64,
+            masksize: 1,
+            aliasing: 0.0,
+        };
         scene.blur = None;
-        scene.pattern = Some(PatternRecord { pos: Pos::default(), m: 1, values: vec![vec![0]] });
+        scene.pattern = Some(PatternRecord {
+            pos: Pos::default(),
+            m: 1,
+            values: vec![vec![0]],
+        });
         let drawn = render(&scene, &Options::default(), &|| {}).raster;
         let by_hand = render(&still_at(&scene, 0.5), &Options::default(), &|| {}).raster;
         assert_eq!(drawn, by_hand, "{name}");

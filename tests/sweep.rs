@@ -946,7 +946,7 @@ fn cylinder_hit(r: f64, len: f64, ray: &Ray) -> Option<(f64, DVec3)> {
     let (o, d) = (ray.origin, ray.dir);
     let mut best: Option<(f64, DVec3)> = None;
     let mut take = |t: f64, n: DVec3| {
-        if t > 1e-9 && best.map_or(true, |b| t < b.0) {
+        if t > 1e-9 && best.is_none_or(|b| t < b.0) {
             best = Some((t, n));
         }
     };
@@ -1556,7 +1556,7 @@ fn frustum_and_sphere_match_their_quadrics() {
         if disc >= 0.0 && a != 0.0 {
             for t in [(-b - disc.sqrt()) / (2.0 * a), (-b + disc.sqrt()) / (2.0 * a)] {
                 let p = ray.at(t);
-                if t > 1e-9 && (0.0..=len).contains(&p.z) && best.map_or(true, |x| t < x.0) {
+                if t > 1e-9 && (0.0..=len).contains(&p.z) && best.is_none_or(|x| t < x.0) {
                     let k = 1.0 + kappa * p.z;
                     let n = DVec3::new(p.x, p.y, -r * r * k * kappa).normalize();
                     best = Some((t, n));
@@ -1566,7 +1566,7 @@ fn frustum_and_sphere_match_their_quadrics() {
         for (zc, nz, rad) in [(0.0, -1.0, r), (len, 1.0, r * scale)] {
             let t = (zc - o.z) / d.z;
             let p = ray.at(t);
-            if t > 1e-9 && p.x.hypot(p.y) <= rad && best.map_or(true, |x| t < x.0) {
+            if t > 1e-9 && p.x.hypot(p.y) <= rad && best.is_none_or(|x| t < x.0) {
                 best = Some((t, DVec3::new(0.0, 0.0, nz)));
             }
         }

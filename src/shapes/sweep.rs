@@ -342,7 +342,7 @@ struct Best {
 }
 
 fn closer(best: &Option<Best>, t: f64, tmin: f64) -> bool {
-    t > tmin && best.map_or(true, |b| t < b.t)
+    t > tmin && best.is_none_or(|b| t < b.t)
 }
 
 /// Translation and conic sweeps.
