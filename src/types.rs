@@ -208,6 +208,30 @@ pub struct BoundingBox {
     pub zmax: f64,
 }
 
+impl BoundingBox {
+    /// The box that holds nothing, to be widened by [`BoundingBox::union`].
+    pub const EMPTY: BoundingBox = BoundingBox {
+        xmin: f64::INFINITY,
+        xmax: f64::NEG_INFINITY,
+        ymin: f64::INFINITY,
+        ymax: f64::NEG_INFINITY,
+        zmin: f64::INFINITY,
+        zmax: f64::NEG_INFINITY,
+    };
+
+    /// The smallest box holding both.
+    pub fn union(&self, b: &BoundingBox) -> BoundingBox {
+        BoundingBox {
+            xmin: self.xmin.min(b.xmin),
+            xmax: self.xmax.max(b.xmax),
+            ymin: self.ymin.min(b.ymin),
+            ymax: self.ymax.max(b.ymax),
+            zmin: self.zmin.min(b.zmin),
+            zmax: self.zmax.max(b.zmax),
+        }
+    }
+}
+
 /// The sweep variant of `objectrecord`: `orientt`, `segment`, `u`, `v`, and
 /// what the deck gives besides (the control points, `length`, `scale`).
 #[derive(Clone, Debug, PartialEq)]
@@ -303,6 +327,22 @@ pub struct Pose {
     pub transfm: DMat4,
     pub inverse: DMat4,
     pub sphereo: Points,
+}
+
+impl Pose {
+    /// This pose turned by `turn` (a rotation about axes through the
+    /// object's origin) and moved to `sphereo`: T(sphereo) · turn · (the
+    /// rotation and axis of this pose). The convention of every motion in
+    /// the port (`drt::motionblur`, the key-frame pose; DEVIATIONS D8).
+    pub fn turned(&self, turn: DMat4, sphereo: Points) -> Pose {
+        let rotation = DMat4::from_translation(-self.sphereo) * self.transfm;
+        let inverse_rotation = self.inverse * DMat4::from_translation(self.sphereo);
+        Pose {
+            transfm: DMat4::from_translation(sphereo) * turn * rotation,
+            inverse: inverse_rotation * turn.transpose() * DMat4::from_translation(-sphereo),
+            sphereo,
+        }
+    }
 }
 
 /// `ray = record x0, x1, y0, y1, z0, z1 : real end`: the Pascal ray runs

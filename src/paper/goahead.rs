@@ -2,7 +2,7 @@
 //! unit `paper`, OCR lines 2270–2552, §3.2.3 (a)–(b), §3.3.
 
 use super::{
-    contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, union, PaperError,
+    contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, PaperError,
     PaperMessage, PaperPair, Sdirection,
 };
 use crate::types::{Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
@@ -246,7 +246,7 @@ fn check_contour(int: usize, obj: &ObjectRecord, sweep: &SweepShape, which: &'st
 /// The corner curves of segment i's patch at s = 0 and s = 1 for one key
 /// shape's contour `p` (`next` the index of the following segment).
 ///
-/// Erratum 18 (the port's reading; the lead may renumber): the listing
+/// Erratum 18 (the port's reading): the listing
 /// passes `p[i]` and `p[next]`; `getmatrix` takes the position and the
 /// s-tangent of each at its `first`, so the tangent at s = 1 is segment
 /// i + 1's at its start, and both are derivatives by the original
@@ -439,7 +439,7 @@ pub fn goahead(
                 u = (u.0.min(ulo), u.1.max(uhi));
                 v = (v.0.min(vlo), v.1.max(vhi));
             }
-            union(&merged, &contour_box(obj1.class, first, u, v))
+            merged.union(&contour_box(obj1.class, first, u, v))
         }
     };
 

@@ -331,7 +331,7 @@ impl PaperPair {
     /// `sphereo := temp1.sphereo + time*diff[int]` (FIRST's position plus
     /// `time` times `diff`, erratum 4 in `diff`), then the turn.
     ///
-    /// Erratum 19 (the port's reading; the lead may renumber): the listing
+    /// Erratum 19 (the port's reading): the listing
     /// calls `rotate(name,xaxis,0,0,0,angle.x)`, FIRST's own x angle at any
     /// time, with the y and z turns by `diffangle` commented out, so
     /// `diffangle` is computed and never read. `Fidelity::Listing` composes
@@ -356,22 +356,7 @@ impl PaperPair {
                     * DMat4::from_rotation_x(a.x.to_radians())
             }
         };
-        posed(&self.first_pose, turn, sphereo)
-    }
-}
-
-/// The pose of an object whose rest pose is `rest`, turned by `turn` about
-/// axes through its origin and moved to `sphereo` (the convention of
-/// `drt::motionblur`, DEVIATIONS D8).
-fn posed(rest: &Pose, turn: DMat4, sphereo: DVec3) -> Pose {
-    let rest_rotation = DMat4::from_translation(-rest.sphereo) * rest.transfm;
-    let transfm = DMat4::from_translation(sphereo) * turn * rest_rotation;
-    let inverse_rest_rotation = rest.inverse * DMat4::from_translation(rest.sphereo);
-    let inverse = inverse_rest_rotation * turn.transpose() * DMat4::from_translation(-sphereo);
-    Pose {
-        transfm,
-        inverse,
-        sphereo,
+        self.first_pose.turned(turn, sphereo)
     }
 }
 
@@ -470,19 +455,7 @@ impl PaperChain {
         self.pairs
             .iter()
             .skip(1)
-            .fold(self.pairs[0].bbox, |b, p| union(&b, &p.bbox))
-    }
-}
-
-/// The smallest box holding both.
-pub(crate) fn union(a: &BoundingBox, b: &BoundingBox) -> BoundingBox {
-    BoundingBox {
-        xmin: a.xmin.min(b.xmin),
-        xmax: a.xmax.max(b.xmax),
-        ymin: a.ymin.min(b.ymin),
-        ymax: a.ymax.max(b.ymax),
-        zmin: a.zmin.min(b.zmin),
-        zmax: a.zmax.max(b.zmax),
+            .fold(self.pairs[0].bbox, |b, p| b.union(&p.bbox))
     }
 }
 

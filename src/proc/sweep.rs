@@ -198,7 +198,7 @@ pub fn laguerre(
 /// the position (0-based) of the last record whose `.a` equals `tmax`, or
 /// `None` where the listing would leave `pos` as it was.
 ///
-/// Erratum 17 (proposed, docs/sweep_notes.md): the listing's swap moves
+/// Erratum 17 (legacy_pascal/DEVIATIONS.md): the listing's swap moves
 /// the whole record j to i but only `.a` and `.b` of record i to j, so
 /// record j keeps its own `.c` and both end up with j's (`Listing`); Ch. 4
 /// says the procedure sorts the records by `root.a`, and `Thesis` swaps
@@ -410,23 +410,12 @@ pub fn roottesting(number: &mut usize, root: &mut [Root], temp: usize) -> RootTe
 mod tests {
     use super::*;
 
-    fn empty_box() -> BoundingBox {
-        BoundingBox {
-            xmin: f64::INFINITY,
-            xmax: f64::NEG_INFINITY,
-            ymin: f64::INFINITY,
-            ymax: f64::NEG_INFINITY,
-            zmin: f64::INFINITY,
-            zmax: f64::NEG_INFINITY,
-        }
-    }
-
     #[test]
     fn spline_bspline_coefficients_by_hand() {
         // Points 0, 6, 12, 30: a = (0 + 18 − 36 + 30)/6 = 2,
         // b = (0 − 36 + 36)/6 = 0, c = (0 + 36)/6 = 6, d = (0 + 24 + 12)/6 = 6.
         let mut u = Coeff::default();
-        let mut bx = empty_box();
+        let mut bx = BoundingBox::EMPTY;
         spline(
             CurveKind::Bspline,
             0.0,
@@ -449,7 +438,7 @@ mod tests {
         // Points 1, 2, 4, 3: a = −1 + 6 − 12 + 3 = −4, b = 3 − 12 + 12 = 3,
         // c = −3 + 6 = 3, d = 1.
         let mut u = Coeff::default();
-        let mut bx = empty_box();
+        let mut bx = BoundingBox::EMPTY;
         spline(
             CurveKind::Bezier,
             1.0,

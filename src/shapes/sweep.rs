@@ -700,29 +700,6 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
     })
 }
 
-/// An empty box, to be widened.
-fn empty_box() -> BoundingBox {
-    BoundingBox {
-        xmin: f64::INFINITY,
-        xmax: f64::NEG_INFINITY,
-        ymin: f64::INFINITY,
-        ymax: f64::NEG_INFINITY,
-        zmin: f64::INFINITY,
-        zmax: f64::NEG_INFINITY,
-    }
-}
-
-fn union(a: &BoundingBox, b: &BoundingBox) -> BoundingBox {
-    BoundingBox {
-        xmin: a.xmin.min(b.xmin),
-        xmax: a.xmax.max(b.xmax),
-        ymin: a.ymin.min(b.ymin),
-        ymax: a.ymax.max(b.ymax),
-        zmin: a.zmin.min(b.zmin),
-        zmax: a.zmax.max(b.zmax),
-    }
-}
-
 /// The four control points of segment i: B-spline points i … i+3
 /// (wrapping), Bezier P[3i] … P[3i+3 mod 3k].
 fn segment_points(curve: CurveKind, points: &[[f64; 2]], i: usize) -> [[f64; 2]; 4] {
@@ -749,7 +726,7 @@ fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox {
     sw.segment = segments;
     sw.u.clear();
     sw.v.clear();
-    let mut sbox = empty_box();
+    let mut sbox = BoundingBox::EMPTY;
     for i in 0..segments {
         let p = segment_points(sw.curve, &sw.points, i);
         let (mut cu, mut cv) = (Coeff::default(), Coeff::default());
@@ -823,7 +800,7 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         PrimitiveClass::Conic,
         PrimitiveClass::Rotation,
     ];
-    let mut class_box = [empty_box(); 3];
+    let mut class_box = [BoundingBox::EMPTY; 3];
     // The later key shapes of a keyframe record stood in the Pascal's table
     // too until `goahead` deleted them: they get coefficients and widen
     // the class's box like every other sweep.
@@ -845,7 +822,7 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
             continue;
         }
         let own = own_box(class, sw, &sbox);
-        class_box[ci] = union(&class_box[ci], &listing_box(class, sw, &sbox));
+        class_box[ci] = class_box[ci].union(&listing_box(class, sw, &sbox));
         sw.bbox = own;
         let corner = DVec3::new(
             own.xmin.abs().max(own.xmax.abs()),
