@@ -335,13 +335,16 @@ impl Pose {
     /// rotation and axis of this pose). The convention of every motion in
     /// the port (`drt::motionblur`, the key-frame pose; DEVIATIONS D8).
     pub fn turned(&self, turn: DMat4, sphereo: Points) -> Pose {
-        let rotation = DMat4::from_translation(-self.sphereo) * self.transfm;
-        let inverse_rotation = self.inverse * DMat4::from_translation(self.sphereo);
-        Pose {
-            transfm: DMat4::from_translation(sphereo) * turn * rotation,
-            inverse: inverse_rotation * turn.transpose() * DMat4::from_translation(-sphereo),
-            sphereo,
-        }
+        // Both matrices are rigid: transfm = T(s)·R and inverse = Rᵀ·T(−s),
+        // so R is transfm without its translation, and the new pair is
+        // T(sphereo)·R′ and R′ᵀ·T(−sphereo) with R′ = turn·R.
+        let r = glam::DMat3::from_mat4(turn) * glam::DMat3::from_mat4(self.transfm);
+        let rt = r.transpose();
+        let mut transfm = DMat4::from_mat3(r);
+        transfm.w_axis = sphereo.extend(1.0);
+        let mut inverse = DMat4::from_mat3(rt);
+        inverse.w_axis = (-(rt * sphereo)).extend(1.0);
+        Pose { transfm, inverse, sphereo }
     }
 }
 

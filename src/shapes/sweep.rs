@@ -53,6 +53,13 @@ const RESIDUAL_TOL: f64 = 1e-9;
 const PARALLEL_TOL: f64 = 1e-12;
 
 /// x(s) = ((a s + b) s + c) s + d.
+/// √(a² + b²). `f64::hypot` guards against overflow at a cost that shows in
+/// the profile of every sweep render; scene coordinates are far from the
+/// range where a² could overflow.
+fn norm2(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
+}
+
 fn ev(c: &Coeff, s: f64) -> f64 {
     ((c.a * s + c.b) * s + c.c) * s + c.d
 }
@@ -142,13 +149,13 @@ fn negligible(p: &[f64; 7], scale: f64) -> bool {
 fn tangent(u: &Coeff, v: &Coeff, s: f64, size: f64) -> (f64, f64) {
     let tiny = 1e-9 * size;
     let t1 = (ev1(u, s), ev1(v, s));
-    if t1.0.hypot(t1.1) > tiny {
+    if norm2(t1.0, t1.1) > tiny {
         return t1;
     }
     // x′(s) ≈ x″(s0)(s − s0): forward from the start, backward at the end.
     let sign = if s > 0.5 { -1.0 } else { 1.0 };
     let t2 = (sign * ev2(u, s), sign * ev2(v, s));
-    if t2.0.hypot(t2.1) > tiny {
+    if norm2(t2.0, t2.1) > tiny {
         return t2;
     }
     (u.a, v.a)
@@ -407,8 +414,8 @@ fn extrusion(
     let alpha = k0 * d.y - k1 * o.y;
     let beta = k1 * o.x - k0 * d.x;
     let gamma = o.y * d.x - o.x * d.y;
-    let nrm = alpha.hypot(beta);
-    let oxy = o.x.hypot(o.y);
+    let nrm = norm2(alpha, beta);
+    let oxy = norm2(o.x, o.y);
 
     // The ray's projection is a point: only the caps (and an apex).
     if nrm <= PARALLEL_TOL * (k0.abs() * dn + k1.abs() * oxy) {
@@ -466,7 +473,7 @@ fn extrusion(
             let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
-            let residual = (p.x - k * uu).hypot(p.y - k * vv);
+            let residual = norm2(p.x - k * uu, p.y - k * vv);
             if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
                 let (tu, tv) = tangent(cu, cv, s, size);
                 let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
@@ -508,7 +515,7 @@ fn extrusion(
 /// contour point s of segment (u, v): the 2-D residual (radius, height).
 fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> f64 {
     let p = ray.at(t);
-    (p.x.hypot(p.y) - ev(u, s)).hypot(p.z - ev(v, s))
+    norm2(norm2(p.x, p.y) - ev(u, s), p.z - ev(v, s))
 }
 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
@@ -550,7 +557,7 @@ fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f
 /// point s: (V′ e_r − U′ e_z), turned by the contour's orientation.
 fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) -> DVec3 {
     let (tu, tv) = tangent(u, v, s, size);
-    let r = p.x.hypot(p.y);
+    let r = norm2(p.x, p.y);
     let (ex, ey) = if r > 1e-12 * size {
         (p.x / r, p.y / r)
     } else {
