@@ -117,6 +117,9 @@ struct Found {
 fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
+    if !may_have_root(n, a, lo, hi) {
+        return out;
+    }
     match opts.solver {
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
@@ -135,6 +138,60 @@ fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
         }
     }
     out
+}
+
+/// Can the degree-`n` polynomial `a` (ascending coefficients) vanish in
+/// [lo, hi]? Not when its Bernstein coefficients on that interval are all
+/// of one strict sign: the polynomial lies in their convex hull. A test
+/// before either solver that spares the solve for most segments a ray's
+/// line passes near without crossing; where it answers "no" there is no
+/// root for a solver to find, so no image changes (DEVIATIONS D18).
+fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
+    // Binomial coefficients C(k, j) for k, j ≤ 6.
+    const C: [[f64; 7]; 7] = [
+        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+        [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
+        [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
+        [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
+    ];
+    let n = n.min(6);
+    // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
+    let mut c = [0.0; 7];
+    c[..=n].copy_from_slice(&a[..=n]);
+    for i in 0..n {
+        for j in (i..n).rev() {
+            c[j] += lo * c[j + 1];
+        }
+    }
+    let w = hi - lo;
+    let mut wk = 1.0;
+    for ck in c.iter_mut().take(n + 1) {
+        *ck *= wk;
+        wk *= w;
+    }
+    let tiny = 1e-12 * c[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(tiny > 0.0) {
+        return true; // zero, or not finite: let the solver decide
+    }
+    let (mut pos, mut neg) = (false, false);
+    for k in 0..=n {
+        // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
+        let b: f64 = (0..=k).map(|j| C[k][j] / C[n][j] * c[j]).sum();
+        if b > tiny {
+            pos = true;
+        } else if b < -tiny {
+            neg = true;
+        } else {
+            return true;
+        }
+        if pos && neg {
+            return true;
+        }
+    }
+    false
 }
 
 /// Is every coefficient negligible beside `scale`? (A segment that lies
