@@ -173,13 +173,13 @@ fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
         wk *= w;
     }
     let tiny = 1e-12 * c[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if !(tiny > 0.0) {
+    if tiny.is_nan() || tiny <= 0.0 || tiny.is_infinite() {
         return true; // zero, or not finite: let the solver decide
     }
     let (mut pos, mut neg) = (false, false);
-    for k in 0..=n {
+    for (k, ck) in C.iter().enumerate().take(n + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
-        let b: f64 = (0..=k).map(|j| C[k][j] / C[n][j] * c[j]).sum();
+        let b: f64 = (0..=k).map(|j| ck[j] / C[n][j] * c[j]).sum();
         if b > tiny {
             pos = true;
         } else if b < -tiny {
