@@ -108,7 +108,7 @@ pub fn fig_2_33(fidelity: Fidelity) -> [[u32; 4]; 4] {
 pub const PATTERN_2: [[u32; 2]; 2] = [[0, 2], [3, 1]];
 
 /// The pattern table for a subpixel mask of `m`×`m` when the deck has no
-/// `pattern` record: 1×1 is [0], 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
+/// `pattern` record: 1×1 is `[0]`, 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
 /// and other sizes a fixed shuffle of 0..m²−1 (the port's).
 pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
     match m {

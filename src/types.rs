@@ -136,7 +136,7 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// The texel under (s, t) ∈ [0,1]², s to the right, t upward; nearest
+    /// The texel under (s, t) in the unit square, s to the right, t upward; nearest
     /// texel, as a 1989 frame-buffer paste would take it.
     pub fn texel(&self, s: f64, t: f64) -> Intensity {
         let col = ((s.clamp(0.0, 1.0) * self.width as f64) as usize).min(self.width - 1);

@@ -63,7 +63,7 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
 
 /// `laguerre(n: integer; a: col; max, min: real; var total: integer;
 /// root: col)` (unit `proc`, §2.5, OCR lines 1669–1826; ref. Ralston 78):
-/// the real roots in [min, max] of a[0] + a[1]x + … + a[n]xⁿ, n = 3 or 6.
+/// the real roots in [min, max] of `a[0] + a[1]x + … + a[n]xⁿ`, n = 3 or 6.
 /// Returns `total`, the number of roots stored in `root[0..total]`.
 ///
 /// As printed: starts at x₀ = 0.98/n and steps by 0.98/n while x₀ < 1 (so
@@ -75,7 +75,7 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
 /// abandoned when x leaves [−100, 100]. Then `root[i].b` is set.
 ///
 /// Erratum 7, both fidelities shown where they part:
-/// - `root[i].b`: the listing sets a[1] + x(2a[2] + 3a[3]x), the cubic's
+/// - `root[i].b`: the listing sets `a[1] + x(2a[2] + 3a[3]x)`, the cubic's
 ///   derivative, also for n = 6 (`Listing`); `Thesis` sets the derivative
 ///   of the degree-n polynomial.
 /// - zero denominators: `Listing` reproduces the arithmetic. With H ≥ 0

@@ -851,8 +851,8 @@ fn own_box(class: PrimitiveClass, sw: &SweepShape, sbox: &BoundingBox) -> Boundi
 ///
 /// Reconstructed from the thesis's §2.2–2.3 and §3.3 (`spline` is printed;
 /// who calls it is not). B-spline segment i uses points i, i+1, i+2, i+3
-/// (wrapping, n points give n segments); Bezier segment i uses P[3i],
-/// P[3i+1], P[3i+2], P[3i+3 mod 3k] (3k points give k). At most 60.
+/// (wrapping, n points give n segments); Bezier segment i uses `P[3i]`,
+/// `P[3i+1]`, `P[3i+2]`, `P[3i+3 mod 3k]` (3k points give k). At most 60.
 ///
 /// Erratum 9: `Thesis` gives each object its own box. `Listing` keeps one
 /// box per class as the listing's globals `tbox`, `cbox`, `rbox` do: every
