@@ -108,7 +108,7 @@ pub fn fig_2_33(fidelity: Fidelity) -> [[u32; 4]; 4] {
 pub const PATTERN_2: [[u32; 2]; 2] = [[0, 2], [3, 1]];
 
 /// The pattern table for a subpixel mask of `m`×`m` when the deck has no
-/// `pattern` record: 1×1 is [0], 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
+/// `pattern` record: 1×1 is `[0]`, 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
 /// and other sizes a fixed shuffle of 0..m²−1 (the port's).
 pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
     match m {
@@ -269,21 +269,6 @@ fn rotation(axis: Axis, degrees: f64) -> DMat4 {
     }
 }
 
-/// The pose of an object whose rest pose is `rest`, turned by `turn` (a
-/// rotation about axes through its origin) and moved to `sphereo`.
-fn posed(rest: &ObjectRecord, turn: DMat4, sphereo: DVec3) -> Pose {
-    // transfm = T(sphereo) · turn · (rotation and axis of the rest pose).
-    let rest_rotation = DMat4::from_translation(-rest.sphereo) * rest.transfm;
-    let transfm = DMat4::from_translation(sphereo) * turn * rest_rotation;
-    let inverse_rest_rotation = rest.inverse * DMat4::from_translation(rest.sphereo);
-    let inverse = inverse_rest_rotation * turn.transpose() * DMat4::from_translation(-sphereo);
-    Pose {
-        transfm,
-        inverse,
-        sphereo,
-    }
-}
-
 /// The point of a motion path at the fraction `f` of the way (§3.2.2):
 /// the straight line from `from` to `to`, or the cubic Bezier with the
 /// two `via` points as its inner control points.
@@ -311,7 +296,7 @@ pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidel
         // whatever its motion record says.
         Fidelity::Listing => {
             let sphereo = object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0);
-            posed(object, rotation(Axis::X, 270.0 * time * 50.0), sphereo)
+            object.pose().turned(rotation(Axis::X, 270.0 * time * 50.0), sphereo)
         }
         // Thesis (§3.2.2): the user's path, the turn interpolated linearly,
         // both at LAW(law, 1, time); turns about x, then y, then z.
@@ -320,7 +305,7 @@ pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidel
             let sphereo = path_point(object.sphereo, motion, f);
             let t = motion.turn * f;
             let turn = rotation(Axis::Z, t.z) * rotation(Axis::Y, t.y) * rotation(Axis::X, t.x);
-            posed(object, turn, sphereo)
+            object.pose().turned(turn, sphereo)
         }
     }
 }

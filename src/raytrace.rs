@@ -16,9 +16,10 @@
 use rayon::prelude::*;
 
 use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
+use crate::paper::PaperChain;
 use crate::raster::{rgbtochars, Raster};
 use crate::trace::{raytrace, rest_poses, Snapshot, TraceStats};
-use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, TimeSampler, View};
+use crate::types::{DVec3, Fidelity, Intensity, ObjectRecord, Options, Pos, Ray, Scene, Shape, TimeSampler, View};
 
 /// A scene the renderer cannot draw yet or at all.
 #[derive(Debug, thiserror::Error)]
@@ -34,18 +35,6 @@ pub enum RenderError {
         record: &'static str,
         message: String,
     },
-}
-
-/// Refuses the records whose rendering is still to come (key-frame
-/// deformation), naming the first.
-pub fn check_supported(scene: &Scene) -> Result<(), RenderError> {
-    if let Some(k) = scene.keyframes.first() {
-        return Err(RenderError::Unsupported {
-            pos: k.pos,
-            record: "keyframe",
-        });
-    }
-    Ok(())
 }
 
 /// The subpixel times of a scene: its `pattern` and `blur` records, or
@@ -64,12 +53,45 @@ pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, Render
 
 /// The set-up the main program does between `initialize` and the scanline
 /// loop: the sweeps' `spline` coefficients and boxes, the subpixel time
-/// table (then, with later work, `goahead` per key-frame pair).
+/// table, and `goahead` for each key-frame pair (a chain of pairs for a
+/// `keyframe` record of more than two shapes). The in-between object's
+/// bounding sphere is widened to hold its contour at every time.
 pub fn prepare(scene: &mut Scene, opts: &Options) -> Result<(), RenderError> {
-    check_supported(scene)?;
     time_table(scene, opts.fidelity)?;
     crate::shapes::sweep::prepare_sweeps(scene, opts.fidelity);
+    for (k, chain) in key_frame_chains(scene, opts.fidelity)? {
+        let b = chain.bbox();
+        let corner = DVec3::new(
+            b.xmin.abs().max(b.xmax.abs()),
+            b.ymin.abs().max(b.ymax.abs()),
+            b.zmin.abs().max(b.zmax.abs()),
+        );
+        let first = scene.keyframes[k].first;
+        if corner.is_finite() {
+            scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
+        }
+    }
     Ok(())
+}
+
+/// `goahead(i2, …)` for every key-frame pair of the main program
+/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record,
+/// with the record's index.
+pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
+    scene
+        .keyframes
+        .iter()
+        .enumerate()
+        .map(|(k, record)| {
+            PaperChain::from_keyframe(scene, record, fidelity)
+                .map(|chain| (k, chain))
+                .map_err(|e| RenderError::Misfit {
+                    pos: record.pos,
+                    record: "keyframe",
+                    message: e.to_string(),
+                })
+        })
+        .collect()
 }
 
 /// `getangle(sinz, cosz, sinx, cosx)`: the angles of the world → view
@@ -227,6 +249,14 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
         .iter()
         .filter(|mo| !Isblur(mo.object, &motionmatrix))
         .collect();
+    // `prepare` has reported a pair that cannot be built; a caller that
+    // skipped it renders the key shapes as they stand.
+    let chains: Vec<(usize, PaperChain)> = key_frame_chains(scene, opts.fidelity)
+        .unwrap_or_default()
+        .into_iter()
+        .map(|(k, chain)| (scene.keyframes[k].first, chain))
+        .collect();
+    let timed = !moving.is_empty() || !chains.is_empty();
     let first_col = match opts.fidelity {
         Fidelity::Listing => 0,
         Fidelity::Thesis => 1,
@@ -255,8 +285,19 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
             let mut primary = 0u64;
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
             let mut poses = rest_poses(scene);
+            // The in-between objects' contours change per subpixel: this
+            // row's own copy of the objects, their contours in scratch.
+            let mut objects: Vec<ObjectRecord> = if chains.is_empty() {
+                Vec::new()
+            } else {
+                let mut objects = scene.objects.clone();
+                for (first, chain) in &chains {
+                    objects[*first].shape = Shape::Sweep(chain.scratch());
+                }
+                objects
+            };
             let row_strata: Vec<Vec<u32>> = match opts.sampler {
-                TimeSampler::Stratified if !moving.is_empty() => {
+                TimeSampler::Stratified if timed => {
                     (0..img.width).map(|x| strata(row * img.width + x, m * m)).collect()
                 }
                 _ => Vec::new(),
@@ -266,7 +307,7 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                 for scancol in first_col..=camera.virthighx {
                     let (jx, jz) = jitter(scanline, scancol);
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
-                    if !moving.is_empty() {
+                    if timed {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
                         let time = match opts.sampler {
                             TimeSampler::Table => times.time(scanline, scancol, k),
@@ -280,8 +321,21 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                         for mo in &moving {
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }
+                        // `motionblur`'s `paper = 1` branch: the pose moved
+                        // by `diff`, then `do34` at time 0 or 1, else
+                        // `Hermite` (both in `PaperChain::inbetween`).
+                        for (first, chain) in &chains {
+                            poses[*first] = chain.pose(time);
+                            if let Shape::Sweep(sw) = &mut objects[*first].shape {
+                                chain.inbetween(time, sw);
+                            }
+                        }
                     }
-                    let snap = Snapshot { scene, poses: &poses };
+                    let snap = Snapshot {
+                        scene,
+                        objects: if chains.is_empty() { &scene.objects } else { &objects },
+                        poses: &poses,
+                    };
                     let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
                     primary += 1;
                     if scancol >= 1 {
@@ -328,7 +382,11 @@ pub fn debug_log(scene: &Scene, render: &Render) -> String {
     }
     let _ = writeln!(s, "kfTIRcnt={:9}", render.stats.kftircnt);
     // What the listing wrote to standard output from `roottesting`, counted.
-    let _ = writeln!(s, "**** impossible ****{:9}", crate::proc::sweep::roottesting_impossible_count());
+    let _ = writeln!(
+        s,
+        "**** impossible ****{:9}",
+        crate::proc::sweep::roottesting_impossible_count()
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "FRAME NUMBER{:4}---DONE", 1);
     s

@@ -24,16 +24,19 @@
 
 use crate::shapes::{face_coords, intersect_object};
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene, SurfaceAttribute,
-    SurfaceRecord,
+    DVec3, Intensity, IntersectionRecord, LocalHit, ObjectRecord, Options, PaintKind, Painting, Pose, Ray, Scene,
+    SurfaceAttribute, SurfaceRecord,
 };
 
-/// The scene at one instant of the shutter: the read-only scene and where
-/// each of its objects stands then (`poses[i]` for `scene.objects[i]`).
-/// What `motionblur` wrote into the shared records, the port keeps here.
+/// The scene at one instant of the shutter: the read-only scene, its
+/// objects as they are then (`objects[i]` is `scene.objects[i]`, or a
+/// per-thread copy whose contour a key-frame pair has deformed), and where
+/// each stands (`poses[i]`). What `motionblur` wrote into the shared
+/// records, the port keeps here.
 #[derive(Clone, Copy, Debug)]
 pub struct Snapshot<'a> {
     pub scene: &'a Scene,
+    pub objects: &'a [ObjectRecord],
     pub poses: &'a [Pose],
 }
 
@@ -84,7 +87,7 @@ impl std::ops::AddAssign for TraceStats {
 /// false`. `dir` must be unit length.
 pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
     let mut best: Option<(usize, LocalHit)> = None;
-    for (i, (obj, pose)) in snap.scene.objects.iter().zip(snap.poses).enumerate() {
+    for (i, (obj, pose)) in snap.objects.iter().zip(snap.poses).enumerate() {
         if let Some(h) = intersect_object(obj, pose, ray, TMIN, opts) {
             if best.is_none_or(|(_, b)| h.t < b.t) {
                 best = Some((i, h));
@@ -98,7 +101,7 @@ pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<Intersect
 /// The intersection record of a local hit: world point and normal, and the
 /// fudged-out and fudged-in points.
 fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> IntersectionRecord {
-    let obj = &snap.scene.objects[object];
+    let obj = &snap.objects[object];
     let point = ray.at(hit.t);
     let normal = snap.poses[object].transfm.transform_vector3(hit.normal).normalize();
     let fudge = FUDGE * (1.0 + point.abs().max_element());
@@ -117,8 +120,8 @@ fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> Inter
 
 /// The colour a surface shows at a hit under diffuse light: its `color`,
 /// or its pattern's (`painting` of unit `proc`), or its texture's.
-pub fn surface_color(scene: &Scene, surf: &SurfaceRecord, hit: &IntersectionRecord, opts: &Options) -> Intensity {
-    let obj = &scene.objects[hit.object];
+pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord, opts: &Options) -> Intensity {
+    let obj = &snap.objects[hit.object];
     if let Some(tex) = &surf.texture {
         let f = face_coords(obj, hit.local, hit.local_normal);
         return tex.texel(f.s / f.width, f.t / f.height);
@@ -181,7 +184,7 @@ pub fn raytrace(
     } else {
         (-hit.normal, hit.insidep, hit.p)
     };
-    let color = surface_color(scene, surf, &hit, opts);
+    let color = surface_color(snap, surf, &hit, opts);
     let ambient_color = if surf.paint.is_some() || surf.texture.is_some() {
         color
     } else {
@@ -239,7 +242,7 @@ fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, opts: &Options, stats: &mut Trac
 /// How much light passes along a shadow ray to a light `dist` away.
 fn shadow(snap: &Snapshot, ray: Ray, dist: f64, opts: &Options) -> Intensity {
     let mut transmit = Intensity::ONE;
-    for (obj, pose) in snap.scene.objects.iter().zip(snap.poses) {
+    for (obj, pose) in snap.objects.iter().zip(snap.poses) {
         let surf = &snap.scene.surfaces[obj.surface];
         if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
             continue;

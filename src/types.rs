@@ -136,7 +136,7 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// The texel under (s, t) ∈ [0,1]², s to the right, t upward; nearest
+    /// The texel under (s, t) in the unit square, s to the right, t upward; nearest
     /// texel, as a 1989 frame-buffer paste would take it.
     pub fn texel(&self, s: f64, t: f64) -> Intensity {
         let col = ((s.clamp(0.0, 1.0) * self.width as f64) as usize).min(self.width - 1);
@@ -206,6 +206,30 @@ pub struct BoundingBox {
     pub ymax: f64,
     pub zmin: f64,
     pub zmax: f64,
+}
+
+impl BoundingBox {
+    /// The box that holds nothing, to be widened by [`BoundingBox::union`].
+    pub const EMPTY: BoundingBox = BoundingBox {
+        xmin: f64::INFINITY,
+        xmax: f64::NEG_INFINITY,
+        ymin: f64::INFINITY,
+        ymax: f64::NEG_INFINITY,
+        zmin: f64::INFINITY,
+        zmax: f64::NEG_INFINITY,
+    };
+
+    /// The smallest box holding both.
+    pub fn union(&self, b: &BoundingBox) -> BoundingBox {
+        BoundingBox {
+            xmin: self.xmin.min(b.xmin),
+            xmax: self.xmax.max(b.xmax),
+            ymin: self.ymin.min(b.ymin),
+            ymax: self.ymax.max(b.ymax),
+            zmin: self.zmin.min(b.zmin),
+            zmax: self.zmax.max(b.zmax),
+        }
+    }
 }
 
 /// The sweep variant of `objectrecord`: `orientt`, `segment`, `u`, `v`, and
@@ -303,6 +327,25 @@ pub struct Pose {
     pub transfm: DMat4,
     pub inverse: DMat4,
     pub sphereo: Points,
+}
+
+impl Pose {
+    /// This pose turned by `turn` (a rotation about axes through the
+    /// object's origin) and moved to `sphereo`: T(sphereo) · turn · (the
+    /// rotation and axis of this pose). The convention of every motion in
+    /// the port (`drt::motionblur`, the key-frame pose; DEVIATIONS D8).
+    pub fn turned(&self, turn: DMat4, sphereo: Points) -> Pose {
+        // Both matrices are rigid: transfm = T(s)·R and inverse = Rᵀ·T(−s),
+        // so R is transfm without its translation, and the new pair is
+        // T(sphereo)·R′ and R′ᵀ·T(−sphereo) with R′ = turn·R.
+        let r = glam::DMat3::from_mat4(turn) * glam::DMat3::from_mat4(self.transfm);
+        let rt = r.transpose();
+        let mut transfm = DMat4::from_mat3(r);
+        transfm.w_axis = sphereo.extend(1.0);
+        let mut inverse = DMat4::from_mat3(rt);
+        inverse.w_axis = (-(rt * sphereo)).extend(1.0);
+        Pose { transfm, inverse, sphereo }
+    }
 }
 
 /// `ray = record x0, x1, y0, y1, z0, z1 : real end`: the Pascal ray runs

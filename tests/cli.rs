@@ -174,3 +174,29 @@ fn every_legacy_deck_renders_without_nan() {
         }
     }
 }
+
+/// With no deck, the embedded default (nec_morph.deck) is rendered to
+/// raster/default.ras and raster/default.png under the working folder.
+#[test]
+fn no_deck_renders_the_embedded_default() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = raytrace().arg("-q").current_dir(dir.path()).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let r = raytrace::raster::read_raster_file(&dir.path().join("raster/default.ras")).unwrap();
+    assert_eq!((r.width, r.height), (256, 256));
+    let png = std::fs::read(dir.path().join("raster/default.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG"));
+    // The blue letters are in the picture.
+    let blue = |p: &&[u8; 3]| p[2] as i32 > p[0] as i32 + 60 && p[2] as i32 > p[1] as i32 + 40;
+    assert!(r.pixels.iter().filter(blue).count() > 200);
+    // The deck it embeds (include_str! of this file) is the key-frame chain.
+    let file = decks().join("nec_morph.deck");
+    let scene = raytrace::deck::initialize(
+        &std::fs::read_to_string(file).unwrap(),
+        "nec_morph.deck",
+        decks(),
+        raytrace::types::Fidelity::Thesis,
+    )
+    .unwrap();
+    assert_eq!(scene.keyframes.len(), 1);
+}

@@ -390,8 +390,14 @@ fn comments_of_both_forms_anywhere() {
 
 #[test]
 fn default_deck_initializes() {
-    let text = include_str!("../legacy_pascal/decks/default.deck");
-    let s = initialize(text, "default.deck", Path::new("legacy_pascal/decks"), Fidelity::Thesis).unwrap();
+    let text = include_str!("../legacy_pascal/decks/still_life.deck");
+    let s = initialize(
+        text,
+        "still_life.deck",
+        Path::new("legacy_pascal/decks"),
+        Fidelity::Thesis,
+    )
+    .unwrap();
     assert_eq!((s.image.width, s.image.height, s.image.masksize), (256, 256, 2));
     let classes: Vec<PrimitiveClass> = s.objects.iter().map(|o| o.class).collect();
     for c in [

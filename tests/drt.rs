@@ -279,7 +279,15 @@ fn moving_square(sampler: TimeSampler) {
         pos: Pos::default(),
         n: 1,
     });
-    let img = render(&s, &Options { sampler, ..Options::default() }, &|| {}).raster;
+    let img = render(
+        &s,
+        &Options {
+            sampler,
+            ..Options::default()
+        },
+        &|| {},
+    )
+    .raster;
     let cam = raytrace::raytrace::Camera::new(&s, Fidelity::Thesis);
     let pixel_w = 16.0 / 64.0; // screen 16 wide over 64 pixels, nearly parallel projection
     let bound = 2.0 / (m * m) as f64 + 2.0 * pixel_w / d + 1.0 / 255.0;
@@ -391,6 +399,10 @@ fn random_and_stratified_times() {
             4 => 15,
             _ => 45,
         };
-        assert!(orders.len() >= want, "n {n}: only {} orders over 50 pixels", orders.len());
+        assert!(
+            orders.len() >= want,
+            "n {n}: only {} orders over 50 pixels",
+            orders.len()
+        );
     }
 }

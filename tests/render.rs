@@ -100,11 +100,11 @@ fn texture_reaches_the_image() {
     assert_eq!(plain.pixels.iter().filter(|p| vivid(p)).count(), 0);
 }
 
-/// The default deck's floor carries the `floortest` checker: along a row
+/// The still life.s floor carries the `floortest` checker: along a row
 /// of the nearer floor the floor changes between its two colours many times.
 #[test]
-fn default_deck_floor_is_a_checker() {
-    let scene = load("default.deck", Fidelity::Thesis);
+fn still_life_floor_is_a_checker() {
+    let scene = load("still_life.deck", Fidelity::Thesis);
     let img = render(&scene, &Options::default(), &|| {}).raster;
     let y = img.height * 7 / 8;
     let row = &img.pixels[y * img.width..(y + 1) * img.width];

@@ -17,6 +17,7 @@ fn trace_one(s: &Scene, ray: &Ray) -> Intensity {
     raytrace(
         &Snapshot {
             scene: s,
+            objects: &s.objects,
             poses: &poses,
         },
         ray,

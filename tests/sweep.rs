@@ -26,11 +26,7 @@ impl Rng {
     }
     fn unit(&mut self) -> DVec3 {
         loop {
-            let v = DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
+            let v = DVec3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
             let l = v.length();
             if l > 0.1 && l <= 1.0 {
                 return v / l;
@@ -62,28 +58,34 @@ const OPTS: [Options; 4] = [
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Laguerre,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Laguerre,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Robust,
+        sampler: TimeSampler::Table,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Robust,
+        sampler: TimeSampler::Table,
     },
 ];
 
 const ROBUST: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Robust,
+    sampler: TimeSampler::Table,
 };
 const LAGUERRE: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Laguerre,
+    sampler: TimeSampler::Table,
 };
 
 fn scene_with(objects: Vec<ObjectRecord>) -> Scene {
@@ -141,13 +143,7 @@ fn raw(curve: CurveKind, points: Vec<[f64; 2]>, length: f64, scale: f64) -> Swee
 }
 
 /// A prepared sweep (Thesis boxes).
-fn sweep(
-    class: PrimitiveClass,
-    curve: CurveKind,
-    points: Vec<[f64; 2]>,
-    length: f64,
-    scale: f64,
-) -> SweepShape {
+fn sweep(class: PrimitiveClass, curve: CurveKind, points: Vec<[f64; 2]>, length: f64, scale: f64) -> SweepShape {
     let mut scene = scene_with(vec![object(class, raw(curve, points, length, scale))]);
     prepare_sweeps(&mut scene, Fidelity::Thesis);
     match scene.objects.pop().unwrap().shape {
@@ -192,14 +188,7 @@ fn nearest(sw: &SweepShape, q: [f64; 2]) -> (f64, usize, f64) {
             let mut s = j as f64 / 200.0;
             // Newton on (c(s) − q)·c′(s) = 0.
             for _ in 0..30 {
-                let (x, y, dx, dy, ddx, ddy) = (
-                    ev(u, s),
-                    ev(v, s),
-                    ev1(u, s),
-                    ev1(v, s),
-                    ev2(u, s),
-                    ev2(v, s),
-                );
+                let (x, y, dx, dy, ddx, ddy) = (ev(u, s), ev(v, s), ev1(u, s), ev1(v, s), ev2(u, s), ev2(v, s));
                 let g = (x - q[0]) * dx + (y - q[1]) * dy;
                 let dg = dx * dx + dy * dy + (x - q[0]) * ddx + (y - q[1]) * ddy;
                 if dg <= 0.0 {
@@ -299,11 +288,7 @@ fn check_hit(class: PrimitiveClass, sw: &SweepShape, hit: &LocalHit) -> (f64, f6
             };
             let cap = cap0.min(cap1);
             if cap < side {
-                let want = if (p.z - sw.length).abs() < p.z.abs() {
-                    1.0
-                } else {
-                    -1.0
-                };
+                let want = if (p.z - sw.length).abs() < p.z.abs() { 1.0 } else { -1.0 };
                 (cap / size, (n - DVec3::new(0.0, 0.0, want)).length(), unit)
             } else {
                 (side / size, perp, unit)
@@ -317,21 +302,8 @@ fn check_hit(class: PrimitiveClass, sw: &SweepShape, hit: &LocalHit) -> (f64, f6
 
 #[test]
 fn bspline_joint_identities() {
-    let pts: Vec<[f64; 2]> = vec![
-        [0.0, 0.0],
-        [2.0, 1.0],
-        [3.0, 4.0],
-        [1.0, 5.0],
-        [-1.0, 3.0],
-        [-2.0, 1.0],
-    ];
-    let sw = sweep(
-        PrimitiveClass::Translation,
-        CurveKind::Bspline,
-        pts.clone(),
-        1.0,
-        1.0,
-    );
+    let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [2.0, 1.0], [3.0, 4.0], [1.0, 5.0], [-1.0, 3.0], [-2.0, 1.0]];
+    let sw = sweep(PrimitiveClass::Translation, CurveKind::Bspline, pts.clone(), 1.0, 1.0);
     assert_eq!(sw.segment, 6);
     let n = pts.len();
     for i in 0..n {
@@ -359,13 +331,7 @@ fn bspline_joint_identities() {
 #[test]
 fn erratum_11_second_derivative_at_a_joint() {
     let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [3.0, 3.0], [4.0, 1.0], [2.0, -2.0]];
-    let sw = sweep(
-        PrimitiveClass::Translation,
-        CurveKind::Bspline,
-        pts.clone(),
-        1.0,
-        1.0,
-    );
+    let sw = sweep(PrimitiveClass::Translation, CurveKind::Bspline, pts.clone(), 1.0, 1.0);
     let (x0, x1, x2) = (pts[0][0], pts[1][0], pts[2][0]);
     let second = ev2(&sw.u[0], 0.0);
     assert!((second - (x0 - 2.0 * x1 + x2)).abs() < 1e-12, "thesis: M_s");
@@ -378,35 +344,16 @@ fn erratum_11_second_derivative_at_a_joint() {
 
 #[test]
 fn bezier_end_points_and_tangents() {
-    let pts: Vec<[f64; 2]> = vec![
-        [0.0, 0.0],
-        [1.0, 2.0],
-        [3.0, 2.5],
-        [4.0, 0.5],
-        [3.0, -1.0],
-        [1.0, -1.5],
-    ];
-    let sw = sweep(
-        PrimitiveClass::Translation,
-        CurveKind::Bezier,
-        pts.clone(),
-        1.0,
-        1.0,
-    );
+    let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [1.0, 2.0], [3.0, 2.5], [4.0, 0.5], [3.0, -1.0], [1.0, -1.5]];
+    let sw = sweep(PrimitiveClass::Translation, CurveKind::Bezier, pts.clone(), 1.0, 1.0);
     assert_eq!(sw.segment, 2);
     for i in 0..2 {
         let p: Vec<[f64; 2]> = (0..4).map(|k| pts[(3 * i + k) % 6]).collect();
         for (c, k) in [(&sw.u[i], 0), (&sw.v[i], 1)] {
             assert!((ev(c, 0.0) - p[0][k]).abs() < 1e-12, "passes through P1");
             assert!((ev(c, 1.0) - p[3][k]).abs() < 1e-12, "passes through P4");
-            assert!(
-                (ev1(c, 0.0) - 3.0 * (p[1][k] - p[0][k])).abs() < 1e-12,
-                "3(P2 − P1)"
-            );
-            assert!(
-                (ev1(c, 1.0) - 3.0 * (p[3][k] - p[2][k])).abs() < 1e-12,
-                "3(P4 − P3)"
-            );
+            assert!((ev1(c, 0.0) - 3.0 * (p[1][k] - p[0][k])).abs() < 1e-12, "3(P2 − P1)");
+            assert!((ev1(c, 1.0) - 3.0 * (p[3][k] - p[2][k])).abs() < 1e-12, "3(P4 − P3)");
         }
     }
 }
@@ -427,10 +374,7 @@ fn spline_coefficients_through_prepare() {
     let u = bz.u[0];
     // P = 0, 6, 12, 0: a = 0 + 18 − 36 + 0 = −18, b = 0 − 36 + 36 = 0,
     // c = 0 + 18 = 18, d = 0.
-    assert_eq!(
-        (u.a, u.b, u.c, u.d, u.min, u.max),
-        (-18.0, 0.0, 18.0, 0.0, 0.0, 12.0)
-    );
+    assert_eq!((u.a, u.b, u.c, u.d, u.min, u.max), (-18.0, 0.0, 18.0, 0.0, 0.0, 12.0));
     // B-spline, four points: segment 0 = P0 P1 P2 P3 = 0, 6, 12, 30.
     let bs = sweep(
         PrimitiveClass::Translation,
@@ -521,10 +465,7 @@ fn near_double_roots() {
     assert!((r.x[0] - 0.4).abs() < 1e-7);
     for fid in [Fidelity::Listing, Fidelity::Thesis] {
         let got = laguerre_roots(3, &a, fid);
-        assert!(
-            got.iter().filter(|g| (*g - 0.4).abs() < 1e-3).count() <= 1,
-            "{got:?}"
-        );
+        assert!(got.iter().filter(|g| (*g - 0.4).abs() < 1e-3).count() <= 1, "{got:?}");
     }
 }
 
@@ -550,40 +491,23 @@ fn robust_finds_every_root() {
         }
         let scale = rng.range(0.1, 10.0) * if rng.next() < 0.5 { -1.0 } else { 1.0 };
         let a = poly(&roots, scale);
-        let mut want: Vec<f64> = roots
-            .iter()
-            .copied()
-            .filter(|x| (0.0..=1.0).contains(x))
-            .collect();
+        let mut want: Vec<f64> = roots.iter().copied().filter(|x| (0.0..=1.0).contains(x)).collect();
         want.sort_by(f64::total_cmp);
         let got = real_roots(deg, &a, 0.0, 1.0);
         // A root within rounding of an end may fall either side of it.
-        let near_end = roots
-            .iter()
-            .any(|x| x.abs() < 1e-9 || (x - 1.0).abs() < 1e-9);
+        let near_end = roots.iter().any(|x| x.abs() < 1e-9 || (x - 1.0).abs() < 1e-9);
         if near_end {
             continue;
         }
         cases += 1;
-        assert_eq!(
-            got.count,
-            want.len(),
-            "roots {roots:?}: got {:?}",
-            got.roots()
-        );
+        assert_eq!(got.count, want.len(), "roots {roots:?}: got {:?}", got.roots());
         for (g, w) in got.roots().iter().zip(&want) {
             // Within what rounding of the coefficients allows: the root's
             // condition number, Σ|a_k| w^k / |p′(w)|.
             let s: f64 = (0..=deg).map(|k| a[k].abs() * w.powi(k as i32)).sum();
-            let dp: f64 = (1..=deg)
-                .map(|k| k as f64 * a[k] * w.powi(k as i32 - 1))
-                .sum();
+            let dp: f64 = (1..=deg).map(|k| k as f64 * a[k] * w.powi(k as i32 - 1)).sum();
             let bound = 1e-12 + 256.0 * f64::EPSILON * s / dp.abs();
-            assert!(
-                (g - w).abs() <= bound,
-                "roots {roots:?}: got {:?}",
-                got.roots()
-            );
+            assert!((g - w).abs() <= bound, "roots {roots:?}: got {:?}", got.roots());
         }
         assert!(got.multiplicity[..got.count].iter().all(|&m| m == 1));
     }
@@ -629,12 +553,7 @@ fn laguerre_miss_counts_are_pinned() {
     let expected: [(&str, usize, usize, usize, usize); 4] = EXPECTED_MISSES;
     assert_eq!(table.len(), expected.len());
     for (row, want) in table.iter().zip(expected) {
-        assert_eq!(
-            (row.0, row.1, row.2, row.3, row.4),
-            want,
-            "family {}",
-            row.0
-        );
+        assert_eq!((row.0, row.1, row.2, row.3, row.4), want, "family {}", row.0);
     }
 }
 
@@ -676,16 +595,9 @@ fn laguerre_miss_table() -> Vec<(&'static str, usize, usize, usize, usize)> {
                 }
             }
             let a = poly(&roots, 1.0);
-            let want: Vec<f64> = roots
-                .iter()
-                .copied()
-                .filter(|x| (0.0..=1.0).contains(x))
-                .collect();
+            let want: Vec<f64> = roots.iter().copied().filter(|x| (0.0..=1.0).contains(x)).collect();
             total += want.len();
-            for (fid, miss) in [
-                (Fidelity::Listing, &mut miss_l),
-                (Fidelity::Thesis, &mut miss_t),
-            ] {
+            for (fid, miss) in [(Fidelity::Listing, &mut miss_l), (Fidelity::Thesis, &mut miss_t)] {
                 let got = laguerre_roots(deg, &a, fid);
                 *miss += want
                     .iter()
@@ -767,11 +679,7 @@ fn shapes() -> Vec<(&'static str, PrimitiveClass, SweepShape)> {
                 1.0,
             ),
         ),
-        (
-            "frustum",
-            Conic,
-            sweep(Conic, Bspline, circle_points(1.0), 2.0, 0.5),
-        ),
+        ("frustum", Conic, sweep(Conic, Bspline, circle_points(1.0), 2.0, 0.5)),
         (
             "star-cone",
             Conic,
@@ -809,21 +717,11 @@ fn shapes() -> Vec<(&'static str, PrimitiveClass, SweepShape)> {
             Rotation,
             sweep(Rotation, Bezier, sphere_points(1.0), 0.0, 1.0),
         ),
-        (
-            "vase",
-            Rotation,
-            sweep(Rotation, Bspline, vase_points(), 0.0, 1.0),
-        ),
+        ("vase", Rotation, sweep(Rotation, Bspline, vase_points(), 0.0, 1.0)),
         (
             "sphere-cw",
             Rotation,
-            sweep(
-                Rotation,
-                Bezier,
-                reversed_bezier(sphere_points(1.0)),
-                0.0,
-                1.0,
-            ),
+            sweep(Rotation, Bezier, reversed_bezier(sphere_points(1.0)), 0.0, 1.0),
         ),
     ]
 }
@@ -861,18 +759,11 @@ fn random_ray(rng: &mut Rng, sw: &SweepShape, class: PrimitiveClass) -> Ray {
             let r = b.xmax.abs().max(b.xmin.abs());
             (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
         }
-        _ => (
-            DVec3::new(b.xmin, b.ymin, b.zmin),
-            DVec3::new(b.xmax, b.ymax, b.zmax),
-        ),
+        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
     };
     let centre = (lo + hi) * 0.5;
     let origin = centre + rng.unit() * 8.0;
-    let target = DVec3::new(
-        rng.range(lo.x, hi.x),
-        rng.range(lo.y, hi.y),
-        rng.range(lo.z, hi.z),
-    );
+    let target = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
     Ray::new(origin, (target - origin).normalize())
 }
 
@@ -1009,11 +900,7 @@ fn circle_sweep_matches_a_cylinder() {
                             let rr = h.point.x.hypot(h.point.y);
                             assert!((rr - r).abs() <= dev + 1e-12, "radius {rr}");
                             // First order in the deviation; 1.5 for the curvature.
-                            assert!(
-                                (h.t - tc).abs() <= 1.5 * dev / cos,
-                                "t {} vs {tc}, cos {cos}",
-                                h.t
-                            );
+                            assert!((h.t - tc).abs() <= 1.5 * dev / cos, "t {} vs {tc}, cos {cos}", h.t);
                             assert!(h.normal.dot(nc) > 0.95);
                             sides += 1;
                         }
@@ -1027,10 +914,7 @@ fn circle_sweep_matches_a_cylinder() {
                     let p = ray.at(tc);
                     let near_rim = (p.x.hypot(p.y) - r).abs() < 2.0 * dev;
                     let grazing = ray_min_radius(&ray) > r - 2.0 * dev;
-                    assert!(
-                        near_rim || grazing,
-                        "{opts:?}: missed the sweep at t = {tc}"
-                    );
+                    assert!(near_rim || grazing, "{opts:?}: missed the sweep at t = {tc}");
                 }
                 (None, Some(h)) => {
                     assert!(
@@ -1062,7 +946,7 @@ fn cylinder_hit(r: f64, len: f64, ray: &Ray) -> Option<(f64, DVec3)> {
     let (o, d) = (ray.origin, ray.dir);
     let mut best: Option<(f64, DVec3)> = None;
     let mut take = |t: f64, n: DVec3| {
-        if t > 1e-9 && best.map_or(true, |b| t < b.0) {
+        if t > 1e-9 && best.is_none_or(|b| t < b.0) {
             best = Some((t, n));
         }
     };
@@ -1071,10 +955,7 @@ fn cylinder_hit(r: f64, len: f64, ray: &Ray) -> Option<(f64, DVec3)> {
     let c = o.x * o.x + o.y * o.y - r * r;
     let disc = b * b - 4.0 * a * c;
     if a > 0.0 && disc >= 0.0 {
-        for t in [
-            (-b - disc.sqrt()) / (2.0 * a),
-            (-b + disc.sqrt()) / (2.0 * a),
-        ] {
+        for t in [(-b - disc.sqrt()) / (2.0 * a), (-b + disc.sqrt()) / (2.0 * a)] {
             let p = ray.at(t);
             if (0.0..=len).contains(&p.z) {
                 take(t, DVec3::new(p.x, p.y, 0.0) / r);
@@ -1162,13 +1043,7 @@ fn both() -> [Options; 2] {
     [ROBUST, LAGUERRE]
 }
 
-fn hit(
-    class: PrimitiveClass,
-    sw: &SweepShape,
-    o: [f64; 3],
-    d: [f64; 3],
-    opts: &Options,
-) -> Option<LocalHit> {
+fn hit(class: PrimitiveClass, sw: &SweepShape, o: [f64; 3], d: [f64; 3], opts: &Options) -> Option<LocalHit> {
     let ray = Ray::new(DVec3::from_array(o), DVec3::from_array(d).normalize());
     intersect_sweep(class, sw, &ray, 1e-9, opts)
 }
@@ -1195,14 +1070,7 @@ fn translation_ray_parallel_to_the_axis() {
         assert!((h.t - 1.0).abs() < 1e-12 && h.normal == DVec3::Z);
         // Between two points of the star: outside, no hit.
         let a = PI / 8.0;
-        assert!(hit(
-            t,
-            &sw,
-            [1.0 * a.cos(), 1.0 * a.sin(), -5.0],
-            [0.0, 0.0, 1.0],
-            &opts
-        )
-        .is_none());
+        assert!(hit(t, &sw, [1.0 * a.cos(), 1.0 * a.sin(), -5.0], [0.0, 0.0, 1.0], &opts).is_none());
         // A tilt below the threshold takes the same path; a small one the
         // general path, with nearly the same answer.
         let h1 = hit(t, &sw, [0.1, 0.2, -5.0], [1e-13, 0.0, 1.0], &opts).unwrap();
@@ -1214,13 +1082,7 @@ fn translation_ray_parallel_to_the_axis() {
 
 #[test]
 fn rotation_ray_perpendicular_to_the_axis() {
-    let sw = sweep(
-        PrimitiveClass::Rotation,
-        CurveKind::Bspline,
-        vase_points(),
-        0.0,
-        1.0,
-    );
+    let sw = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
     let r = PrimitiveClass::Rotation;
     for opts in both() {
         for z in [0.3, 1.4, 2.3] {
@@ -1236,12 +1098,7 @@ fn rotation_ray_perpendicular_to_the_axis() {
                 continue;
             }
             let tilt = tilt.unwrap();
-            assert!(
-                (flat.t - tilt.t).abs() < 1e-5,
-                "z {z}: {} vs {}",
-                flat.t,
-                tilt.t
-            );
+            assert!((flat.t - tilt.t).abs() < 1e-5, "z {z}: {} vs {}", flat.t, tilt.t);
             assert!((flat.point.z - z).abs() < 1e-12);
             assert!(check_hit(r, &sw, &flat).0 < 1e-9);
             assert!(flat.normal.dot(DVec3::X) < 0.0, "faces the ray");
@@ -1292,13 +1149,7 @@ fn rotation_ray_along_the_axis() {
     }
     // The vase wall is clear of the axis: on the axis, no hit; at r = 0.5
     // the bottom of the wall.
-    let vase = sweep(
-        PrimitiveClass::Rotation,
-        CurveKind::Bspline,
-        vase_points(),
-        0.0,
-        1.0,
-    );
+    let vase = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
     for opts in both() {
         assert!(hit(r, &vase, [0.0, 0.0, -5.0], [0.0, 0.0, 1.0], &opts).is_none());
         let h = hit(r, &vase, [0.5, 0.0, -5.0], [0.0, 0.0, 1.0], &opts).unwrap();
@@ -1320,10 +1171,7 @@ fn conic_apex_cases() {
     for opts in both() {
         // In the plane of the apex, through it: touches the apex only.
         let h = hit(c, &cone, [-3.0, 0.0, 2.0], [1.0, 0.0, 0.0], &opts).unwrap();
-        assert!(
-            (h.t - 3.0).abs() < 1e-12 && h.point.length() > 1.99,
-            "{h:?}"
-        );
+        assert!((h.t - 3.0).abs() < 1e-12 && h.point.length() > 1.99, "{h:?}");
         // In the plane of the apex, beside it: nothing.
         assert!(hit(c, &cone, [-3.0, 0.01, 2.0], [1.0, 0.0, 0.0], &opts).is_none());
         // Down the axis from above: the apex first.
@@ -1339,26 +1187,14 @@ fn conic_apex_cases() {
         let h = hit(c, &cone, o, d, &opts).unwrap();
         assert!(h.point.z.abs() < 1e-12 && h.normal == DVec3::NEG_Z, "{h:?}");
         let inside = hit(c, &cone, [-0.2 * 0.5, -0.1 * 0.5, 1.5], d, &opts).unwrap();
-        assert!(
-            (inside.point - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-9,
-            "{inside:?}"
-        );
+        assert!((inside.point - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-9, "{inside:?}");
         // Through the apex from outside the cone: touches the apex.
         let h = hit(c, &cone, [-5.0, 0.0, 7.0], [1.0, 0.0, -1.0], &opts).unwrap();
-        assert!(
-            (h.point - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-9,
-            "{h:?}"
-        );
+        assert!((h.point - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-9, "{h:?}");
     }
     // scale 0.5: the apex (z = 4) is outside the solid; a ray through it
     // is the same degenerate case, meeting the caps.
-    let fr = sweep(
-        PrimitiveClass::Conic,
-        CurveKind::Bspline,
-        circle_points(1.0),
-        2.0,
-        0.5,
-    );
+    let fr = sweep(PrimitiveClass::Conic, CurveKind::Bspline, circle_points(1.0), 2.0, 0.5);
     for opts in both() {
         let h = hit(c, &fr, [0.0, 0.0, 6.0], [0.1, 0.0, -1.0], &opts).unwrap();
         assert!((h.point.z - 2.0).abs() < 1e-12 && h.normal == DVec3::Z);
@@ -1387,8 +1223,7 @@ fn grazing_ray_double_root() {
         let p = DVec3::new(ev(u, s0), ev(v, s0), 1.0);
         let tan = DVec3::new(ev1(u, s0), ev1(v, s0), 0.0).normalize();
         let ray = Ray::new(p - tan * 5.0, tan);
-        let h = intersect_sweep(t, &sw, &ray, 1e-9, &ROBUST)
-            .expect("the robust solver finds the tangency");
+        let h = intersect_sweep(t, &sw, &ray, 1e-9, &ROBUST).expect("the robust solver finds the tangency");
         assert!((h.t - 5.0).abs() < 1e-6, "s0 {s0}: {h:?}");
         assert!(h.normal.dot(tan).abs() < 1e-6);
         laguerre_found.push(intersect_sweep(t, &sw, &ray, 1e-9, &LAGUERRE).is_some());
@@ -1463,18 +1298,9 @@ fn rays_through_joints() {
         1.0,
         1.0,
     );
-    let vase = sweep(
-        PrimitiveClass::Rotation,
-        CurveKind::Bspline,
-        vase_points(),
-        0.0,
-        1.0,
-    );
+    let vase = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
     for opts in both() {
-        for (class, s) in [
-            (PrimitiveClass::Translation, &sw),
-            (PrimitiveClass::Translation, &bz),
-        ] {
+        for (class, s) in [(PrimitiveClass::Translation, &sw), (PrimitiveClass::Translation, &bz)] {
             for i in 0..s.segment {
                 let j = DVec3::new(s.u[i].d, s.v[i].d, 0.5);
                 // From far out, toward the joint along a slanted line.
@@ -1659,14 +1485,8 @@ fn point_in_contour_against_a_polygon() {
     assert!(point_in_contour(&dm.u, &dm.v, 0.0, 0.0));
     assert!(point_in_contour(&dm.u, &dm.v, -0.9, 0.0));
     assert!(!point_in_contour(&dm.u, &dm.v, -1.1, 0.0));
-    assert!(
-        !point_in_contour(&dm.u, &dm.v, -2.0, 1.0),
-        "through the top corner"
-    );
-    assert!(
-        !point_in_contour(&dm.u, &dm.v, -2.0, -1.0),
-        "through the bottom corner"
-    );
+    assert!(!point_in_contour(&dm.u, &dm.v, -2.0, 1.0), "through the top corner");
+    assert!(!point_in_contour(&dm.u, &dm.v, -2.0, -1.0), "through the bottom corner");
 }
 
 /// Laguerre on rotation sweeps seen nearly edge-on: a ray tilted by τ
@@ -1678,23 +1498,14 @@ fn point_in_contour_against_a_polygon() {
 /// laguerre_misses.md).
 #[test]
 fn laguerre_edge_on_rotation_band() {
-    let sw = sweep(
-        PrimitiveClass::Rotation,
-        CurveKind::Bspline,
-        vase_points(),
-        0.0,
-        1.0,
-    );
+    let sw = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
     let mut got = vec![];
     for tilt in [1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
         let (mut hits, mut miss, mut far) = (0, 0, 0);
         for i in 0..400 {
             let y = -1.1 + 2.2 * (i % 20) as f64 / 19.0;
             let z = 0.05 + 2.5 * (i / 20) as f64 / 19.0;
-            let ray = Ray::new(
-                DVec3::new(-6.0, y, z),
-                DVec3::new(1.0, 0.0, tilt).normalize(),
-            );
+            let ray = Ray::new(DVec3::new(-6.0, y, z), DVec3::new(1.0, 0.0, tilt).normalize());
             let r = intersect_sweep(PrimitiveClass::Rotation, &sw, &ray, 1e-9, &ROBUST);
             let l = intersect_sweep(PrimitiveClass::Rotation, &sw, &ray, 1e-9, &LAGUERRE);
             if let Some(r) = r {
@@ -1728,20 +1539,8 @@ fn laguerre_edge_on_rotation_band() {
 #[test]
 fn frustum_and_sphere_match_their_quadrics() {
     let (r, len, scale) = (1.0, 2.0, 0.5);
-    let fr = sweep(
-        PrimitiveClass::Conic,
-        CurveKind::Bspline,
-        circle_points(r),
-        len,
-        scale,
-    );
-    let sp = sweep(
-        PrimitiveClass::Rotation,
-        CurveKind::Bezier,
-        sphere_points(r),
-        0.0,
-        1.0,
-    );
+    let fr = sweep(PrimitiveClass::Conic, CurveKind::Bspline, circle_points(r), len, scale);
+    let sp = sweep(PrimitiveClass::Rotation, CurveKind::Bezier, sphere_points(r), 0.0, 1.0);
     let dev_fr = contour_deviation(&fr, |x, y| x.hypot(y) - r);
     let dev_sp = contour_deviation(&sp, |x, y| if x < 1e-12 { 0.0 } else { x.hypot(y) - r });
     assert!(dev_sp > 1e-5 && dev_sp < 1e-3, "{dev_sp}");
@@ -1755,12 +1554,9 @@ fn frustum_and_sphere_match_their_quadrics() {
         let mut best: Option<(f64, DVec3)> = None;
         let disc = b * b - 4.0 * a * c;
         if disc >= 0.0 && a != 0.0 {
-            for t in [
-                (-b - disc.sqrt()) / (2.0 * a),
-                (-b + disc.sqrt()) / (2.0 * a),
-            ] {
+            for t in [(-b - disc.sqrt()) / (2.0 * a), (-b + disc.sqrt()) / (2.0 * a)] {
                 let p = ray.at(t);
-                if t > 1e-9 && (0.0..=len).contains(&p.z) && best.map_or(true, |x| t < x.0) {
+                if t > 1e-9 && (0.0..=len).contains(&p.z) && best.is_none_or(|x| t < x.0) {
                     let k = 1.0 + kappa * p.z;
                     let n = DVec3::new(p.x, p.y, -r * r * k * kappa).normalize();
                     best = Some((t, n));
@@ -1770,7 +1566,7 @@ fn frustum_and_sphere_match_their_quadrics() {
         for (zc, nz, rad) in [(0.0, -1.0, r), (len, 1.0, r * scale)] {
             let t = (zc - o.z) / d.z;
             let p = ray.at(t);
-            if t > 1e-9 && p.x.hypot(p.y) <= rad && best.map_or(true, |x| t < x.0) {
+            if t > 1e-9 && p.x.hypot(p.y) <= rad && best.is_none_or(|x| t < x.0) {
                 best = Some((t, DVec3::new(0.0, 0.0, nz)));
             }
         }
@@ -1808,11 +1604,7 @@ fn frustum_and_sphere_match_their_quadrics() {
             }
             let h = intersect_sweep(class, sw, &ray, 1e-9, &ROBUST)
                 .unwrap_or_else(|| panic!("{class:?}: missed a quadric hit at t = {tq}"));
-            assert!(
-                (h.t - tq).abs() <= 1.5 * dev / cos + 1e-9,
-                "{class:?}: {} vs {tq}",
-                h.t
-            );
+            assert!((h.t - tq).abs() <= 1.5 * dev / cos + 1e-9, "{class:?}: {} vs {tq}", h.t);
             assert!(h.normal.dot(nq) > 0.95);
             compared += 1;
         }
@@ -1861,10 +1653,7 @@ fn garbage_in_no_panic() {
             PrimitiveClass::Conic,
             PrimitiveClass::Rotation,
         ][(rng.next() * 3.0) as usize];
-        let mut sc = scene_with(vec![object(
-            class,
-            raw(curve, points, pick(&mut rng), pick(&mut rng)),
-        )]);
+        let mut sc = scene_with(vec![object(class, raw(curve, points, pick(&mut rng), pick(&mut rng)))]);
         prepare_sweeps(
             &mut sc,
             if rng.next() < 0.5 {

@@ -10,11 +10,13 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
 
-/// The scene rendered when no deck is named: legacy_pascal/decks/default.deck.
-const DEFAULT_DECK: &str = include_str!("../../legacy_pascal/decks/default.deck");
+/// The scene rendered when no deck is named: legacy_pascal/decks/nec_morph.deck,
+/// the thesis's own motivating example (§1.2).
+const DEFAULT_DECK: &str = include_str!("../../legacy_pascal/decks/nec_morph.deck");
 
 const AFTER_HELP: &str = "\
-With no DECK, renders the embedded default deck (legacy_pascal/decks/default.deck)
+With no DECK, renders the embedded default deck (legacy_pascal/decks/nec_morph.deck:
+'N' deforming into 'E' and then 'C' while it moves, blurred)
 to raster/default.ras and raster/default.png.
 
 The raster file is a Sun rasterfile (24-bit RT_STANDARD), the format the thesis
@@ -151,7 +153,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         }
         None => (
             DEFAULT_DECK.to_string(),
-            "default.deck".to_string(),
+            "nec_morph.deck".to_string(),
             PathBuf::from("legacy_pascal/decks"),
             "default".to_string(),
         ),

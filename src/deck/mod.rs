@@ -5,7 +5,7 @@
 //! (`fview`, `filmdata`, `filmdata2`, `translationf`, …); Ch. 4 (a)–(b) says
 //! it sets up the variables and lets the user "create the scene" in the
 //! records of Fig. 4.3. The port reads all of that from one deck file whose
-//! format, /work/shared/DECK.md, is the users' contract. This comment is the
+//! format, legacy_pascal/DECK.md, is the users' contract. This comment is the
 //! user's reference for everything DECK.md leaves open; where a choice was
 //! open the stricter reading was taken, because an error can be relaxed
 //! later without breaking a deck, while an accepted deck must keep rendering

@@ -160,12 +160,12 @@ fn level_roots(p: &[f64; 7], m: usize, lo: f64, hi: f64, crit: &RealRoots) -> Re
     out
 }
 
-/// Every real root in [lo, hi] of a[0] + a[1]x + … + a[n]xⁿ, n ≤ 6
+/// Every real root in [lo, hi] of `a[0] + a[1]x + … + a[n]xⁿ`, n ≤ 6
 /// (coefficients above n are ignored), ascending, each once with its
 /// multiplicity.
 ///
 /// Leading coefficients too small to change p anywhere in the interval
-/// (|a[k]|·Mᵏ ≤ 10⁻¹⁵ Σ_{i<k} |a[i]|·Mⁱ, M = max(|lo|, |hi|, 1)) are
+/// (`|a[k]|·Mᵏ ≤ 10⁻¹⁵ Σ_{i<k} |a[i]|·Mⁱ`, M = max(|lo|, |hi|, 1)) are
 /// dropped, so a degree that has dropped does not throw roots to infinity.
 /// Nothing is found for non-finite input or an empty interval.
 pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {

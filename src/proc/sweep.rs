@@ -46,11 +46,8 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
         ),
         6 => (
             a[0] + xi * (a[1] + xi * (a[2] + xi * (a[3] + xi * (a[4] + xi * (a[5] + a[6] * xi))))),
-            a[1] + xi
-                * (2.0 * a[2]
-                    + xi * (3.0 * a[3] + xi * (4.0 * a[4] + xi * (5.0 * a[5] + 6.0 * a[6] * xi)))),
-            a[2] * 2.0
-                + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
+            a[1] + xi * (2.0 * a[2] + xi * (3.0 * a[3] + xi * (4.0 * a[4] + xi * (5.0 * a[5] + 6.0 * a[6] * xi)))),
+            a[2] * 2.0 + xi * (6.0 * a[3] + xi * (12.0 * a[4] + xi * (20.0 * a[5] + 30.0 * a[6] * xi))),
         ),
         _ => {
             let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
@@ -66,7 +63,7 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
 
 /// `laguerre(n: integer; a: col; max, min: real; var total: integer;
 /// root: col)` (unit `proc`, §2.5, OCR lines 1669–1826; ref. Ralston 78):
-/// the real roots in [min, max] of a[0] + a[1]x + … + a[n]xⁿ, n = 3 or 6.
+/// the real roots in [min, max] of `a[0] + a[1]x + … + a[n]xⁿ`, n = 3 or 6.
 /// Returns `total`, the number of roots stored in `root[0..total]`.
 ///
 /// As printed: starts at x₀ = 0.98/n and steps by 0.98/n while x₀ < 1 (so
@@ -78,7 +75,7 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
 /// abandoned when x leaves [−100, 100]. Then `root[i].b` is set.
 ///
 /// Erratum 7, both fidelities shown where they part:
-/// - `root[i].b`: the listing sets a[1] + x(2a[2] + 3a[3]x), the cubic's
+/// - `root[i].b`: the listing sets `a[1] + x(2a[2] + 3a[3]x)`, the cubic's
 ///   derivative, also for n = 6 (`Listing`); `Thesis` sets the derivative
 ///   of the degree-n polynomial.
 /// - zero denominators: `Listing` reproduces the arithmetic. With H ≥ 0
@@ -201,7 +198,7 @@ pub fn laguerre(
 /// the position (0-based) of the last record whose `.a` equals `tmax`, or
 /// `None` where the listing would leave `pos` as it was.
 ///
-/// Erratum 17 (proposed, docs/sweep_notes.md): the listing's swap moves
+/// Erratum 17 (legacy_pascal/DEVIATIONS.md): the listing's swap moves
 /// the whole record j to i but only `.a` and `.b` of record i to j, so
 /// record j keeps its own `.c` and both end up with j's (`Listing`); Ch. 4
 /// says the procedure sorts the records by `root.a`, and `Thesis` swaps
@@ -282,11 +279,7 @@ pub fn spline(
     u.first = 0.0;
     u.last = 1.0;
     let (temp1, temp2) = if one > two { (two, one) } else { (one, two) };
-    let (temp3, temp4) = if three > four {
-        (four, three)
-    } else {
-        (three, four)
-    };
+    let (temp3, temp4) = if three > four { (four, three) } else { (three, four) };
     u.min = if temp1 < temp3 { temp1 } else { temp3 };
     u.max = if temp2 < temp4 { temp4 } else { temp2 };
     let widen = |lo: &mut f64, hi: &mut f64| {
@@ -301,9 +294,7 @@ pub fn spline(
         (1, PrimitiveClass::Translation | PrimitiveClass::Conic | PrimitiveClass::Rotation) => {
             widen(&mut bbox.xmin, &mut bbox.xmax)
         }
-        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => {
-            widen(&mut bbox.ymin, &mut bbox.ymax)
-        }
+        (2, PrimitiveClass::Translation | PrimitiveClass::Conic) => widen(&mut bbox.ymin, &mut bbox.ymax),
         (2, PrimitiveClass::Rotation) => widen(&mut bbox.zmin, &mut bbox.zmax),
         _ => {}
     }
@@ -419,23 +410,12 @@ pub fn roottesting(number: &mut usize, root: &mut [Root], temp: usize) -> RootTe
 mod tests {
     use super::*;
 
-    fn empty_box() -> BoundingBox {
-        BoundingBox {
-            xmin: f64::INFINITY,
-            xmax: f64::NEG_INFINITY,
-            ymin: f64::INFINITY,
-            ymax: f64::NEG_INFINITY,
-            zmin: f64::INFINITY,
-            zmax: f64::NEG_INFINITY,
-        }
-    }
-
     #[test]
     fn spline_bspline_coefficients_by_hand() {
         // Points 0, 6, 12, 30: a = (0 + 18 − 36 + 30)/6 = 2,
         // b = (0 − 36 + 36)/6 = 0, c = (0 + 36)/6 = 6, d = (0 + 24 + 12)/6 = 6.
         let mut u = Coeff::default();
-        let mut bx = empty_box();
+        let mut bx = BoundingBox::EMPTY;
         spline(
             CurveKind::Bspline,
             0.0,
@@ -458,7 +438,7 @@ mod tests {
         // Points 1, 2, 4, 3: a = −1 + 6 − 12 + 3 = −4, b = 3 − 12 + 12 = 3,
         // c = −3 + 6 = 3, d = 1.
         let mut u = Coeff::default();
-        let mut bx = empty_box();
+        let mut bx = BoundingBox::EMPTY;
         spline(
             CurveKind::Bezier,
             1.0,
@@ -513,9 +493,7 @@ mod tests {
             assert_eq!(l.a, t.a);
             let x = t.a;
             let cubic = a[1] + 2.0 * a[2] * x + 3.0 * a[3] * x * x;
-            let sextic: f64 = (1..=6)
-                .map(|k| k as f64 * a[k] * x.powi(k as i32 - 1))
-                .sum();
+            let sextic: f64 = (1..=6).map(|k| k as f64 * a[k] * x.powi(k as i32 - 1)).sum();
             assert!((l.b - cubic).abs() < 1e-12, "listing keeps the cubic's f′");
             assert!((t.b - sextic).abs() < 1e-12, "thesis takes the sextic's f′");
             assert!((l.b - t.b).abs() > 1e-6, "the two differ at {x}");
@@ -575,20 +553,7 @@ mod tests {
     fn sorting_erratum_17_c_stays_behind() {
         // The swap of 3 and 1: the listing gives slot 1 the record of 1 and
         // slot 2 keeps its own c (of 1); the thesis swaps whole records.
-        let rec = || {
-            vec![
-                Root {
-                    a: 3.0,
-                    b: 0.0,
-                    c: 3.0,
-                },
-                Root {
-                    a: 1.0,
-                    b: 0.0,
-                    c: 1.0,
-                },
-            ]
-        };
+        let rec = || vec![Root { a: 3.0, b: 0.0, c: 3.0 }, Root { a: 1.0, b: 0.0, c: 1.0 }];
         let mut q = rec();
         sorting(0.0, 2, &mut q, Fidelity::Listing);
         assert_eq!((q[0].a, q[0].c, q[1].a, q[1].c), (1.0, 1.0, 3.0, 1.0));

@@ -35,8 +35,8 @@
 use crate::proc::robust::real_roots;
 use crate::proc::sweep::{laguerre, outrectp, spline, Root, LAGUERRE_ROOTS};
 use crate::types::{
-    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene,
-    Shape, Solver, SweepShape, MAXSEGMENTS,
+    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, LocalHit, Options, PrimitiveClass, Ray, Scene, Shape, Solver,
+    SweepShape, MAXSEGMENTS,
 };
 
 /// Roots are kept in [−this, 1 + this], so that a ray through a joint is
@@ -53,6 +53,13 @@ const RESIDUAL_TOL: f64 = 1e-9;
 const PARALLEL_TOL: f64 = 1e-12;
 
 /// x(s) = ((a s + b) s + c) s + d.
+/// √(a² + b²). `f64::hypot` guards against overflow at a cost that shows in
+/// the profile of every sweep render; scene coordinates are far from the
+/// range where a² could overflow.
+fn norm2(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
+}
+
 fn ev(c: &Coeff, s: f64) -> f64 {
     ((c.a * s + c.b) * s + c.c) * s + c.d
 }
@@ -108,11 +115,11 @@ struct Found {
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
 fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
-    let mut out = Found {
-        count: 0,
-        s: [0.0; 6],
-    };
+    let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
+    if !may_have_root(n, a, lo, hi) {
+        return out;
+    }
     match opts.solver {
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
@@ -133,6 +140,60 @@ fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     out
 }
 
+/// Can the degree-`n` polynomial `a` (ascending coefficients) vanish in
+/// [lo, hi]? Not when its Bernstein coefficients on that interval are all
+/// of one strict sign: the polynomial lies in their convex hull. A test
+/// before either solver that spares the solve for most segments a ray's
+/// line passes near without crossing; where it answers "no" there is no
+/// root for a solver to find, so no image changes (DEVIATIONS D18).
+fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
+    // Binomial coefficients C(k, j) for k, j ≤ 6.
+    const C: [[f64; 7]; 7] = [
+        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+        [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
+        [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
+        [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
+    ];
+    let n = n.min(6);
+    // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
+    let mut c = [0.0; 7];
+    c[..=n].copy_from_slice(&a[..=n]);
+    for i in 0..n {
+        for j in (i..n).rev() {
+            c[j] += lo * c[j + 1];
+        }
+    }
+    let w = hi - lo;
+    let mut wk = 1.0;
+    for ck in c.iter_mut().take(n + 1) {
+        *ck *= wk;
+        wk *= w;
+    }
+    let tiny = 1e-12 * c[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if tiny.is_nan() || tiny <= 0.0 || tiny.is_infinite() {
+        return true; // zero, or not finite: let the solver decide
+    }
+    let (mut pos, mut neg) = (false, false);
+    for (k, ck) in C.iter().enumerate().take(n + 1) {
+        // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
+        let b: f64 = (0..=k).map(|j| ck[j] / C[n][j] * c[j]).sum();
+        if b > tiny {
+            pos = true;
+        } else if b < -tiny {
+            neg = true;
+        } else {
+            return true;
+        }
+        if pos && neg {
+            return true;
+        }
+    }
+    false
+}
+
 /// Is every coefficient negligible beside `scale`? (A segment that lies
 /// on the ray's projected line, or a polynomial that vanishes everywhere.)
 fn negligible(p: &[f64; 7], scale: f64) -> bool {
@@ -145,13 +206,13 @@ fn negligible(p: &[f64; 7], scale: f64) -> bool {
 fn tangent(u: &Coeff, v: &Coeff, s: f64, size: f64) -> (f64, f64) {
     let tiny = 1e-9 * size;
     let t1 = (ev1(u, s), ev1(v, s));
-    if t1.0.hypot(t1.1) > tiny {
+    if norm2(t1.0, t1.1) > tiny {
         return t1;
     }
     // x′(s) ≈ x″(s0)(s − s0): forward from the start, backward at the end.
     let sign = if s > 0.5 { -1.0 } else { 1.0 };
     let t2 = (sign * ev2(u, s), sign * ev2(v, s));
-    if t2.0.hypot(t2.1) > tiny {
+    if norm2(t2.0, t2.1) > tiny {
         return t2;
     }
     (u.a, v.a)
@@ -201,6 +262,9 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         if cu.max < x {
             continue; // every change on this segment is left of x
         }
+        if y < cv.min || y > cv.max {
+            continue; // V stays on one side of y (the convex hull): no change of sign
+        }
         let next = (i + 1) % n;
         let g0 = v[i].d - y;
         let g1 = v[next].d - y;
@@ -212,16 +276,8 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut prev_sign = above(g0);
         let mut prev_at = Some(cu.d);
         let mut prev_s = 0.0;
-        let roots = if r.identically_zero {
-            &[][..]
-        } else {
-            r.roots()
-        };
-        let mut flip = |sign: bool,
-                        at: Option<f64>,
-                        s_mid: f64,
-                        prev_sign: &mut bool,
-                        prev_at: &mut Option<f64>| {
+        let roots = if r.identically_zero { &[][..] } else { r.roots() };
+        let mut flip = |sign: bool, at: Option<f64>, s_mid: f64, prev_sign: &mut bool, prev_at: &mut Option<f64>| {
             if sign != *prev_sign {
                 let loc = at.or(*prev_at).unwrap_or_else(|| ev(cu, s_mid));
                 if loc > x {
@@ -233,31 +289,13 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         };
         for &s in roots.iter().filter(|&&s| s > 0.0 && s < 1.0) {
             let mid = 0.5 * (prev_s + s);
-            flip(
-                above(ev(cv, mid) - y),
-                None,
-                mid,
-                &mut prev_sign,
-                &mut prev_at,
-            );
+            flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
             flip(true, Some(ev(cu, s)), s, &mut prev_sign, &mut prev_at);
             prev_s = s;
         }
         let mid = 0.5 * (prev_s + 1.0);
-        flip(
-            above(ev(cv, mid) - y),
-            None,
-            mid,
-            &mut prev_sign,
-            &mut prev_at,
-        );
-        flip(
-            above(g1),
-            Some(u[next].d),
-            1.0,
-            &mut prev_sign,
-            &mut prev_at,
-        );
+        flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+        flip(above(g1), Some(u[next].d), 1.0, &mut prev_sign, &mut prev_at);
     }
     inside
 }
@@ -318,17 +356,8 @@ pub fn intersect_sweep(
     tmin: f64,
     opts: &Options,
 ) -> Option<LocalHit> {
-    let n = sweep
-        .segment
-        .min(sweep.u.len())
-        .min(sweep.v.len())
-        .min(MAXSEGMENTS);
-    if n == 0
-        || !ray.origin.is_finite()
-        || !ray.dir.is_finite()
-        || ray.dir == DVec3::ZERO
-        || tmin.is_nan()
-    {
+    let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
+    if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
         return None;
     }
     let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
@@ -357,12 +386,7 @@ pub fn intersect_sweep(
             extrusion(u, v, sweep, conic, size, ray, tmin, opts)
         }
         PrimitiveClass::Rotation => {
-            let r = b
-                .xmin
-                .abs()
-                .max(b.xmax.abs())
-                .max(b.ymin.abs())
-                .max(b.ymax.abs());
+            let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
             let lo = DVec3::new(-r, -r, b.zmin) - pad;
             let hi = DVec3::new(r, r, b.zmax) + pad;
             if boxed && !ray_meets_box(ray, tmin, lo, hi) {
@@ -382,7 +406,7 @@ struct Best {
 }
 
 fn closer(best: &Option<Best>, t: f64, tmin: f64) -> bool {
-    t > tmin && best.map_or(true, |b| t < b.t)
+    t > tmin && best.is_none_or(|b| t < b.t)
 }
 
 /// Translation and conic sweeps.
@@ -424,11 +448,7 @@ fn extrusion(
     let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
     let k0 = 1.0 + kappa * o.z;
     let k1 = kappa * d.z;
-    let apex_z = if kappa != 0.0 {
-        Some(-1.0 / kappa)
-    } else {
-        None
-    };
+    let apex_z = if kappa != 0.0 { Some(-1.0 / kappa) } else { None };
     let apex_in = apex_z.is_some_and(|z| (0.0..=len).contains(&z));
     let hit = |t: f64, normal: DVec3| LocalHit {
         t,
@@ -451,8 +471,8 @@ fn extrusion(
     let alpha = k0 * d.y - k1 * o.y;
     let beta = k1 * o.x - k0 * d.x;
     let gamma = o.y * d.x - o.x * d.y;
-    let nrm = alpha.hypot(beta);
-    let oxy = o.x.hypot(o.y);
+    let nrm = norm2(alpha, beta);
+    let oxy = norm2(o.x, o.y);
 
     // The ray's projection is a point: only the caps (and an apex).
     if nrm <= PARALLEL_TOL * (k0.abs() * dn + k1.abs() * oxy) {
@@ -483,10 +503,8 @@ fn extrusion(
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         // The segment's box against the line α X + β Y + γ = 0.
-        let gmin =
-            gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
-        let gmax =
-            gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
+        let gmin = gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
+        let gmax = gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
         let gpad = 1e-12 * fscale;
         if gmin > gpad || gmax < -gpad {
             continue;
@@ -512,12 +530,8 @@ fn extrusion(
             let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
-            let residual = (p.x - k * uu).hypot(p.y - k * vv);
-            if residual <= RESIDUAL_TOL * size
-                && p.z >= -ztol
-                && p.z <= len + ztol
-                && closer(&best, t, tmin)
-            {
+            let residual = norm2(p.x - k * uu, p.y - k * vv);
+            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
                 let (tu, tv) = tangent(cu, cv, s, size);
                 let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
                 best = Some(Best { t, normal });
@@ -549,11 +563,7 @@ fn extrusion(
     }
 
     let b = best?;
-    let normal = if side {
-        b.normal * orientation(u, v)
-    } else {
-        b.normal
-    };
+    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))
 }
@@ -562,7 +572,7 @@ fn extrusion(
 /// contour point s of segment (u, v): the 2-D residual (radius, height).
 fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> f64 {
     let p = ray.at(t);
-    (p.x.hypot(p.y) - ev(u, s)).hypot(p.z - ev(v, s))
+    norm2(norm2(p.x, p.y) - ev(u, s), p.z - ev(v, s))
 }
 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
@@ -604,7 +614,7 @@ fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f
 /// point s: (V′ e_r − U′ e_z), turned by the contour's orientation.
 fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) -> DVec3 {
     let (tu, tv) = tangent(u, v, s, size);
-    let r = p.x.hypot(p.y);
+    let r = norm2(p.x, p.y);
     let (ex, ey) = if r > 1e-12 * size {
         (p.x / r, p.y / r)
     } else {
@@ -621,14 +631,7 @@ fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) 
 /// heights measured from o_z). On the contour r = U(s), w = V(s) − o_z:
 ///   A (V − o_z)² + B d_z (V − o_z) + d_z² (C − U²) = 0,
 /// a sextic in s.
-fn revolve(
-    u: &[Coeff],
-    v: &[Coeff],
-    size: f64,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-) -> Option<LocalHit> {
+fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
     let dn = d.length();
     let a = d.x * d.x + d.y * d.y;
@@ -644,10 +647,7 @@ fn revolve(
             return;
         }
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
-        if res <= RESIDUAL_TOL * size
-            && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s)
-            && closer(best, t, tmin)
-        {
+        if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin) {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size, sign);
             *best = Some(Best { t, normal });
         }
@@ -764,29 +764,6 @@ fn revolve(
     })
 }
 
-/// An empty box, to be widened.
-fn empty_box() -> BoundingBox {
-    BoundingBox {
-        xmin: f64::INFINITY,
-        xmax: f64::NEG_INFINITY,
-        ymin: f64::INFINITY,
-        ymax: f64::NEG_INFINITY,
-        zmin: f64::INFINITY,
-        zmax: f64::NEG_INFINITY,
-    }
-}
-
-fn union(a: &BoundingBox, b: &BoundingBox) -> BoundingBox {
-    BoundingBox {
-        xmin: a.xmin.min(b.xmin),
-        xmax: a.xmax.max(b.xmax),
-        ymin: a.ymin.min(b.ymin),
-        ymax: a.ymax.max(b.ymax),
-        zmin: a.zmin.min(b.zmin),
-        zmax: a.zmax.max(b.zmax),
-    }
-}
-
 /// The four control points of segment i: B-spline points i … i+3
 /// (wrapping), Bezier P[3i] … P[3i+3 mod 3k].
 fn segment_points(curve: CurveKind, points: &[[f64; 2]], i: usize) -> [[f64; 2]; 4] {
@@ -813,7 +790,7 @@ fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox {
     sw.segment = segments;
     sw.u.clear();
     sw.v.clear();
-    let mut sbox = empty_box();
+    let mut sbox = BoundingBox::EMPTY;
     for i in 0..segments {
         let p = segment_points(sw.curve, &sw.points, i);
         let (mut cu, mut cv) = (Coeff::default(), Coeff::default());
@@ -874,8 +851,8 @@ fn own_box(class: PrimitiveClass, sw: &SweepShape, sbox: &BoundingBox) -> Boundi
 ///
 /// Reconstructed from the thesis's §2.2–2.3 and §3.3 (`spline` is printed;
 /// who calls it is not). B-spline segment i uses points i, i+1, i+2, i+3
-/// (wrapping, n points give n segments); Bezier segment i uses P[3i],
-/// P[3i+1], P[3i+2], P[3i+3 mod 3k] (3k points give k). At most 60.
+/// (wrapping, n points give n segments); Bezier segment i uses `P[3i]`,
+/// `P[3i+1]`, `P[3i+2]`, `P[3i+3 mod 3k]` (3k points give k). At most 60.
 ///
 /// Erratum 9: `Thesis` gives each object its own box. `Listing` keeps one
 /// box per class as the listing's globals `tbox`, `cbox`, `rbox` do: every
@@ -887,8 +864,15 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         PrimitiveClass::Conic,
         PrimitiveClass::Rotation,
     ];
-    let mut class_box = [empty_box(); 3];
-    for obj in &mut scene.objects {
+    let mut class_box = [BoundingBox::EMPTY; 3];
+    // The later key shapes of a keyframe record stood in the Pascal's table
+    // too until `goahead` deleted them: they get coefficients and widen
+    // the class's box like every other sweep.
+    let Scene { objects, keyframes, .. } = scene;
+    for obj in objects
+        .iter_mut()
+        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+    {
         let class = obj.class;
         let Some(ci) = classes.iter().position(|&c| c == class) else {
             continue;
@@ -902,7 +886,7 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
             continue;
         }
         let own = own_box(class, sw, &sbox);
-        class_box[ci] = union(&class_box[ci], &listing_box(class, sw, &sbox));
+        class_box[ci] = class_box[ci].union(&listing_box(class, sw, &sbox));
         sw.bbox = own;
         let corner = DVec3::new(
             own.xmin.abs().max(own.xmax.abs()),
@@ -917,7 +901,10 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         // Erratum 9, listing: `spline` widens the one global box of the
         // class (`tbox`, `cbox`, `rbox`), which every object of it uses.
         Fidelity::Listing => {
-            for obj in &mut scene.objects {
+            for obj in objects
+                .iter_mut()
+                .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+            {
                 let Some(ci) = classes.iter().position(|&c| c == obj.class) else {
                     continue;
                 };

@@ -1,22 +1,22 @@
 //! The decks the measurements use, and how they are read and resized.
 //!
-//! Every list below is a plain slice of deck names: the key-frame decks of
-//! Figs. 5.10–5.12 join each list with one line each once the `paper` unit
-//! lands (today `raytrace::prepare` refuses their `keyframe` record).
+//! Every list below is a plain slice of deck names: a deck joins a
+//! measurement with one line (the key-frame decks of Figs. 5.10–5.12 were
+//! added so, when the `paper` unit landed).
 
 use std::path::{Path, PathBuf};
 
 use raytrace::types::{Fidelity, Options, Scene};
 
-/// The decks of Chapter 5, rendered as they are by the benches. Add
-/// `"fig5_10"`, `"fig5_11"`, `"fig5_12"` here when the key-frame decks land.
+/// The decks of Chapter 5, rendered as they are by the benches.
 pub const CHAPTER5: &[&str] = &[
-    "fig5_1", "fig5_2", "fig5_3", "fig5_4", "fig5_5", "fig5_6", "fig5_7", "fig5_8", "fig5_9",
+    "fig5_1", "fig5_2", "fig5_3", "fig5_4", "fig5_5", "fig5_6", "fig5_7", "fig5_8", "fig5_9", "fig5_10", "fig5_11",
+    "fig5_12",
 ];
 
-/// The motion-blurred decks of the chart's first panel (time samplers).
-/// Add `"fig5_10"` here when the key-frame decks land.
-pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9"];
+/// The motion-blurred decks of the chart's first panel (time samplers): a
+/// moving textured cube, moving translation sweeps, a deforming sweep.
+pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9", "fig5_10"];
 
 /// The sweep decks of the chart's second panel (root solvers): one of each
 /// kind of sweep (translation, conic, rotation) and the deliberately hard

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod chart;
 pub mod decks;
 pub mod fonts;
+pub mod frames;
 pub mod measure;
 pub mod stability;
 pub mod textures;

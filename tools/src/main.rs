@@ -1,5 +1,6 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
-//! `bench` times the renderer on a deck; `chart` draws the speed/accuracy
+//! `frames` draws a key-frame deck's filmstrip; `bench` times the renderer
+//! on a deck; `chart` draws the speed/accuracy
 //! chart; `stability` writes the root solvers' stability report. Timings
 //! are measured and printed, never asserted in tests.
 
@@ -26,10 +27,28 @@ enum Command {
         #[arg(default_value = "raster")]
         dir: PathBuf,
     },
+    /// A filmstrip of a deck with key frames: the scene at fixed instants of the
+    /// shutter (no blur), side by side in one PNG, to see the in-between shapes.
+    Frames {
+        /// The deck.
+        deck: PathBuf,
+        /// The PNG to write.
+        #[arg(long, default_value = "frames.png")]
+        out: PathBuf,
+        /// The instants, in [0, 1].
+        #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5,0.75,1")]
+        times: Vec<f64>,
+        /// Width and height of each frame, in pixels.
+        #[arg(long, default_value_t = 160)]
+        size: usize,
+        /// Follow the listings instead of the thesis.
+        #[arg(long)]
+        listing: bool,
+    },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
-        /// The deck [default: legacy_pascal/decks/default.deck].
-        #[arg(default_value = "legacy_pascal/decks/default.deck")]
+        /// The deck [default: legacy_pascal/decks/still_life.deck].
+        #[arg(default_value = "legacy_pascal/decks/still_life.deck")]
         deck: PathBuf,
         /// How many timed runs (after one untimed warm-up).
         #[arg(long, default_value_t = 11)]
@@ -75,6 +94,16 @@ fn main() -> Result<(), String> {
                 println!("wrote {} ({}×{})", out.display(), raster.width, raster.height);
             }
             Ok(())
+        }
+        Command::Frames {
+            deck,
+            out,
+            times,
+            size,
+            listing,
+        } => {
+            let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
+            tools::frames::frames(&deck, &out, &times, size.clamp(8, 1024), fidelity)
         }
         Command::Bench {
             deck,

@@ -57,7 +57,11 @@ pub fn probe_objects(scene: &Scene, k: usize, opts: &Options) -> Vec<Vec<Option<
     probe.image.masksize = k;
     let camera = Camera::new(&probe, opts.fidelity);
     let poses = rest_poses(scene);
-    let snap = Snapshot { scene, poses: &poses };
+    let snap = Snapshot {
+        scene,
+        objects: &scene.objects,
+        poses: &poses,
+    };
     let (w, h) = (scene.image.width, scene.image.height);
     (0..w * h)
         .into_par_iter()

@@ -1,0 +1,120 @@
+//! Key-frame deformation in the renderer: the in-between object of a
+//! `keyframe` record as `motionblur`'s `paper = 1` branch draws it.
+
+use std::path::Path;
+
+use raytrace::raytrace::{key_frame_chains, prepare, render};
+use raytrace::types::*;
+
+fn decks() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
+}
+
+const KEY_FRAME_DECKS: [&str; 4] = ["fig5_10.deck", "fig5_11.deck", "fig5_12.deck", "nec_morph.deck"];
+
+fn load(name: &str, fidelity: Fidelity) -> Scene {
+    let src = std::fs::read_to_string(decks().join(name)).unwrap();
+    let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
+    prepare(
+        &mut scene,
+        &Options {
+            fidelity,
+            ..Options::default()
+        },
+    )
+    .unwrap();
+    scene
+}
+
+/// Every key-frame deck prepares in both fidelities; nec_morph's chain of
+/// three shapes makes two pairs, the others one.
+#[test]
+fn key_frame_decks_prepare() {
+    for name in KEY_FRAME_DECKS {
+        for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+            let scene = load(name, fidelity);
+            let chains = key_frame_chains(&scene, fidelity).unwrap();
+            assert_eq!(chains.len(), 1, "{name}");
+            let pairs = chains[0].1.pairs().len();
+            assert_eq!(pairs, if name == "nec_morph.deck" { 2 } else { 1 }, "{name}");
+        }
+    }
+}
+
+/// The scene with the in-between object put in by hand at time t, still.
+fn still_at(scene: &Scene, t: f64) -> Scene {
+    let chains = key_frame_chains(scene, Fidelity::Thesis).unwrap();
+    let mut still = scene.clone();
+    for (k, chain) in &chains {
+        let obj = &mut still.objects[scene.keyframes[*k].first];
+        let mut contour = chain.scratch();
+        chain.inbetween(t, &mut contour);
+        obj.shape = Shape::Sweep(contour);
+        let pose = chain.pose(t);
+        (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+    }
+    still.keyframes.clear();
+    still
+}
+
+/// With one subpixel and a 1×1 pattern table every sample is at t = ½ (the
+/// centre of the one stratum): the render equals the still scene with the
+/// in-between shape of t = ½ put in by hand.
+#[test]
+fn render_draws_the_in_between_shape() {
+    for name in KEY_FRAME_DECKS {
+        let mut scene = load(name, Fidelity::Thesis);
+        scene.image = ImageSpec {
+            width: 64,
+            height: 64,
+            masksize: 1,
+            aliasing: 0.0,
+        };
+        scene.blur = None;
+        scene.pattern = Some(PatternRecord {
+            pos: Pos::default(),
+            m: 1,
+            values: vec![vec![0]],
+        });
+        let drawn = render(&scene, &Options::default(), &|| {}).raster;
+        let by_hand = render(&still_at(&scene, 0.5), &Options::default(), &|| {}).raster;
+        assert_eq!(drawn, by_hand, "{name}");
+        // And the object is in the picture: it differs from the floor alone.
+        let mut empty = still_at(&scene, 0.5);
+        let first = scene.keyframes[0].first;
+        empty.objects.remove(first);
+        let floor = render(&empty, &Options::default(), &|| {}).raster;
+        let differ = drawn.pixels.iter().zip(&floor.pixels).filter(|(a, b)| a != b).count();
+        assert!(differ > 50, "{name}: {differ} pixels show the object");
+    }
+}
+
+/// The in-between contour stays inside the bounding sphere `prepare` gave
+/// the object (the renderer culls with it), at 64 times and at points
+/// along every segment.
+#[test]
+fn in_between_contours_stay_in_the_bounding_sphere() {
+    for name in KEY_FRAME_DECKS {
+        let scene = load(name, Fidelity::Thesis);
+        let chains = key_frame_chains(&scene, Fidelity::Thesis).unwrap();
+        let (k, chain) = &chains[0];
+        let obj = &scene.objects[scene.keyframes[*k].first];
+        let mut contour = chain.scratch();
+        for i in 0..64 {
+            let t = i as f64 / 63.0;
+            chain.inbetween(t, &mut contour);
+            for (u, v) in contour.u.iter().zip(&contour.v) {
+                for j in 0..=8 {
+                    let s = u.first + (u.last - u.first) * j as f64 / 8.0;
+                    let uu = ((u.a * s + u.b) * s + u.c) * s + u.d;
+                    let vv = ((v.a * s + v.b) * s + v.c) * s + v.d;
+                    // A translation sweep reaches z = length; a rotation sweep's
+                    // point (U, V) is at radius |U|, height V.
+                    let z = contour.length.max(0.0);
+                    let far = (uu * uu + vv * vv + z * z).sqrt();
+                    assert!(far <= obj.radius, "{name} t={t}: {far} > {}", obj.radius);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,56 @@
+//! `tools frames DECK`: a filmstrip of a deck with key frames.
+
+use std::path::Path;
+
+use raytrace::raster::Raster;
+use raytrace::types::{Fidelity, Options};
+
+/// The scene of `deck` at each instant of `times`: every moving object at
+/// its pose then, every key-frame object at its in-between shape and pose,
+/// rendered still and laid side by side.
+pub fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
+    use raytrace::types::Shape;
+    let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
+    let dir = deck.parent().unwrap_or(Path::new("."));
+    let opts = Options {
+        fidelity,
+        ..Options::default()
+    };
+    let mut scene =
+        raytrace::deck::initialize(&source, &deck.display().to_string(), dir, fidelity).map_err(|e| e.to_string())?;
+    raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| e.to_string())?;
+    let chains = raytrace::raytrace::key_frame_chains(&scene, fidelity).map_err(|e| e.to_string())?;
+    scene.image.width = size;
+    scene.image.height = size;
+    let mut strip = Raster {
+        width: size * times.len().max(1),
+        height: size,
+        pixels: vec![[0; 3]; size * size * times.len().max(1)],
+    };
+    for (i, &t) in times.iter().enumerate() {
+        let mut still = scene.clone();
+        for mo in &scene.motions {
+            let pose = raytrace::drt::motionblur(&scene.objects[mo.object], mo, t, fidelity);
+            let obj = &mut still.objects[mo.object];
+            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+        }
+        for (k, chain) in &chains {
+            let obj = &mut still.objects[scene.keyframes[*k].first];
+            let mut contour = chain.scratch();
+            chain.inbetween(t, &mut contour);
+            obj.shape = Shape::Sweep(contour);
+            let pose = chain.pose(t);
+            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+        }
+        still.motions.clear();
+        still.keyframes.clear();
+        let r = raytrace::raytrace::render(&still, &opts, &|| {}).raster;
+        for y in 0..size {
+            let row = y * strip.width + i * size;
+            strip.pixels[row..row + size].copy_from_slice(&r.pixels[y * size..(y + 1) * size]);
+        }
+    }
+    raytrace::raster::write_png(out, &strip).map_err(|e| format!("{}: {e}", out.display()))?;
+    println!("wrote {} ({} frames at t = {:?})", out.display(), times.len(), times);
+    Ok(())
+}
