@@ -57,7 +57,14 @@ fn rays(c: &mut Criterion) {
             };
             let s = scene(name, &opts, None);
             g.throughput(Throughput::Elements(rays_of(&s, &opts)));
-            let id = format!("{name}/{}", if solver == Solver::Laguerre { "laguerre" } else { "robust" });
+            let id = format!(
+                "{name}/{}",
+                if solver == Solver::Laguerre {
+                    "laguerre"
+                } else {
+                    "robust"
+                }
+            );
             g.bench_function(id, |b| b.iter(|| render(black_box(&s), &opts, &|| {})));
         }
     }
@@ -87,7 +94,9 @@ fn segments(c: &mut Criterion) {
         let mut s = load_source(&text, &format!("circle{n}"), Path::new("."), Fidelity::Thesis)
             .unwrap_or_else(|e| panic!("circle {n}: {e}"));
         prepare(&mut s, &opts).unwrap_or_else(|e| panic!("circle {n}: {e}"));
-        g.bench_function(format!("circle/{n}"), |b| b.iter(|| render(black_box(&s), &opts, &|| {})));
+        g.bench_function(format!("circle/{n}"), |b| {
+            b.iter(|| render(black_box(&s), &opts, &|| {}))
+        });
     }
     g.finish();
 }

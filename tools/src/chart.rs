@@ -25,7 +25,7 @@ use raytrace::raytrace::{render, render_colours};
 use raytrace::types::{Fidelity, Options, Scene, Solver, TimeSampler};
 
 use crate::decks::{prepared, BLUR_DECKS, SOLVER_DECKS};
-use crate::measure::{differing, is_sweep, probe_objects, rmse, silhouette, time_median};
+use crate::measure::{differing, interleaved_medians, is_sweep, probe_objects, rmse, silhouette};
 
 /// One way of choosing the subpixel times.
 #[derive(Clone, Copy, Debug)]
@@ -115,9 +115,11 @@ fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
     }
 }
 
-/// Panel 1's measurements.
+/// Panel 1's measurements: the error of each render, then the times,
+/// `runs` interleaved rounds over every render.
 pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> {
     let mut out = Vec::new();
+    let mut jobs: Vec<(Scene, Options)> = Vec::new();
     for &deck in BLUR_DECKS {
         let ref_opts = opts(Fidelity::Thesis, Solver::Laguerre, TimeSampler::Stratified);
         let ref_scene = prepared(deck, &ref_opts, Some((size, size, BLUR_REFERENCE_MASK)))?;
@@ -127,25 +129,43 @@ pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> 
             let o = opts(s.fidelity, Solver::Laguerre, s.sampler);
             for mask in BLUR_MASKS {
                 let scene = prepared(deck, &o, Some((size, size, mask)))?;
-                let (secs, img) = time_median(runs, || render_colours(&scene, &o));
-                let e = rmse(&img, &reference);
-                eprintln!("{deck}: {:<20} {:>3} spp: {secs:.4} s, RMSE {e:.5}", s.label, mask * mask);
+                let e = rmse(&render_colours(&scene, &o), &reference);
                 out.push(BlurPoint {
                     deck,
                     sampling: si,
                     mask,
-                    secs,
+                    secs: f64::NAN,
                     rmse: e,
                 });
+                jobs.push((scene, o));
             }
         }
+    }
+    eprintln!("timing {} renders, {runs} rounds", jobs.len());
+    let mut closures: Vec<Box<dyn FnMut()>> = jobs
+        .iter()
+        .map(|(scene, o)| Box::new(move || drop(std::hint::black_box(render_colours(scene, o)))) as Box<dyn FnMut()>)
+        .collect();
+    let mut refs: Vec<&mut dyn FnMut()> = closures.iter_mut().map(|c| c.as_mut() as &mut dyn FnMut()).collect();
+    let secs = interleaved_medians(&mut refs, runs);
+    for (p, t) in out.iter_mut().zip(secs) {
+        p.secs = t;
+        eprintln!(
+            "{}: {:<20} {:>3} spp: {t:.4} s, RMSE {:.5}",
+            p.deck,
+            SAMPLINGS[p.sampling].label,
+            p.mask * p.mask,
+            p.rmse
+        );
     }
     Ok(out)
 }
 
 /// The indices of a scene's sweep objects.
 fn sweeps_of(scene: &Scene) -> Vec<usize> {
-    (0..scene.objects.len()).filter(|&i| is_sweep(scene.objects[i].class)).collect()
+    (0..scene.objects.len())
+        .filter(|&i| is_sweep(scene.objects[i].class))
+        .collect()
 }
 
 /// Panel 2's measurements.
@@ -166,15 +186,22 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
         let count = |v: &[bool], only_sil: bool| v.iter().zip(&sil).filter(|(d, s)| **d && (**s || !only_sil)).count();
         let n_sil = sil.iter().filter(|s| **s).count();
         // The cost of a ray is the solver's and the deck's, not the mask's:
-        // one timing a solver, on the renders at TIMING_MASK.
+        // one timing a solver, on renders at TIMING_MASK, the two solvers
+        // interleaved.
         let timing_scene = prepared(deck, &robust, Some((size, size, TIMING_MASK)))?;
-        let mut per_ray = [0.0; 2];
-        for (k, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
-            let o = opts(Fidelity::Thesis, solver, TimeSampler::Table);
-            let rays = render(&timing_scene, &o, &|| {}).stats.rays.max(1);
-            let (secs, _) = one.install(|| time_median(runs, || render_colours(&timing_scene, &o)));
-            per_ray[k] = secs / rays as f64;
-        }
+        let solver_opts = [Solver::Laguerre, Solver::Robust].map(|s| opts(Fidelity::Thesis, s, TimeSampler::Table));
+        let rays = solver_opts.map(|o| render(&timing_scene, &o, &|| {}).stats.rays.max(1));
+        let (lag, rob) = (&solver_opts[0], &solver_opts[1]);
+        let secs = one.install(|| {
+            interleaved_medians(
+                &mut [
+                    &mut || drop(std::hint::black_box(render_colours(&timing_scene, lag))),
+                    &mut || drop(std::hint::black_box(render_colours(&timing_scene, rob))),
+                ],
+                runs,
+            )
+        });
+        let per_ray = [secs[0] / rays[0] as f64, secs[1] / rays[1] as f64];
         for mask in SOLVER_MASKS {
             let scene = prepared(deck, &robust, Some((size, size, mask)))?;
             let robust_img = render_colours(&scene, &robust);
@@ -292,6 +319,7 @@ fn panel<DB: DrawingBackend>(
         .label_style(("sans-serif", 14))
         .bold_line_style(BLACK.mix(0.25))
         .light_line_style(BLACK.mix(0.06))
+        .max_light_lines(4)
         .axis_desc_style(("sans-serif", 15))
         .x_label_formatter(&|v| tick(*v))
         .y_label_formatter(&|v| tick(*v))
@@ -314,15 +342,26 @@ fn panel<DB: DrawingBackend>(
                     + Circle::new((4, 0), if m == 0 { 4 } else { 0 }, colour.filled())
                     + TriangleMarker::new((4, 0), if m == 1 { 6 } else { 0 }, colour.filled())
                     + Cross::new((4, 0), if m == 2 { 5 } else { 0 }, colour.stroke_width(2))
-                    + Rectangle::new([(0, -4), (8, 4)], if m == 3 { colour.filled() } else { colour.mix(0.0).filled() })
+                    + Rectangle::new(
+                        [(0, -4), (8, 4)],
+                        if m == 3 {
+                            colour.filled()
+                        } else {
+                            colour.mix(0.0).filled()
+                        },
+                    )
             });
         // The markers: filled circle, triangle, cross, square, by deck.
         let fill = colour.filled();
         let at = pts.iter().copied();
         match m % 4 {
             0 => chart.draw_series(at.map(|p| Circle::new(p, 5, fill))).map(|_| ()),
-            1 => chart.draw_series(at.map(|p| TriangleMarker::new(p, 7, fill))).map(|_| ()),
-            2 => chart.draw_series(at.map(|p| Cross::new(p, 6, colour.stroke_width(2)))).map(|_| ()),
+            1 => chart
+                .draw_series(at.map(|p| TriangleMarker::new(p, 7, fill)))
+                .map(|_| ()),
+            2 => chart
+                .draw_series(at.map(|p| Cross::new(p, 6, colour.stroke_width(2))))
+                .map(|_| ()),
             _ => chart
                 .draw_series(at.map(|p| EmptyElement::at(p) + Rectangle::new([(-5, -5), (5, 5)], fill)))
                 .map(|_| ()),
@@ -389,10 +428,22 @@ pub fn draw<DB: DrawingBackend>(
             let points: Vec<(f64, f64)> = solvers
                 .iter()
                 .filter(|p| p.deck == deck && p.solver == solver)
-                .map(|p| (p.secs_per_ray * 1e6, 100.0 * p.differ_silhouette as f64 / p.silhouette.max(1) as f64))
+                .map(|p| {
+                    (
+                        p.secs_per_ray * 1e6,
+                        100.0 * p.differ_silhouette as f64 / p.silhouette.max(1) as f64,
+                    )
+                })
                 .collect();
             s2.push(Series {
-                label: format!("{deck} · {}", if solver == Solver::Laguerre { "laguerre" } else { "robust" }),
+                label: format!(
+                    "{deck} · {}",
+                    if solver == Solver::Laguerre {
+                        "laguerre"
+                    } else {
+                        "robust"
+                    }
+                ),
                 colour: SOLVER_COLOURS[ki],
                 marker: di,
                 points,

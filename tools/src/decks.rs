@@ -47,7 +47,12 @@ pub fn deck_path(name: &str) -> PathBuf {
 pub fn load(name: &str, fidelity: Fidelity) -> Result<Scene, String> {
     let path = deck_path(name);
     let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    load_source(&source, &path.display().to_string(), path.parent().unwrap_or(Path::new(".")), fidelity)
+    load_source(
+        &source,
+        &path.display().to_string(),
+        path.parent().unwrap_or(Path::new(".")),
+        fidelity,
+    )
 }
 
 /// Reads deck text: `file_name` names it in errors, `dir` is where its
@@ -148,7 +153,10 @@ mod tests {
         let mut scene = load("fig5_3", Fidelity::Thesis).unwrap();
         let view = scene.view.clone();
         resize(&mut scene, 96, 64, 8);
-        assert_eq!((scene.image.width, scene.image.height, scene.image.masksize), (96, 64, 8));
+        assert_eq!(
+            (scene.image.width, scene.image.height, scene.image.masksize),
+            (96, 64, 8)
+        );
         assert_eq!(scene.view, view);
         assert!(scene.pattern.is_none());
     }

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 use raytrace::raster::outputframe;
-use raytrace::types::{Fidelity, Options, Solver};
+use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
 use tools::textures::{nec_card, test_card};
 
 #[derive(Parser)]
@@ -62,6 +62,15 @@ enum Command {
         /// Follow the listings instead of the thesis.
         #[arg(long)]
         listing: bool,
+        /// How subpixel times are chosen: table (the thesis's), random, stratified.
+        #[arg(long, default_value = "table")]
+        sampler: String,
+        /// Render at this mask (M×M subpixels a pixel) instead of the deck's.
+        #[arg(long)]
+        mask: Option<usize>,
+        /// Render at this width and height instead of the deck's.
+        #[arg(long, num_args = 2, value_names = ["WIDTH", "HEIGHT"])]
+        size: Option<Vec<usize>>,
     },
     /// Draw the speed/accuracy chart: time samplers (error against render
     /// time) and root solvers (silhouette pixels wrong against time per ray).
@@ -111,13 +120,23 @@ fn main() -> Result<(), String> {
             threads,
             robust,
             listing,
+            sampler,
+            mask,
+            size,
         } => {
+            let sampler = match sampler.as_str() {
+                "table" => TimeSampler::Table,
+                "random" => TimeSampler::Random,
+                "stratified" => TimeSampler::Stratified,
+                other => return Err(format!("--sampler {other}: expected table, random or stratified")),
+            };
             let opts = Options {
                 fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
-                ..Options::default()
+                sampler,
             };
-            tools::bench::bench(&deck, runs.max(1), threads, &opts)
+            let size = size.map(|s| (s[0].clamp(1, 8192), s[1].clamp(1, 8192)));
+            tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Stability { out } => tools::stability::run(&out),

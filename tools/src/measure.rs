@@ -26,17 +26,23 @@ pub fn median(samples: &[f64]) -> f64 {
     s[s.len() / 2]
 }
 
-/// Runs `f` once untimed, then `runs` times timed; the median in seconds
-/// and the last result.
-pub fn time_median<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut last = f();
-    let mut secs = Vec::with_capacity(runs.max(1));
-    for _ in 0..runs.max(1) {
-        let t = Instant::now();
-        last = std::hint::black_box(f());
-        secs.push(t.elapsed().as_secs_f64());
+/// Times every job `rounds` times, interleaved (round r runs each job
+/// once, in order), after one untimed round; the median seconds of each.
+/// On a shared machine a burst of other work then spreads over all jobs
+/// instead of spoiling every run of one.
+pub fn interleaved_medians(jobs: &mut [&mut dyn FnMut()], rounds: usize) -> Vec<f64> {
+    for job in jobs.iter_mut() {
+        job();
     }
-    (median(&secs), last)
+    let mut secs = vec![Vec::with_capacity(rounds); jobs.len()];
+    for _ in 0..rounds.max(1) {
+        for (k, job) in jobs.iter_mut().enumerate() {
+            let t = Instant::now();
+            job();
+            secs[k].push(t.elapsed().as_secs_f64());
+        }
+    }
+    secs.iter().map(|s| median(s)).collect()
 }
 
 /// Whether an object is a sweep (translation, conic, rotation).
@@ -118,6 +124,16 @@ mod tests {
         assert!(rmse(&a, &b[..3]).is_nan());
     }
 
+    /// Each job runs once untimed and then once a round; one median each.
+    #[test]
+    fn interleaved_runs_every_job_each_round() {
+        let (mut a, mut b) = (0, 0);
+        let m = interleaved_medians(&mut [&mut || a += 1, &mut || b += 1], 3);
+        assert_eq!(m.len(), 2);
+        assert!(m.iter().all(|s| *s >= 0.0));
+        assert_eq!((a, b), (4, 4));
+    }
+
     #[test]
     fn median_of_odd_and_even_counts() {
         assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
@@ -143,7 +159,11 @@ mod tests {
     #[test]
     fn differing_pixels_by_threshold() {
         let a = vec![Intensity::ZERO; 3];
-        let b = vec![Intensity::ZERO, Intensity::new(0.0, 0.0, 0.02), Intensity::new(-0.2, 0.0, 0.0)];
+        let b = vec![
+            Intensity::ZERO,
+            Intensity::new(0.0, 0.0, 0.02),
+            Intensity::new(-0.2, 0.0, 0.0),
+        ];
         assert_eq!(differing(&a, &b, 0.05), vec![false, false, true]);
         assert_eq!(differing(&a, &b, 0.01), vec![false, true, true]);
     }

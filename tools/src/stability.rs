@@ -74,17 +74,17 @@ impl Method {
 pub struct Rng(pub u64);
 
 impl Rng {
-    pub fn next(&mut self) -> f64 {
+    pub fn uniform(&mut self) -> f64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
     }
     pub fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
+        a + (b - a) * self.uniform()
     }
     pub fn sign(&mut self) -> f64 {
-        if self.next() < 0.5 {
+        if self.uniform() < 0.5 {
             -1.0
         } else {
             1.0
@@ -141,7 +141,7 @@ pub struct PolyFamily {
 fn outside(rng: &mut Rng, count: usize) -> Vec<f64> {
     (0..count)
         .map(|_| {
-            if rng.next() < 0.5 {
+            if rng.uniform() < 0.5 {
                 rng.range(-1.0, -0.05)
             } else {
                 rng.range(1.05, 2.0)
@@ -301,7 +301,14 @@ pub struct TestSweep {
 
 /// A sweep from a deck record: `class` and `curve` as the deck spells
 /// them, the control points, length and scale; at the origin, axis z.
-pub fn test_sweep(name: &'static str, class: &str, curve: &str, points: &[[f64; 2]], length: f64, scale: f64) -> TestSweep {
+pub fn test_sweep(
+    name: &'static str,
+    class: &str,
+    curve: &str,
+    points: &[[f64; 2]],
+    length: f64,
+    scale: f64,
+) -> TestSweep {
     let mut deck = String::from(
         "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\nimage 8 8 mask 1\n\
          surface s opaque color 1 1 1 ka 0 kd 1 ks 0 kt 0\n",
@@ -597,7 +604,7 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
             0 | 1 => {
                 let ts = if k % 3 == 0 { &sw.circle } else { &sw.frustum };
                 let s = &ts.sweep;
-                let i = (rng.next() * s.segment as f64) as usize % s.segment;
+                let i = (rng.uniform() * s.segment as f64) as usize % s.segment;
                 let s0 = rng.range(0.05, 0.95);
                 let z = rng.range(0.3, 1.7);
                 let kappa = (s.scale - 1.0) / s.length;
@@ -651,7 +658,7 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
             0 | 1 => {
                 let ts = if k % 4 == 0 { &sw.circle } else { &sw.frustum };
                 let s = &ts.sweep;
-                let i = (rng.next() * s.segment as f64) as usize % s.segment;
+                let i = (rng.uniform() * s.segment as f64) as usize % s.segment;
                 let z = rng.range(0.2, 1.8);
                 let kz = 1.0 + (s.scale - 1.0) / s.length * z;
                 let (u, v) = (s.u[i].d, s.v[i].d);
@@ -661,9 +668,13 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
             2 => {
                 // The square prism's corners, entering between its two faces.
                 let s = &sw.square.sweep;
-                let i = (rng.next() * s.segment as f64) as usize % s.segment;
+                let i = (rng.uniform() * s.segment as f64) as usize % s.segment;
                 let (u, v) = (s.u[i].d, s.v[i].d);
-                (&sw.square, DVec3::new(u, v, rng.range(0.2, 1.8)), DVec3::new(u, v, 0.0).normalize())
+                (
+                    &sw.square,
+                    DVec3::new(u, v, rng.range(0.2, 1.8)),
+                    DVec3::new(u, v, 0.0).normalize(),
+                )
             }
             _ => {
                 // The sphere's equator, where its two arcs join.
@@ -694,9 +705,13 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
     for k in 0..per {
         let tilt = tilts[k % tilts.len()];
         let inside = k / tilts.len() % 2 == 0;
-        let r = if inside { rng.range(0.0, 0.8) } else { rng.range(1.2, 2.0) };
+        let r = if inside {
+            rng.range(0.0, 0.8)
+        } else {
+            rng.range(1.2, 2.0)
+        };
         let phi = rng.range(0.0, std::f64::consts::TAU);
-        let up = rng.next() < 0.5;
+        let up = rng.uniform() < 0.5;
         let (z0, dz) = if up { (-3.0, 1.0) } else { (5.0, -1.0) };
         let o = DVec3::new(r * phi.cos(), r * phi.sin(), z0);
         let d = DVec3::new(tilt, 0.0, dz).normalize();
@@ -769,7 +784,7 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
             let on_axis = k / 3 % 4 == 0;
             let r = if on_axis { 0.0 } else { rng.range(0.0, 1.3) };
             let phi = rng.range(0.0, std::f64::consts::TAU);
-            let up = rng.next() < 0.5;
+            let up = rng.uniform() < 0.5;
             let (z0, dz) = if up { (-3.0, 1.0) } else { (5.0, -1.0) };
             let o = DVec3::new(r * phi.cos(), r * phi.sin(), z0);
             let rr = ray(o, DVec3::new(tilt, 0.0, dz));
@@ -809,7 +824,11 @@ pub fn ray_families(sw: &Sweeps, per: usize) -> Vec<RayFamily<'_>> {
     let mut cases = Vec::new();
     for k in 0..per {
         let inside = k % 2 == 0;
-        let rho = if inside { rng.range(0.0, 0.8) } else { rng.range(1.2, 2.0) };
+        let rho = if inside {
+            rng.range(0.0, 0.8)
+        } else {
+            rng.range(1.2, 2.0)
+        };
         let phi = rng.range(0.0, std::f64::consts::TAU);
         let q = DVec3::new(rho * phi.cos(), rho * phi.sin(), 0.0);
         match k / 2 % 4 {
@@ -969,7 +988,9 @@ pub fn tally_rays(method: Method, fam: &RayFamily) -> Tally {
             t.truths += 1;
         }
         match (case.truth, got) {
-            (Some(want), Some(g)) if (g - want).abs() <= tol => t.worst = t.worst.max((g - want).abs() / case.sweep.size),
+            (Some(want), Some(g)) if (g - want).abs() <= tol => {
+                t.worst = t.worst.max((g - want).abs() / case.sweep.size)
+            }
             // A farther hit: the true surface was missed.
             (Some(want), Some(g)) if g > want => t.missed += 1,
             (Some(_), Some(_)) => t.spurious += 1,
@@ -1138,7 +1159,11 @@ fn summary(poly: &Summary, rays: &Summary) -> String {
          roughly, within {ROUGH_TOL:.0e}: convergence there is linear); it misses {:.0} % of \
          near-double roots and {:.0} % of clustered ones (its 0.001 de-duplication merges them). \
          It never returned a spurious root.",
-        if same { " (listing and thesis fidelity alike: erratum 7 moves no count here)" } else { "" },
+        if same {
+            " (listing and thesis fidelity alike: erratum 7 moves no count here)"
+        } else {
+            ""
+        },
         pct(sep3.missed, sep3.truths),
         pct(sep6.missed, sep6.truths),
         dbl3.rough,
@@ -1169,7 +1194,11 @@ fn summary(poly: &Summary, rays: &Summary) -> String {
                  polynomial's scale) is what merges the pair. An error of that size in a contour \
                  parameter is far below a pixel at the decks' scales.",
                 rob.missed,
-                rob_fams.iter().map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(" and "),
+                rob_fams
+                    .iter()
+                    .map(|n| format!("\"{n}\""))
+                    .collect::<Vec<_>>()
+                    .join(" and "),
                 poly.iter().map(|(_, t)| t[2].1.worst_rough).fold(0.0, f64::max),
                 rob.worst_bound_missed,
                 poly.iter()
@@ -1245,7 +1274,11 @@ fn summary(poly: &Summary, rays: &Summary) -> String {
 /// The report's table rows of one family.
 fn rows(out: &mut String, family: &str, tallies: &[(Method, Tally)]) {
     for (k, (m, t)) in tallies.iter().enumerate() {
-        let worst = if t.truths > t.missed { format!("{:.1e}", t.worst) } else { "—".into() };
+        let worst = if t.truths > t.missed {
+            format!("{:.1e}", t.worst)
+        } else {
+            "—".into()
+        };
         let missed = if t.rough > 0 {
             format!("{} ({} rough)", t.missed, t.rough)
         } else {
@@ -1285,7 +1318,11 @@ pub fn run(out: &Path) -> Result<(), String> {
     let mut poly_summary = Vec::new();
     for fam in poly_families(per_poly) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_poly(m, &fam))).collect();
-        eprintln!("{}: {:?}", fam.name, tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>());
+        eprintln!(
+            "{}: {:?}",
+            fam.name,
+            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
+        );
         rows(&mut report, &fam.name, &tallies);
         poly_summary.push((fam.name.clone(), tallies));
     }
@@ -1304,7 +1341,11 @@ pub fn run(out: &Path) -> Result<(), String> {
     let mut ray_summary = Vec::new();
     for fam in ray_families(&sweeps, per_ray) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_rays(m, &fam))).collect();
-        eprintln!("{}: {:?}", fam.name, tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>());
+        eprintln!(
+            "{}: {:?}",
+            fam.name,
+            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
+        );
         rows(&mut report, &fam.name, &tallies);
         let _ = writeln!(truths, "- {}: {}.", fam.name, fam.truth);
         ray_summary.push((fam.name.clone(), tallies));
@@ -1324,7 +1365,11 @@ pub fn run(out: &Path) -> Result<(), String> {
     report.push_str(TABLE_HEAD);
     for fam in keyframe_families(&shapes, per_ray) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_rays(m, &fam))).collect();
-        eprintln!("{}: {:?}", fam.name, tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>());
+        eprintln!(
+            "{}: {:?}",
+            fam.name,
+            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
+        );
         rows(&mut report, &fam.name, &tallies);
     }
     report.push_str(ROOTTESTING);
@@ -1334,7 +1379,8 @@ pub fn run(out: &Path) -> Result<(), String> {
     Ok(())
 }
 
-const TABLE_HEAD: &str = "| family | method | cases | true roots (hits) | missed | spurious | worst error | ns a solve |\n\
+const TABLE_HEAD: &str =
+    "| family | method | cases | true roots (hits) | missed | spurious | worst error | ns a solve |\n\
                           |---|---|---|---|---|---|---|---|\n";
 
 const HEADER: &str = "# Stability of the root solvers\n\n\
