@@ -317,9 +317,10 @@ fn panel<DB: DrawingBackend>(
         .x_desc(x_desc)
         .y_desc(y_desc)
         .label_style(("sans-serif", 14))
-        .bold_line_style(BLACK.mix(0.25))
-        .light_line_style(BLACK.mix(0.06))
-        .max_light_lines(4)
+        .bold_line_style(BLACK.mix(0.2))
+        // No light lines: on a log axis plotters draws them every tenth of
+        // a decade, a grey band near the decade's top.
+        .light_line_style(WHITE.mix(0.0))
         .axis_desc_style(("sans-serif", 15))
         .x_label_formatter(&|v| tick(*v))
         .y_label_formatter(&|v| tick(*v))
