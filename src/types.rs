@@ -344,7 +344,11 @@ impl Pose {
         transfm.w_axis = sphereo.extend(1.0);
         let mut inverse = DMat4::from_mat3(rt);
         inverse.w_axis = (-(rt * sphereo)).extend(1.0);
-        Pose { transfm, inverse, sphereo }
+        Pose {
+            transfm,
+            inverse,
+            sphereo,
+        }
     }
 }
 
