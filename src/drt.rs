@@ -24,7 +24,7 @@
 //!   comb of `blur 0` — §3.4 (c): "n decides the normal distribution".
 
 use crate::types::{
-    Axis, BoundingBox, DMat4, DVec3, Fidelity, Law, MotionRecord, ObjectRecord, PatternRecord, Pose, Ray,
+    Axis, BoundingBox, DMat3, DVec3, Fidelity, Law, MotionRecord, ObjectRecord, PatternRecord, Pose, Ray,
 };
 
 /// `maxindex`: the length of the lookup tables the cursors `aindex`,
@@ -256,17 +256,24 @@ pub fn LAW(op: Law, maxval: f64, fract: f64) -> f64 {
 }
 
 /// The rotation about a world axis by `degrees`.
-fn rotation(axis: Axis, degrees: f64) -> DMat4 {
+fn rotation(axis: Axis, degrees: f64) -> DMat3 {
     // Most motions turn about one axis or none: skip the others' sin and cos.
     if degrees == 0.0 {
-        return DMat4::IDENTITY;
+        return DMat3::IDENTITY;
     }
     let a = degrees.to_radians();
     match axis {
-        Axis::X => DMat4::from_rotation_x(a),
-        Axis::Y => DMat4::from_rotation_y(a),
-        Axis::Z => DMat4::from_rotation_z(a),
+        Axis::X => DMat3::from_rotation_x(a),
+        Axis::Y => DMat3::from_rotation_y(a),
+        Axis::Z => DMat3::from_rotation_z(a),
     }
+}
+
+/// A turn by `degrees` about x, then y, then z (through the object's own
+/// origin): the convention of every turn in the port's motions (`turn` of
+/// a `motion` record, the key-frame angle; DEVIATIONS D8).
+pub fn turn_xyz(degrees: DVec3) -> DMat3 {
+    rotation(Axis::Z, degrees.z) * rotation(Axis::Y, degrees.y) * rotation(Axis::X, degrees.x)
 }
 
 /// The point of a motion path at the fraction `f` of the way (§3.2.2):
@@ -303,9 +310,7 @@ pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidel
         Fidelity::Thesis => {
             let f = LAW(motion.law, 1.0, time);
             let sphereo = path_point(object.sphereo, motion, f);
-            let t = motion.turn * f;
-            let turn = rotation(Axis::Z, t.z) * rotation(Axis::Y, t.y) * rotation(Axis::X, t.x);
-            object.pose().turned(turn, sphereo)
+            object.pose().turned(turn_xyz(motion.turn * f), sphereo)
         }
     }
 }

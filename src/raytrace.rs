@@ -18,8 +18,8 @@ use rayon::prelude::*;
 use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
 use crate::paper::PaperChain;
 use crate::raster::{rgbtochars, Raster};
-use crate::trace::{raytrace, rest_poses, Snapshot, TraceStats};
-use crate::types::{DVec3, Fidelity, Intensity, ObjectRecord, Options, Pos, Ray, Scene, Shape, TimeSampler, View};
+use crate::trace::{raytrace, rest_poses, Deforming, Snapshot, TraceStats};
+use crate::types::{DVec3, Fidelity, Intensity, Options, Pos, Ray, Scene, TimeSampler, View};
 
 /// A scene the renderer cannot draw yet or at all.
 #[derive(Debug, thiserror::Error)]
@@ -285,17 +285,12 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
             let mut primary = 0u64;
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
             let mut poses = rest_poses(scene);
-            // The in-between objects' contours change per subpixel: this
-            // row's own copy of the objects, their contours in scratch.
-            let mut objects: Vec<ObjectRecord> = if chains.is_empty() {
-                Vec::new()
-            } else {
-                let mut objects = scene.objects.clone();
-                for (first, chain) in &chains {
-                    objects[*first].shape = Shape::Sweep(chain.scratch());
-                }
-                objects
-            };
+            // The in-between objects' contours, per row (scratch reused
+            // for every subpixel).
+            let deforming: Vec<Deforming> = chains
+                .iter()
+                .map(|(first, chain)| Deforming::new(*first, chain))
+                .collect();
             let row_strata: Vec<Vec<u32>> = match opts.sampler {
                 TimeSampler::Stratified if timed => {
                     (0..img.width).map(|x| strata(row * img.width + x, m * m)).collect()
@@ -322,19 +317,17 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }
                         // `motionblur`'s `paper = 1` branch: the pose moved
-                        // by `diff`, then `do34` at time 0 or 1, else
-                        // `Hermite` (both in `PaperChain::inbetween`).
-                        for (first, chain) in &chains {
-                            poses[*first] = chain.pose(time);
-                            if let Shape::Sweep(sw) = &mut objects[*first].shape {
-                                chain.inbetween(time, sw);
-                            }
+                        // by `diff`; the contour (`do34` at time 0 or 1, else
+                        // `Hermite`) when a ray first needs it.
+                        for (d, (_, chain)) in deforming.iter().zip(&chains) {
+                            poses[d.object] = chain.pose(time);
+                            d.at(time);
                         }
                     }
                     let snap = Snapshot {
                         scene,
-                        objects: if chains.is_empty() { &scene.objects } else { &objects },
                         poses: &poses,
+                        deforming: &deforming,
                     };
                     let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
                     primary += 1;

@@ -22,22 +22,86 @@
 //!   below [`MINWEIGHT`]; total internal reflection sends the transmitted
 //!   weight along the reflected direction and is counted (`kfTIRcnt`).
 
-use crate::shapes::{face_coords, intersect_object};
+use std::cell::{Cell, Ref, RefCell};
+
+use crate::paper::PaperChain;
+use crate::shapes::{face_coords, in_bounding_sphere, intersect_object, intersect_shape};
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, LocalHit, ObjectRecord, Options, PaintKind, Painting, Pose, Ray, Scene,
+    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene, Shape,
     SurfaceAttribute, SurfaceRecord,
 };
 
-/// The scene at one instant of the shutter: the read-only scene, its
-/// objects as they are then (`objects[i]` is `scene.objects[i]`, or a
-/// per-thread copy whose contour a key-frame pair has deformed), and where
-/// each stands (`poses[i]`). What `motionblur` wrote into the shared
-/// records, the port keeps here.
+/// The scene at one instant of the shutter: the read-only scene, where
+/// each of its objects stands then (`poses[i]` for `scene.objects[i]`),
+/// and the objects whose contour deforms. What `motionblur` wrote into the
+/// shared records, the port keeps here.
 #[derive(Clone, Copy, Debug)]
 pub struct Snapshot<'a> {
     pub scene: &'a Scene,
-    pub objects: &'a [ObjectRecord],
     pub poses: &'a [Pose],
+    pub deforming: &'a [Deforming<'a>],
+}
+
+/// An in-between object of a key-frame chain (§3.2): its contour at the
+/// snapshot's time. `motionblur` computed it for every ray (`do34` or
+/// `Hermite`); here it is computed the first time a ray of the instant
+/// reaches the object's bounding sphere, and kept for the instant's other
+/// rays, since most rays never come near the object (DEVIATIONS D19).
+#[derive(Debug)]
+pub struct Deforming<'a> {
+    /// Index into `scene.objects`.
+    pub object: usize,
+    chain: &'a PaperChain,
+    time: Cell<f64>,
+    ready: Cell<bool>,
+    contour: RefCell<Shape>,
+}
+
+impl<'a> Deforming<'a> {
+    /// Scratch for the in-between object `object` of `chain`.
+    pub fn new(object: usize, chain: &'a PaperChain) -> Self {
+        Deforming {
+            object,
+            chain,
+            time: Cell::new(0.0),
+            ready: Cell::new(false),
+            contour: RefCell::new(Shape::Sweep(chain.scratch())),
+        }
+    }
+
+    /// A new instant: the contour is due again.
+    pub fn at(&self, time: f64) {
+        self.time.set(time);
+        self.ready.set(false);
+    }
+
+    /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
+    /// (`PaperChain::inbetween`), on first use.
+    pub fn contour(&self) -> Ref<'_, Shape> {
+        if !self.ready.get() {
+            if let Shape::Sweep(sw) = &mut *self.contour.borrow_mut() {
+                self.chain.inbetween(self.time.get(), sw);
+            }
+            self.ready.set(true);
+        }
+        self.contour.borrow()
+    }
+}
+
+impl Snapshot<'_> {
+    /// The hit of a ray with object `i` as it stands at this instant.
+    fn hit_object(&self, i: usize, ray: &Ray, opts: &Options) -> Option<LocalHit> {
+        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
+        match self.deforming.iter().find(|d| d.object == i) {
+            None => intersect_object(obj, pose, ray, TMIN, opts),
+            Some(d) => {
+                if !in_bounding_sphere(obj, pose, ray, TMIN) {
+                    return None;
+                }
+                intersect_shape(obj, &d.contour(), pose, ray, TMIN, opts)
+            }
+        }
+    }
 }
 
 /// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
@@ -87,8 +151,8 @@ impl std::ops::AddAssign for TraceStats {
 /// false`. `dir` must be unit length.
 pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
     let mut best: Option<(usize, LocalHit)> = None;
-    for (i, (obj, pose)) in snap.objects.iter().zip(snap.poses).enumerate() {
-        if let Some(h) = intersect_object(obj, pose, ray, TMIN, opts) {
+    for i in 0..snap.scene.objects.len() {
+        if let Some(h) = snap.hit_object(i, ray, opts) {
             if best.is_none_or(|(_, b)| h.t < b.t) {
                 best = Some((i, h));
             }
@@ -101,7 +165,7 @@ pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<Intersect
 /// The intersection record of a local hit: world point and normal, and the
 /// fudged-out and fudged-in points.
 fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> IntersectionRecord {
-    let obj = &snap.objects[object];
+    let obj = &snap.scene.objects[object];
     let point = ray.at(hit.t);
     let normal = snap.poses[object].transfm.transform_vector3(hit.normal).normalize();
     let fudge = FUDGE * (1.0 + point.abs().max_element());
@@ -121,7 +185,7 @@ fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> Inter
 /// The colour a surface shows at a hit under diffuse light: its `color`,
 /// or its pattern's (`painting` of unit `proc`), or its texture's.
 pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord, opts: &Options) -> Intensity {
-    let obj = &snap.objects[hit.object];
+    let obj = &snap.scene.objects[hit.object];
     if let Some(tex) = &surf.texture {
         let f = face_coords(obj, hit.local, hit.local_normal);
         return tex.texel(f.s / f.width, f.t / f.height);
@@ -242,12 +306,12 @@ fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, opts: &Options, stats: &mut Trac
 /// How much light passes along a shadow ray to a light `dist` away.
 fn shadow(snap: &Snapshot, ray: Ray, dist: f64, opts: &Options) -> Intensity {
     let mut transmit = Intensity::ONE;
-    for (obj, pose) in snap.objects.iter().zip(snap.poses) {
+    for (i, obj) in snap.scene.objects.iter().enumerate() {
         let surf = &snap.scene.surfaces[obj.surface];
         if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
             continue;
         }
-        let Some(h) = intersect_object(obj, pose, &ray, TMIN, opts) else {
+        let Some(h) = snap.hit_object(i, &ray, opts) else {
             continue;
         };
         if h.t >= dist {

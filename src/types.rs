@@ -10,7 +10,7 @@
 //! Records the thesis does not print (the view, the image, lights, motion and
 //! key frames) are reconstructed from Ch. 4 and the main program, and say so.
 
-pub use glam::{DMat4, DVec3};
+pub use glam::{DMat3, DMat4, DVec3};
 
 /// `stringlength`: the Pascal `string` is `packed array [1..10] of char`.
 pub const STRINGLENGTH: usize = 10;
@@ -334,17 +334,21 @@ impl Pose {
     /// object's origin) and moved to `sphereo`: T(sphereo) · turn · (the
     /// rotation and axis of this pose). The convention of every motion in
     /// the port (`drt::motionblur`, the key-frame pose; DEVIATIONS D8).
-    pub fn turned(&self, turn: DMat4, sphereo: Points) -> Pose {
+    pub fn turned(&self, turn: DMat3, sphereo: Points) -> Pose {
         // Both matrices are rigid: transfm = T(s)·R and inverse = Rᵀ·T(−s),
         // so R is transfm without its translation, and the new pair is
         // T(sphereo)·R′ and R′ᵀ·T(−sphereo) with R′ = turn·R.
-        let r = glam::DMat3::from_mat4(turn) * glam::DMat3::from_mat4(self.transfm);
+        let r = turn * DMat3::from_mat4(self.transfm);
         let rt = r.transpose();
         let mut transfm = DMat4::from_mat3(r);
         transfm.w_axis = sphereo.extend(1.0);
         let mut inverse = DMat4::from_mat3(rt);
         inverse.w_axis = (-(rt * sphereo)).extend(1.0);
-        Pose { transfm, inverse, sphereo }
+        Pose {
+            transfm,
+            inverse,
+            sphereo,
+        }
     }
 }
 

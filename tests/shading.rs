@@ -17,8 +17,8 @@ fn trace_one(s: &Scene, ray: &Ray) -> Intensity {
     raytrace(
         &Snapshot {
             scene: s,
-            objects: &s.objects,
             poses: &poses,
+            deforming: &[],
         },
         ray,
         1.0,

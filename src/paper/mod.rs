@@ -73,7 +73,7 @@ pub use hermite::{
 use std::ops::{Index, IndexMut};
 
 use crate::types::{
-    BoundingBox, Coeff, DMat4, DVec3, Expander, Fidelity, KeyframeRecord, ObjectRecord, Pose, PrimitiveClass, Scene,
+    BoundingBox, Coeff, DVec3, Expander, Fidelity, KeyframeRecord, ObjectRecord, Pose, PrimitiveClass, Scene,
     SweepShape, MAXSEGMENTS,
 };
 
@@ -347,14 +347,9 @@ impl PaperPair {
         let turn = match self.fidelity {
             // Listing: rotate(name,xaxis,0,0,0,angle.x); the y and z lines
             // `angle.y+diffangle[int].y*time` are commented out.
-            Fidelity::Listing => DMat4::from_rotation_x(self.first_angle.x.to_radians()),
+            Fidelity::Listing => crate::drt::turn_xyz(DVec3::new(self.first_angle.x, 0.0, 0.0)),
             // Thesis: the turn θ(t) − θ₁ = t·(θ₂ − θ₁) about x, y, z.
-            Fidelity::Thesis => {
-                let a = self.diffangle * time;
-                DMat4::from_rotation_z(a.z.to_radians())
-                    * DMat4::from_rotation_y(a.y.to_radians())
-                    * DMat4::from_rotation_x(a.x.to_radians())
-            }
+            Fidelity::Thesis => crate::drt::turn_xyz(self.diffangle * time),
         };
         self.first_pose.turned(turn, sphereo)
     }
@@ -523,6 +518,16 @@ pub fn cubic_range(p: &Coeff) -> (f64, f64) {
         let (x0, x1) = (x(0.0), x(1.0));
         (x0.min(x1), x0.max(x1))
     };
+    let pad = 1e-12 * (p.a.abs() + p.b.abs() + p.c.abs() + p.d.abs());
+    // The inner Bernstein control values b1 = d + c/3, b2 = d + 2c/3 + b/3:
+    // the cubic lies in the hull of b0 = x(0), b1, b2, b3 = x(1), so when
+    // both inner ones lie between the ends the ends are the range, and the
+    // extrema need no solving (the same answer, for most segments cheaper).
+    let b1 = p.d + p.c / 3.0;
+    let b2 = p.d + (2.0 * p.c + p.b) / 3.0;
+    if b1 >= lo && b1 <= hi && b2 >= lo && b2 <= hi {
+        return (lo - pad, hi + pad);
+    }
     let mut visit = |s: f64| {
         if s > 0.0 && s < 1.0 {
             let y = x(s);
@@ -552,7 +557,6 @@ pub fn cubic_range(p: &Coeff) -> (f64, f64) {
             }
         }
     }
-    let pad = 1e-12 * (p.a.abs() + p.b.abs() + p.c.abs() + p.d.abs());
     (lo - pad, hi + pad)
 }
 

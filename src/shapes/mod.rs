@@ -179,11 +179,32 @@ pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin
 /// frame, the shape's own intersection. Returns the local hit (its `t` is
 /// the world parameter).
 pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
-    if !bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
+    if !in_bounding_sphere(obj, pose, ray, tmin) {
         return None;
     }
+    intersect_shape(obj, &obj.shape, pose, ray, tmin, opts)
+}
+
+/// Does the ray reach the object's bounding sphere (`sphereo` at `pose`,
+/// `radius`) beyond `tmin`? A cheap rejection before any shape's own test
+/// (§2.1.2 (1)(b), the bounding volume).
+pub fn in_bounding_sphere(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64) -> bool {
+    bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin)
+}
+
+/// The hit of a world ray with `shape` (the object's own, or its contour
+/// of the moment when it deforms) standing at `pose`, without the
+/// bounding-sphere test.
+pub fn intersect_shape(
+    obj: &ObjectRecord,
+    shape: &Shape,
+    pose: &Pose,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+) -> Option<LocalHit> {
     let local = ray.transformed(&pose.inverse);
-    match &obj.shape {
+    match shape {
         Shape::Sphere => intersect_sphere(obj.radius, &local, tmin),
         Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
         Shape::Cylinder {
@@ -195,8 +216,7 @@ pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, o
 }
 
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
-/// A cheap rejection before any shape's own test (§2.1.2 (1)(b), the
-/// bounding volume). Padded by a part in 10⁶ so no surface hit is lost.
+/// Padded by a part in 10⁶ so no surface hit is lost.
 fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
     let r = radius * (1.0 + 1e-6) + 1e-9;
     let oc = ray.origin - centre;
