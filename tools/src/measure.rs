@@ -63,15 +63,17 @@ pub fn probe_objects(scene: &Scene, k: usize, opts: &Options) -> Vec<Vec<Option<
     probe.image.masksize = k;
     let camera = Camera::new(&probe, opts.fidelity);
     let poses = rest_poses(scene);
-    let snap = Snapshot {
-        scene,
-        objects: &scene.objects,
-        poses: &poses,
-    };
     let (w, h) = (scene.image.width, scene.image.height);
     (0..w * h)
         .into_par_iter()
         .map(|p| {
+            // A snapshot a task: it is not Sync (key-frame objects keep
+            // per-thread scratch); nothing deforms at rest.
+            let snap = Snapshot {
+                scene,
+                poses: &poses,
+                deforming: &[],
+            };
             let (x, y) = (p % w, p / w);
             let mut seen = Vec::with_capacity(k * k);
             for sy in 0..k {
