@@ -271,6 +271,9 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut p = [0.0; 7];
         p[..4].copy_from_slice(&asc(cv));
         p[0] -= y;
+        if !may_have_root(3, &p, 0.0, 1.0) {
+            continue; // V − y keeps one strict sign over the segment (D18)
+        }
         let r = real_roots(3, &p, 0.0, 1.0);
         // The sign sequence: joint, (midpoint, root)*, midpoint, joint.
         let mut prev_sign = above(g0);
