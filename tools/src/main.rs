@@ -47,7 +47,7 @@ enum Command {
     },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
-        /// The deck [default: legacy_pascal/decks/still_life.deck].
+        /// The deck.
         #[arg(default_value = "legacy_pascal/decks/still_life.deck")]
         deck: PathBuf,
         /// How many timed runs (after one untimed warm-up).
