@@ -185,6 +185,32 @@ impl Camera {
     }
 }
 
+/// The scene as it stands at one instant `time` of the shutter, still:
+/// every moving object at its pose then (`motionblur`), every key-frame
+/// object at its in-between contour and pose (`chains` as
+/// [`key_frame_chains`] gives them), and no motion or key frames left. For
+/// looking at in-between shapes without blur (`tools frames`), and for
+/// tests.
+pub fn still_at(scene: &Scene, chains: &[(usize, PaperChain)], time: f64, fidelity: Fidelity) -> Scene {
+    let mut still = scene.clone();
+    for mo in &scene.motions {
+        let pose = motionblur(&scene.objects[mo.object], mo, time, fidelity);
+        let obj = &mut still.objects[mo.object];
+        (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+    }
+    for (k, chain) in chains {
+        let obj = &mut still.objects[scene.keyframes[*k].first];
+        let mut contour = chain.scratch();
+        chain.inbetween(time, &mut contour);
+        obj.shape = crate::types::Shape::Sweep(contour);
+        let pose = chain.pose(time);
+        (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+    }
+    still.motions.clear();
+    still.keyframes.clear();
+    still
+}
+
 /// What a render returns: the raster and its counts.
 #[derive(Clone, Debug)]
 pub struct Render {

@@ -41,20 +41,10 @@ fn key_frame_decks_prepare() {
     }
 }
 
-/// The scene with the in-between object put in by hand at time t, still.
+/// The scene with the in-between object put in at time t, still.
 fn still_at(scene: &Scene, t: f64) -> Scene {
     let chains = key_frame_chains(scene, Fidelity::Thesis).unwrap();
-    let mut still = scene.clone();
-    for (k, chain) in &chains {
-        let obj = &mut still.objects[scene.keyframes[*k].first];
-        let mut contour = chain.scratch();
-        chain.inbetween(t, &mut contour);
-        obj.shape = Shape::Sweep(contour);
-        let pose = chain.pose(t);
-        (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
-    }
-    still.keyframes.clear();
-    still
+    raytrace::raytrace::still_at(scene, &chains, t, Fidelity::Thesis)
 }
 
 /// With one subpixel and a 1×1 pattern table every sample is at t = ½ (the

@@ -2,7 +2,7 @@
 //! procedures of unit `proc`, the robust solver, and the reconstructed
 //! intersection driver, checked against independent geometry.
 
-use raytrace::proc::robust::real_roots;
+use raytrace::proc::robust::{poly_from_roots, real_roots};
 use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use raytrace::shapes::sweep::{intersect_sweep, point_in_contour, prepare_sweeps, signed_area};
 use raytrace::types::*;
@@ -33,19 +33,6 @@ impl Rng {
             }
         }
     }
-}
-
-/// Ascending coefficients of scale·∏(x − rᵢ), padded to seven.
-fn poly(roots: &[f64], scale: f64) -> [f64; 7] {
-    let mut p = [0.0; 7];
-    p[0] = scale;
-    for (k, &r) in roots.iter().enumerate() {
-        for i in (0..=k + 1).rev() {
-            let lower = if i > 0 { p[i - 1] } else { 0.0 };
-            p[i] = lower - r * p[i];
-        }
-    }
-    p
 }
 
 fn laguerre_roots(n: usize, a: &[f64; 7], fid: Fidelity) -> Vec<f64> {
@@ -396,7 +383,7 @@ fn spline_coefficients_through_prepare() {
 
 #[test]
 fn laguerre_finds_the_three_roots() {
-    let a = poly(&[0.2, 0.5, 0.8], 1.0);
+    let a = poly_from_roots(&[0.2, 0.5, 0.8], 1.0);
     for fid in [Fidelity::Listing, Fidelity::Thesis] {
         let mut r = laguerre_roots(3, &a, fid);
         r.sort_by(f64::total_cmp);
@@ -413,7 +400,7 @@ fn laguerre_finds_the_three_roots() {
 #[test]
 fn sextic_with_known_roots() {
     let want = [0.05, 0.2, 0.35, 0.5, 0.65, 0.95];
-    let a = poly(&want, 3.0);
+    let a = poly_from_roots(&want, 3.0);
     for fid in [Fidelity::Listing, Fidelity::Thesis] {
         let got = laguerre_roots(6, &a, fid);
         let hits = want
@@ -437,7 +424,7 @@ fn sextic_with_known_roots() {
 #[test]
 fn clustered_roots() {
     let want = [0.5, 0.5005, 0.501];
-    let a = poly(&want, 1.0);
+    let a = poly_from_roots(&want, 1.0);
     for fid in [Fidelity::Listing, Fidelity::Thesis] {
         let got = laguerre_roots(3, &a, fid);
         assert!(got.len() <= 2, "{got:?}");
@@ -454,11 +441,11 @@ fn clustered_roots() {
 /// (de-duplication) or none.
 #[test]
 fn near_double_roots() {
-    let a = poly(&[0.4, 0.4001, 0.9], 1.0);
+    let a = poly_from_roots(&[0.4, 0.4001, 0.9], 1.0);
     let r = real_roots(3, &a, 0.0, 1.0);
     assert_eq!(r.count, 3);
     assert_eq!(&r.multiplicity[..3], &[1, 1, 1]);
-    let a = poly(&[0.4, 0.4 + 1e-9, 0.9], 1.0);
+    let a = poly_from_roots(&[0.4, 0.4 + 1e-9, 0.9], 1.0);
     let r = real_roots(3, &a, 0.0, 1.0);
     assert_eq!(r.count, 2, "{r:?}");
     assert_eq!(&r.multiplicity[..2], &[2, 1]);
@@ -490,7 +477,7 @@ fn robust_finds_every_root() {
             }
         }
         let scale = rng.range(0.1, 10.0) * if rng.next() < 0.5 { -1.0 } else { 1.0 };
-        let a = poly(&roots, scale);
+        let a = poly_from_roots(&roots, scale);
         let mut want: Vec<f64> = roots.iter().copied().filter(|x| (0.0..=1.0).contains(x)).collect();
         want.sort_by(f64::total_cmp);
         let got = real_roots(deg, &a, 0.0, 1.0);
@@ -532,7 +519,7 @@ fn robust_double_roots() {
         if sorted.windows(2).any(|w| w[1] - w[0] < 1e-3) {
             continue;
         }
-        let a = poly(&roots, 1.0);
+        let a = poly_from_roots(&roots, 1.0);
         let got = real_roots(roots.len(), &a, 0.0, 1.0);
         assert_eq!(got.count, 1 + others.len(), "{roots:?}: {got:?}");
         let k = got
@@ -594,7 +581,7 @@ fn laguerre_miss_table() -> Vec<(&'static str, usize, usize, usize, usize)> {
                     roots.push(x);
                 }
             }
-            let a = poly(&roots, 1.0);
+            let a = poly_from_roots(&roots, 1.0);
             let want: Vec<f64> = roots.iter().copied().filter(|x| (0.0..=1.0).contains(x)).collect();
             total += want.len();
             for (fid, miss) in [(Fidelity::Listing, &mut miss_l), (Fidelity::Thesis, &mut miss_t)] {

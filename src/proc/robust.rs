@@ -206,25 +206,28 @@ pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
     roots
 }
 
+/// The ascending coefficients of scale·∏(x − rᵢ), padded to seven (at
+/// most six roots): a polynomial whose roots are known, to test and
+/// measure the solvers with.
+pub fn poly_from_roots(roots: &[f64], scale: f64) -> [f64; 7] {
+    let mut p = [0.0; 7];
+    p[0] = scale;
+    for (k, &r) in roots.iter().take(6).enumerate() {
+        for i in (0..=k + 1).rev() {
+            let lower = if i > 0 { p[i - 1] } else { 0.0 };
+            p[i] = lower - r * p[i];
+        }
+    }
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn from_roots(roots: &[f64], scale: f64) -> [f64; 7] {
-        let mut p = [0.0; 7];
-        p[0] = scale;
-        for (k, &r) in roots.iter().enumerate() {
-            for i in (0..=k + 1).rev() {
-                let lower = if i > 0 { p[i - 1] } else { 0.0 };
-                p[i] = lower - r * p[i];
-            }
-        }
-        p
-    }
-
     #[test]
     fn cubic_three_roots() {
-        let a = from_roots(&[0.2, 0.5, 0.8], 1.0);
+        let a = poly_from_roots(&[0.2, 0.5, 0.8], 1.0);
         let r = real_roots(3, &a, 0.0, 1.0);
         assert_eq!(r.count, 3);
         for (x, w) in r.roots().iter().zip([0.2, 0.5, 0.8]) {
@@ -235,7 +238,7 @@ mod tests {
 
     #[test]
     fn double_root_reported_once() {
-        let a = from_roots(&[0.3, 0.6, 0.6], 1.0);
+        let a = poly_from_roots(&[0.3, 0.6, 0.6], 1.0);
         let r = real_roots(3, &a, 0.0, 1.0);
         assert_eq!(r.count, 2, "{:?}", r);
         assert!((r.x[0] - 0.3).abs() < 1e-12);
@@ -245,7 +248,7 @@ mod tests {
 
     #[test]
     fn triple_root() {
-        let a = from_roots(&[0.4, 0.4, 0.4], 2.0);
+        let a = poly_from_roots(&[0.4, 0.4, 0.4], 2.0);
         let r = real_roots(3, &a, 0.0, 1.0);
         assert_eq!(r.count, 1, "{:?}", r);
         assert!((r.x[0] - 0.4).abs() < 1e-5);
@@ -255,7 +258,7 @@ mod tests {
     #[test]
     fn degree_drop_and_zero() {
         // 1e-20 x⁶ + (x − 0.25)(x − 0.75): a quadratic in disguise.
-        let mut a = from_roots(&[0.25, 0.75], 1.0);
+        let mut a = poly_from_roots(&[0.25, 0.75], 1.0);
         a[6] = 1e-20;
         let r = real_roots(6, &a, 0.0, 1.0);
         assert_eq!(r.roots().len(), 2);
@@ -268,7 +271,7 @@ mod tests {
 
     #[test]
     fn roots_at_the_ends() {
-        let a = from_roots(&[0.0, 1.0, 0.5], 1.0);
+        let a = poly_from_roots(&[0.0, 1.0, 0.5], 1.0);
         let r = real_roots(3, &a, 0.0, 1.0);
         assert_eq!(r.count, 3);
         assert_eq!((r.x[0], r.x[2]), (0.0, 1.0), "the ends exactly");
@@ -277,7 +280,7 @@ mod tests {
 
     #[test]
     fn bad_input_finds_nothing() {
-        let mut a = from_roots(&[0.5], 1.0);
+        let mut a = poly_from_roots(&[0.5], 1.0);
         assert_eq!(real_roots(1, &a, 1.0, 0.0).count, 0);
         a[0] = f64::NAN;
         assert_eq!(real_roots(1, &a, 0.0, 1.0).count, 0);

@@ -9,7 +9,6 @@ use raytrace::types::{Fidelity, Options};
 /// its pose then, every key-frame object at its in-between shape and pose,
 /// rendered still and laid side by side.
 pub fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
-    use raytrace::types::Shape;
     let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
     let dir = deck.parent().unwrap_or(Path::new("."));
     let opts = Options {
@@ -28,22 +27,7 @@ pub fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fid
         pixels: vec![[0; 3]; size * size * times.len().max(1)],
     };
     for (i, &t) in times.iter().enumerate() {
-        let mut still = scene.clone();
-        for mo in &scene.motions {
-            let pose = raytrace::drt::motionblur(&scene.objects[mo.object], mo, t, fidelity);
-            let obj = &mut still.objects[mo.object];
-            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
-        }
-        for (k, chain) in &chains {
-            let obj = &mut still.objects[scene.keyframes[*k].first];
-            let mut contour = chain.scratch();
-            chain.inbetween(t, &mut contour);
-            obj.shape = Shape::Sweep(contour);
-            let pose = chain.pose(t);
-            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
-        }
-        still.motions.clear();
-        still.keyframes.clear();
+        let still = raytrace::raytrace::still_at(&scene, &chains, t, fidelity);
         let r = raytrace::raytrace::render(&still, &opts, &|| {}).raster;
         for y in 0..size {
             let row = y * strip.width + i * size;

@@ -92,18 +92,7 @@ impl Rng {
     }
 }
 
-/// Ascending coefficients of scale·∏(x − rᵢ), padded to seven.
-pub fn poly(roots: &[f64], scale: f64) -> [f64; 7] {
-    let mut p = [0.0; 7];
-    p[0] = scale;
-    for (k, &r) in roots.iter().enumerate() {
-        for i in (0..=k + 1).rev() {
-            let lower = if i > 0 { p[i - 1] } else { 0.0 };
-            p[i] = lower - r * p[i];
-        }
-    }
-    p
-}
+pub use raytrace::proc::robust::poly_from_roots as poly;
 
 // ---------------------------------------------------------------------------
 // Root families
