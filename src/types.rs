@@ -188,6 +188,23 @@ pub struct Coeff {
     pub last: f64,
 }
 
+impl Coeff {
+    /// x(s) = a s³ + b s² + c s + d.
+    pub fn value(&self, s: f64) -> f64 {
+        ((self.a * s + self.b) * s + self.c) * s + self.d
+    }
+
+    /// dx/ds = 3a s² + 2b s + c.
+    pub fn slope(&self, s: f64) -> f64 {
+        (3.0 * self.a * s + 2.0 * self.b) * s + self.c
+    }
+
+    /// d²x/ds² = 6a s + 2b.
+    pub fn curvature(&self, s: f64) -> f64 {
+        6.0 * self.a * s + 2.0 * self.b
+    }
+}
+
 /// The curve kind of a sweep contour (`spline`'s `Bezier` argument:
 /// 0 is the uniform cubic B-spline, 1 the composite cubic Bezier).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -139,16 +139,6 @@ fn sweep(class: PrimitiveClass, curve: CurveKind, points: Vec<[f64; 2]>, length:
     }
 }
 
-fn ev(c: &Coeff, s: f64) -> f64 {
-    ((c.a * s + c.b) * s + c.c) * s + c.d
-}
-fn ev1(c: &Coeff, s: f64) -> f64 {
-    (3.0 * c.a * s + 2.0 * c.b) * s + c.c
-}
-fn ev2(c: &Coeff, s: f64) -> f64 {
-    6.0 * c.a * s + 2.0 * c.b
-}
-
 /// Control points on a circle of radius ρ.
 fn ring(n: usize, rho: f64, cx: f64, cy: f64) -> Vec<[f64; 2]> {
     (0..n)
@@ -175,7 +165,14 @@ fn nearest(sw: &SweepShape, q: [f64; 2]) -> (f64, usize, f64) {
             let mut s = j as f64 / 200.0;
             // Newton on (c(s) − q)·c′(s) = 0.
             for _ in 0..30 {
-                let (x, y, dx, dy, ddx, ddy) = (ev(u, s), ev(v, s), ev1(u, s), ev1(v, s), ev2(u, s), ev2(v, s));
+                let (x, y, dx, dy, ddx, ddy) = (
+                    u.value(s),
+                    v.value(s),
+                    u.slope(s),
+                    v.slope(s),
+                    u.curvature(s),
+                    v.curvature(s),
+                );
                 let g = (x - q[0]) * dx + (y - q[1]) * dy;
                 let dg = dx * dx + dy * dy + (x - q[0]) * ddx + (y - q[1]) * ddy;
                 if dg <= 0.0 {
@@ -183,7 +180,7 @@ fn nearest(sw: &SweepShape, q: [f64; 2]) -> (f64, usize, f64) {
                 }
                 s = (s - g / dg).clamp(0.0, 1.0);
             }
-            let dist = (ev(u, s) - q[0]).hypot(ev(v, s) - q[1]);
+            let dist = (u.value(s) - q[0]).hypot(v.value(s) - q[1]);
             if dist < best.0 {
                 best = (dist, i, s);
             }
@@ -199,7 +196,7 @@ fn inside_polygon(sw: &SweepShape, q: [f64; 2]) -> bool {
     for i in 0..sw.segment {
         for j in 0..400 {
             let s = j as f64 / 400.0;
-            pts.push([ev(&sw.u[i], s), ev(&sw.v[i], s)]);
+            pts.push([sw.u[i].value(s), sw.v[i].value(s)]);
         }
     }
     let mut inside = false;
@@ -241,7 +238,7 @@ fn check_hit(class: PrimitiveClass, sw: &SweepShape, hit: &LocalHit) -> (f64, f6
             } else {
                 DVec3::X
             };
-            let t1 = (er * ev1(u, s) + DVec3::Z * ev1(v, s)).normalize_or_zero();
+            let t1 = (er * u.slope(s) + DVec3::Z * v.slope(s)).normalize_or_zero();
             let t2 = DVec3::new(-er.y, er.x, 0.0);
             (dist / size, n.dot(t1).abs().max(n.dot(t2).abs()), unit)
         }
@@ -258,8 +255,8 @@ fn check_hit(class: PrimitiveClass, sw: &SweepShape, hit: &LocalHit) -> (f64, f6
                 let (dist, i, s) = nearest(sw, [p.x / k, p.y / k]);
                 side = dist * k.abs();
                 let (u, v) = (&sw.u[i], &sw.v[i]);
-                let t1 = DVec3::new(ev1(u, s), ev1(v, s), 0.0).normalize_or_zero();
-                let t2 = DVec3::new(kappa * ev(u, s), kappa * ev(v, s), 1.0).normalize();
+                let t1 = DVec3::new(u.slope(s), v.slope(s), 0.0).normalize_or_zero();
+                let t2 = DVec3::new(kappa * u.value(s), kappa * v.value(s), 1.0).normalize();
                 perp = n.dot(t1).abs().max(n.dot(t2).abs());
             }
             let kc = 1.0 + kappa * sw.length;
@@ -298,15 +295,15 @@ fn bspline_joint_identities() {
         for (c, k) in [(&sw.u, 0), (&sw.v, 1)] {
             let (a, b) = (&c[i], &c[j]);
             // Value, first and second derivative equal across the joint.
-            assert!((ev(a, 1.0) - ev(b, 0.0)).abs() < 1e-12);
-            assert!((ev1(a, 1.0) - ev1(b, 0.0)).abs() < 1e-12);
-            assert!((ev2(a, 1.0) - ev2(b, 0.0)).abs() < 1e-12);
+            assert!((a.value(1.0) - b.value(0.0)).abs() < 1e-12);
+            assert!((a.slope(1.0) - b.slope(0.0)).abs() < 1e-12);
+            assert!((a.curvature(1.0) - b.curvature(0.0)).abs() < 1e-12);
             // §2.2.3 with x_i, x_{i+1}, x_{i+2} the first three points of
             // segment j (B-spline segment j uses points j … j+3).
             let (x0, x1, x2) = (pts[j][k], pts[(j + 1) % n][k], pts[(j + 2) % n][k]);
-            assert!((ev(b, 0.0) - (x0 + 4.0 * x1 + x2) / 6.0).abs() < 1e-12);
-            assert!((ev1(b, 0.0) - (x2 - x0) / 2.0).abs() < 1e-12);
-            assert!((ev2(b, 0.0) - (x0 - 2.0 * x1 + x2)).abs() < 1e-12);
+            assert!((b.value(0.0) - (x0 + 4.0 * x1 + x2) / 6.0).abs() < 1e-12);
+            assert!((b.slope(0.0) - (x2 - x0) / 2.0).abs() < 1e-12);
+            assert!((b.curvature(0.0) - (x0 - 2.0 * x1 + x2)).abs() < 1e-12);
         }
     }
 }
@@ -320,7 +317,7 @@ fn erratum_11_second_derivative_at_a_joint() {
     let pts: Vec<[f64; 2]> = vec![[0.0, 0.0], [3.0, 3.0], [4.0, 1.0], [2.0, -2.0]];
     let sw = sweep(PrimitiveClass::Translation, CurveKind::Bspline, pts.clone(), 1.0, 1.0);
     let (x0, x1, x2) = (pts[0][0], pts[1][0], pts[2][0]);
-    let second = ev2(&sw.u[0], 0.0);
+    let second = sw.u[0].curvature(0.0);
     assert!((second - (x0 - 2.0 * x1 + x2)).abs() < 1e-12, "thesis: M_s");
     let printed = (-x0 + x2) / 2.0;
     assert!(
@@ -337,10 +334,10 @@ fn bezier_end_points_and_tangents() {
     for i in 0..2 {
         let p: Vec<[f64; 2]> = (0..4).map(|k| pts[(3 * i + k) % 6]).collect();
         for (c, k) in [(&sw.u[i], 0), (&sw.v[i], 1)] {
-            assert!((ev(c, 0.0) - p[0][k]).abs() < 1e-12, "passes through P1");
-            assert!((ev(c, 1.0) - p[3][k]).abs() < 1e-12, "passes through P4");
-            assert!((ev1(c, 0.0) - 3.0 * (p[1][k] - p[0][k])).abs() < 1e-12, "3(P2 − P1)");
-            assert!((ev1(c, 1.0) - 3.0 * (p[3][k] - p[2][k])).abs() < 1e-12, "3(P4 − P3)");
+            assert!((c.value(0.0) - p[0][k]).abs() < 1e-12, "passes through P1");
+            assert!((c.value(1.0) - p[3][k]).abs() < 1e-12, "passes through P4");
+            assert!((c.slope(0.0) - 3.0 * (p[1][k] - p[0][k])).abs() < 1e-12, "3(P2 − P1)");
+            assert!((c.slope(1.0) - 3.0 * (p[3][k] - p[2][k])).abs() < 1e-12, "3(P4 − P3)");
         }
     }
 }
@@ -858,7 +855,7 @@ fn circle_sweep_matches_a_cylinder() {
     for i in 0..sw.segment {
         for j in 0..=1000 {
             let s = j as f64 / 1000.0;
-            dev = dev.max((ev(&sw.u[i], s).hypot(ev(&sw.v[i], s)) - r).abs());
+            dev = dev.max((sw.u[i].value(s).hypot(sw.v[i].value(s)) - r).abs());
         }
     }
     assert!(dev > 1e-4 && dev < 2e-2, "deviation {dev}");
@@ -1207,8 +1204,8 @@ fn grazing_ray_double_root() {
     let mut laguerre_found = vec![];
     for s0 in [0.0, 0.37, 0.5] {
         let (u, v) = (&sw.u[3], &sw.v[3]);
-        let p = DVec3::new(ev(u, s0), ev(v, s0), 1.0);
-        let tan = DVec3::new(ev1(u, s0), ev1(v, s0), 0.0).normalize();
+        let p = DVec3::new(u.value(s0), v.value(s0), 1.0);
+        let tan = DVec3::new(u.slope(s0), v.slope(s0), 0.0).normalize();
         let ray = Ray::new(p - tan * 5.0, tan);
         let h = intersect_sweep(t, &sw, &ray, 1e-9, &ROBUST).expect("the robust solver finds the tangency");
         assert!((h.t - 5.0).abs() < 1e-6, "s0 {s0}: {h:?}");
@@ -1251,8 +1248,8 @@ fn near_double_roots_in_the_driver() {
     let t = PrimitiveClass::Translation;
     let (u, v) = (&sw.u[5], &sw.v[5]);
     let s0 = 0.4;
-    let p = DVec3::new(ev(u, s0), ev(v, s0), 1.0);
-    let tan = DVec3::new(ev1(u, s0), ev1(v, s0), 0.0).normalize();
+    let p = DVec3::new(u.value(s0), v.value(s0), 1.0);
+    let tan = DVec3::new(u.slope(s0), v.slope(s0), 0.0).normalize();
     let inward = DVec3::new(-p.x, -p.y, 0.0).normalize();
     let mut lag = vec![];
     for delta in [1e-4, 1e-8, 1e-12] {
@@ -1605,7 +1602,7 @@ fn contour_deviation(sw: &SweepShape, f: impl Fn(f64, f64) -> f64) -> f64 {
     for i in 0..sw.segment {
         for j in 0..=1000 {
             let s = j as f64 / 1000.0;
-            dev = dev.max(f(ev(&sw.u[i], s), ev(&sw.v[i], s)).abs());
+            dev = dev.max(f(sw.u[i].value(s), sw.v[i].value(s)).abs());
         }
     }
     dev

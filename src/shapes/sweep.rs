@@ -60,20 +60,6 @@ fn norm2(a: f64, b: f64) -> f64 {
     (a * a + b * b).sqrt()
 }
 
-fn ev(c: &Coeff, s: f64) -> f64 {
-    ((c.a * s + c.b) * s + c.c) * s + c.d
-}
-
-/// dx/ds.
-fn ev1(c: &Coeff, s: f64) -> f64 {
-    (3.0 * c.a * s + 2.0 * c.b) * s + c.c
-}
-
-/// d²x/ds².
-fn ev2(c: &Coeff, s: f64) -> f64 {
-    6.0 * c.a * s + 2.0 * c.b
-}
-
 /// Ascending coefficients [d, c, b, a].
 fn asc(c: &Coeff) -> [f64; 4] {
     [c.d, c.c, c.b, c.a]
@@ -205,13 +191,13 @@ fn negligible(p: &[f64; 7], scale: f64) -> bool {
 /// direction from the second or third derivative.
 fn tangent(u: &Coeff, v: &Coeff, s: f64, size: f64) -> (f64, f64) {
     let tiny = 1e-9 * size;
-    let t1 = (ev1(u, s), ev1(v, s));
+    let t1 = (u.slope(s), v.slope(s));
     if norm2(t1.0, t1.1) > tiny {
         return t1;
     }
     // x′(s) ≈ x″(s0)(s − s0): forward from the start, backward at the end.
     let sign = if s > 0.5 { -1.0 } else { 1.0 };
-    let t2 = (sign * ev2(u, s), sign * ev2(v, s));
+    let t2 = (sign * u.curvature(s), sign * v.curvature(s));
     if norm2(t2.0, t2.1) > tiny {
         return t2;
     }
@@ -282,7 +268,7 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let roots = if r.identically_zero { &[][..] } else { r.roots() };
         let mut flip = |sign: bool, at: Option<f64>, s_mid: f64, prev_sign: &mut bool, prev_at: &mut Option<f64>| {
             if sign != *prev_sign {
-                let loc = at.or(*prev_at).unwrap_or_else(|| ev(cu, s_mid));
+                let loc = at.or(*prev_at).unwrap_or_else(|| cu.value(s_mid));
                 if loc > x {
                     inside = !inside;
                 }
@@ -292,12 +278,12 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         };
         for &s in roots.iter().filter(|&&s| s > 0.0 && s < 1.0) {
             let mid = 0.5 * (prev_s + s);
-            flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
-            flip(true, Some(ev(cu, s)), s, &mut prev_sign, &mut prev_at);
+            flip(above(cv.value(mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+            flip(true, Some(cu.value(s)), s, &mut prev_sign, &mut prev_at);
             prev_s = s;
         }
         let mid = 0.5 * (prev_s + 1.0);
-        flip(above(ev(cv, mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+        flip(above(cv.value(mid) - y), None, mid, &mut prev_sign, &mut prev_at);
         flip(above(g1), Some(u[next].d), 1.0, &mut prev_sign, &mut prev_at);
     }
     inside
@@ -524,7 +510,7 @@ fn extrusion(
         let found = solve(3, &f, opts);
         for &s0 in &found.s[..found.count] {
             let s = polish(&f, s0);
-            let (uu, vv) = (ev(cu, s), ev(cv, s));
+            let (uu, vv) = (cu.value(s), cv.value(s));
             let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
             let den = ex * ex + ey * ey;
             if den.is_nan() || den <= 1e-24 * dn * dn {
@@ -575,7 +561,7 @@ fn extrusion(
 /// contour point s of segment (u, v): the 2-D residual (radius, height).
 fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> f64 {
     let p = ray.at(t);
-    norm2(norm2(p.x, p.y) - ev(u, s), p.z - ev(v, s))
+    norm2(norm2(p.x, p.y) - u.value(s), p.z - v.value(s))
 }
 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
@@ -592,7 +578,7 @@ fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f
         if res == 0.0 {
             break;
         }
-        let (uu, vv, du, dv) = (ev(u, s), ev(v, s), ev1(u, s), ev1(v, s));
+        let (uu, vv, du, dv) = (u.value(s), v.value(s), u.slope(s), v.slope(s));
         let g1 = (a * t + b) * t + c - uu * uu;
         let g2 = o.z + t * d.z - vv;
         // J = [[2at + b, −2U U′], [d_z, −V′]] in (t, s).
@@ -690,7 +676,7 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
                 let s = polish(&p, s);
-                consider(cu, cv, s, (ev(cv, s) - o.z) / d.z, &mut best);
+                consider(cu, cv, s, (cv.value(s) - o.z) / d.z, &mut best);
             }
         } else if across {
             // Perpendicular to the axis: the ray keeps the height o_z.
@@ -707,7 +693,7 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
                 let s = polish(&p, s);
-                if let Some((t1, t2)) = circle(ev(cu, s)) {
+                if let Some((t1, t2)) = circle(cu.value(s)) {
                     consider(cu, cv, s, t1, &mut best);
                     consider(cu, cv, s, t2, &mut best);
                 }
@@ -750,8 +736,8 @@ fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Opt
                 let s = polish(&p, s);
                 // The better conditioned of the height and the radius
                 // equations: try each, keep what lands on the surface.
-                consider(cu, cv, s, (ev(cv, s) - o.z) / dz, &mut best);
-                if let Some((t1, t2)) = circle(ev(cu, s)) {
+                consider(cu, cv, s, (cv.value(s) - o.z) / dz, &mut best);
+                if let Some((t1, t2)) = circle(cu.value(s)) {
                     consider(cu, cv, s, t1, &mut best);
                     consider(cu, cv, s, t2, &mut best);
                 }
