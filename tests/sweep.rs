@@ -2,6 +2,7 @@
 //! procedures of unit `proc`, the robust solver, and the reconstructed
 //! intersection driver, checked against independent geometry.
 
+mod common;
 use raytrace::proc::robust::{poly_from_roots, real_roots};
 use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use raytrace::shapes::sweep::{intersect_sweep, point_in_contour, prepare_sweeps, signed_area};
@@ -76,29 +77,10 @@ const LAGUERRE: Options = Options {
 };
 
 fn scene_with(objects: Vec<ObjectRecord>) -> Scene {
-    Scene {
-        view: View {
-            eyept: DVec3::new(0.0, -10.0, 0.0),
-            lookpt: DVec3::ZERO,
-            screensize: 4.0,
-            scrndistance: 5.0,
-        },
-        image: ImageSpec {
-            width: 16,
-            height: 16,
-            masksize: 1,
-            aliasing: 0.0,
-        },
-        backgrnd: DVec3::ZERO,
-        lights: vec![],
-        surfaces: vec![],
-        object_pos: vec![Pos::default(); objects.len()],
-        objects,
-        motions: vec![],
-        keyframes: vec![],
-        blur: None,
-        pattern: None,
-    }
+    let mut scene = common::scene();
+    scene.object_pos = vec![Pos::default(); objects.len()];
+    scene.objects = objects;
+    scene
 }
 
 fn object(class: PrimitiveClass, sw: SweepShape) -> ObjectRecord {
