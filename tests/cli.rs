@@ -1,15 +1,13 @@
 //! The `raytrace` command as a user meets it: exit codes, what it writes
 //! and what it refuses to write.
 
-use std::path::Path;
 use std::process::Command;
+
+mod common;
+use common::decks;
 
 fn raytrace() -> Command {
     Command::new(env!("CARGO_BIN_EXE_raytrace"))
-}
-
-fn decks() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
 }
 
 const SMALL: &str = "\

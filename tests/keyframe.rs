@@ -1,30 +1,12 @@
 //! Key-frame deformation in the renderer: the in-between object of a
 //! `keyframe` record as `motionblur`'s `paper = 1` branch draws it.
 
-use std::path::Path;
-
-use raytrace::raytrace::{key_frame_chains, prepare, render};
+mod common;
+use common::load_deck as load;
+use raytrace::raytrace::{key_frame_chains, render};
 use raytrace::types::*;
 
-fn decks() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
-}
-
 const KEY_FRAME_DECKS: [&str; 4] = ["fig5_10.deck", "fig5_11.deck", "fig5_12.deck", "nec_morph.deck"];
-
-fn load(name: &str, fidelity: Fidelity) -> Scene {
-    let src = std::fs::read_to_string(decks().join(name)).unwrap();
-    let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
-    prepare(
-        &mut scene,
-        &Options {
-            fidelity,
-            ..Options::default()
-        },
-    )
-    .unwrap();
-    scene
-}
 
 /// Every key-frame deck prepares in both fidelities; nec_morph's chain of
 /// three shapes makes two pairs, the others one.

@@ -1,28 +1,9 @@
 //! Renders of the legacy decks with an answer known beforehand.
 
-use std::path::Path;
-
-use raytrace::raytrace::{prepare, render};
+mod common;
+use common::load_deck as load;
+use raytrace::raytrace::render;
 use raytrace::types::*;
-
-fn decks() -> &'static Path {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
-}
-
-fn load(name: &str, fidelity: Fidelity) -> Scene {
-    let path = decks().join(name);
-    let src = std::fs::read_to_string(&path).unwrap();
-    let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
-    prepare(
-        &mut scene,
-        &Options {
-            fidelity,
-            ..Options::default()
-        },
-    )
-    .unwrap();
-    scene
-}
 
 /// The connected regions (4-neighbours) of the pixels where `mask` holds.
 fn regions(mask: &[bool], width: usize) -> usize {

@@ -89,3 +89,20 @@ pub fn light(at: [f64; 3], color: [f64; 3]) -> LightRecord {
 pub fn close(a: DVec3, b: DVec3, eps: f64) -> bool {
     (a - b).abs().max_element() <= eps
 }
+
+/// legacy_pascal/decks, where the legacy decks stand.
+pub fn decks() -> &'static std::path::Path {
+    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
+}
+
+/// A legacy deck read by `initialize` and set up by `prepare`.
+pub fn load_deck(name: &str, fidelity: Fidelity) -> Scene {
+    let src = std::fs::read_to_string(decks().join(name)).unwrap();
+    let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
+    let opts = Options {
+        fidelity,
+        ..Options::default()
+    };
+    raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
+    scene
+}
