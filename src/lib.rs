@@ -7,10 +7,12 @@
 //! One module per unit of the original: [`raytrace`] (the main program),
 //! [`proc`], and (with later work) `drt` and `paper`; beside them the
 //! reconstructed base program ([`trace`], [`shapes`], [`deck`], [`raster`])
-//! and the PS 390 display emulation [`psout`].
+//! and the PS 390 display emulation [`psout`]; [`output`], the port's own,
+//! writes every output file.
 
 pub mod deck;
 pub mod drt;
+pub mod output;
 pub mod paper;
 pub mod proc;
 pub mod psout;

@@ -15,16 +15,24 @@
 //! RMT_EQUAL_RGB colour map), 24 and 32 (XBGR, or XRGB for type 3; the first
 //! byte of each 32-bit pixel is ignored). Depth 1, RMT_RAW maps and colour
 //! maps at depth 24/32 are refused with an error. Any byte string is either
-//! a raster or an error, never a panic; nothing is allocated beyond a small
-//! multiple of the bytes actually present.
+//! a raster or an error, never a panic.
 //!
-//! Writing produces RT_STANDARD, 24-bit, BGR, no colour map, to a temporary
-//! file beside the target that is then renamed over it.
+//! Memory: reading costs the bytes of the file it needs plus 3 bytes a
+//! pixel, and a raster has at most [`MAX_PIXELS`] pixels (192 MiB; deck
+//! textures have a smaller limit, `types::MAX_TEXELS`). Both are checked on
+//! the header before anything is allocated. A byte-encoded image is decoded
+//! a row at a time straight into its pixels, and its header must declare a
+//! size its encoded bytes can hold (at most 86 decoded bytes for each
+//! encoded one, the densest run), so a small file cannot claim a large
+//! allocation.
+//!
+//! Writing produces RT_STANDARD, 24-bit, BGR, no colour map, through the
+//! writer of [`crate::output`] (a temporary file beside the target renamed
+//! over it).
 
 use std::fs::File;
-use std::io::{BufWriter, Read, Write};
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::io::{Read, Write};
+use std::path::Path;
 
 use byteorder::{BigEndian, ByteOrder};
 
@@ -48,6 +56,10 @@ pub const RMT_EQUAL_RGB: u32 = 1;
 /// The largest width and height read or written (a sanity cap, far above
 /// the thesis's 256×256 and the PS 390's 1024×864).
 pub const MAX_SIDE: usize = 16384;
+/// The most pixels a raster read or written may have: 8192 × 8192 (2^26),
+/// the largest image a deck can ask for; 192 MiB as pixels. The port's
+/// bound, so that a header cannot make the reader allocate gigabytes.
+pub const MAX_PIXELS: usize = 8192 * 8192;
 
 /// The length of the header in bytes.
 const HEADER_LEN: usize = 32;
@@ -66,11 +78,18 @@ pub struct Raster {
 
 impl Raster {
     /// Checks that the raster can be written and read back: `pixels` holds
-    /// `width × height` entries and both sides are in 1..=[`MAX_SIDE`].
+    /// `width × height` entries, both sides are in 1..=[`MAX_SIDE`] and
+    /// there are at most [`MAX_PIXELS`] pixels.
     pub fn check(&self) -> Result<(), RasterError> {
         if !(1..=MAX_SIDE).contains(&self.width) || !(1..=MAX_SIDE).contains(&self.height) {
             return Err(RasterError::Inconsistent(format!(
                 "size {}×{} is outside 1..={MAX_SIDE} per side",
+                self.width, self.height
+            )));
+        }
+        if self.width * self.height > MAX_PIXELS {
+            return Err(RasterError::Inconsistent(format!(
+                "size {}×{} is more than {MAX_PIXELS} pixels",
                 self.width, self.height
             )));
         }
@@ -100,6 +119,16 @@ pub enum RasterError {
     },
     #[error("raster size {width}×{height} is outside 1..=16384 per side")]
     BadSize { width: u32, height: u32 },
+    #[error(
+        "raster size {width}×{height} is {} pixels, more than the {limit} a {what} may have",
+        *width as u64 * *height as u64
+    )]
+    TooLarge {
+        width: u32,
+        height: u32,
+        limit: usize,
+        what: &'static str,
+    },
     #[error("unsupported raster type {0} (known: 0 old, 1 standard, 2 byte-encoded, 3 RGB)")]
     UnsupportedType(u32),
     #[error("unsupported raster depth {0} (supported: 8, 24, 32 bits)")]
@@ -123,6 +152,8 @@ pub enum RasterError {
     Inconsistent(String),
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    #[error(transparent)]
+    Output(#[from] crate::output::OutputError),
     #[cfg(feature = "png")]
     #[error("PNG: {0}")]
     Png(#[from] image::ImageError),
@@ -183,8 +214,23 @@ fn parse_header(bytes: &[u8]) -> Result<Header, RasterError> {
     })
 }
 
+/// How many pixels a reading may give, and what for (named in the error).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PixelLimit {
+    pub pixels: usize,
+    pub what: &'static str,
+}
+
+impl PixelLimit {
+    /// Any raster: [`MAX_PIXELS`].
+    pub const RASTER: PixelLimit = PixelLimit {
+        pixels: MAX_PIXELS,
+        what: "raster",
+    };
+}
+
 /// Checks everything the header alone can tell, before any allocation.
-fn layout(h: &Header) -> Result<Layout, RasterError> {
+fn layout(h: &Header, limit: PixelLimit) -> Result<Layout, RasterError> {
     if !matches!(h.ras_type, RT_OLD | RT_STANDARD | RT_BYTE_ENCODED | RT_FORMAT_RGB) {
         return Err(RasterError::UnsupportedType(h.ras_type));
     }
@@ -199,6 +245,14 @@ fn layout(h: &Header) -> Result<Layout, RasterError> {
         return Err(RasterError::BadSize {
             width: h.width,
             height: h.height,
+        });
+    }
+    if width * height > limit.pixels {
+        return Err(RasterError::TooLarge {
+            width: h.width,
+            height: h.height,
+            limit: limit.pixels,
+            what: limit.what,
         });
     }
     let maplength = h.maplength as usize;
@@ -268,78 +322,137 @@ fn bytes_needed(h: &Header, lay: &Layout) -> usize {
     lay.data_start + data
 }
 
-/// Decodes RT_BYTE_ENCODED data: `80 00` is one 0x80 byte, `80 n v`
-/// (n ≥ 1) is n + 1 copies of v, any other byte is itself. The encoding
-/// runs over the whole padded image, so runs may cross row ends.
-///
-/// `expected` is the decoded size. With `exact`, all of `src` must decode
-/// to exactly `expected` bytes (the header gave the encoded length);
-/// otherwise decoding stops when the image is full and the rest of `src` is
-/// ignored (the header left the length 0).
-///
-/// The output grows with what is actually decoded, so memory follows the
-/// input, not the header.
-fn decode_byte_encoded(src: &[u8], expected: usize, exact: bool) -> Result<Vec<u8>, RasterError> {
-    // The densest encoding, `80 ff v`, gives 256 bytes for 3.
-    if expected > src.len().saturating_mul(86) {
-        return Err(RasterError::Rle(format!(
-            "{} encoded bytes cannot hold {expected} image bytes",
-            src.len()
-        )));
-    }
-    let mut out = Vec::with_capacity(expected.min(src.len()));
-    let mut i = 0;
-    while i < src.len() && (exact || out.len() < expected) {
-        let b = src[i];
-        if b != ESCAPE {
-            if out.len() == expected {
-                return Err(RasterError::Rle(format!(
-                    "data continues past the end of the image at encoded byte {i}"
-                )));
-            }
-            out.push(b);
-            i += 1;
-            continue;
-        }
-        let n = *src
-            .get(i + 1)
-            .ok_or_else(|| RasterError::Rle(format!("escape at encoded byte {i} is cut off")))?;
-        let (count, value, step) = if n == 0 {
-            (1, ESCAPE, 2)
-        } else {
-            let v = *src
-                .get(i + 2)
-                .ok_or_else(|| RasterError::Rle(format!("run at encoded byte {i} is cut off")))?;
-            (n as usize + 1, v, 3)
-        };
-        if out.len() + count > expected {
-            return Err(RasterError::Rle(format!(
-                "run of {count} at encoded byte {i} runs past the end of the image \
-                 ({} of {expected} bytes already decoded)",
-                out.len()
-            )));
-        }
-        out.resize(out.len() + count, value);
-        i += step;
-    }
-    if out.len() < expected {
-        return Err(RasterError::Truncated {
-            part: "byte-encoded image",
-            needed: expected,
-            found: out.len(),
-        });
-    }
-    Ok(out)
+/// Decodes RT_BYTE_ENCODED data a piece at a time: `80 00` is one 0x80
+/// byte, `80 n v` (n ≥ 1) is n + 1 copies of v, any other byte is itself.
+/// The encoding runs over the whole padded image, so a run may cross a row
+/// end: the decoder keeps what is left of it for the next piece.
+struct RunDecoder<'a> {
+    src: &'a [u8],
+    /// The next encoded byte.
+    at: usize,
+    /// Bytes decoded so far.
+    done: usize,
+    /// The decoded size of the whole image.
+    expected: usize,
+    /// Copies of `value` still owed from the last run.
+    left: usize,
+    value: u8,
 }
 
-/// Reads a raster file from its bytes.
+impl<'a> RunDecoder<'a> {
+    /// A decoder of `src` into `expected` bytes; refuses at once a size the
+    /// encoding cannot hold (the densest encoding, `80 ff v`, gives 256
+    /// bytes for 3), so nothing is allocated for a header that lies.
+    fn new(src: &'a [u8], expected: usize) -> Result<Self, RasterError> {
+        if expected > src.len().saturating_mul(86) {
+            return Err(RasterError::Rle(format!(
+                "{} encoded bytes cannot hold {expected} image bytes",
+                src.len()
+            )));
+        }
+        Ok(RunDecoder {
+            src,
+            at: 0,
+            done: 0,
+            expected,
+            left: 0,
+            value: 0,
+        })
+    }
+
+    /// Fills `out` with the next decoded bytes.
+    fn fill(&mut self, out: &mut [u8]) -> Result<(), RasterError> {
+        let mut k = 0;
+        while k < out.len() {
+            if self.left > 0 {
+                let n = self.left.min(out.len() - k);
+                out[k..k + n].fill(self.value);
+                self.left -= n;
+                k += n;
+                continue;
+            }
+            let i = self.at;
+            let Some(&b) = self.src.get(i) else {
+                return Err(RasterError::Truncated {
+                    part: "byte-encoded image",
+                    needed: self.expected,
+                    found: self.done + k,
+                });
+            };
+            if b != ESCAPE {
+                out[k] = b;
+                k += 1;
+                self.at += 1;
+                continue;
+            }
+            let n = *self
+                .src
+                .get(i + 1)
+                .ok_or_else(|| RasterError::Rle(format!("escape at encoded byte {i} is cut off")))?;
+            if n == 0 {
+                out[k] = ESCAPE;
+                k += 1;
+                self.at += 2;
+                continue;
+            }
+            let value = *self
+                .src
+                .get(i + 2)
+                .ok_or_else(|| RasterError::Rle(format!("run at encoded byte {i} is cut off")))?;
+            let count = n as usize + 1;
+            let before = self.done + k;
+            if before + count > self.expected {
+                return Err(RasterError::Rle(format!(
+                    "run of {count} at encoded byte {i} runs past the end of the image \
+                     ({before} of {} bytes already decoded)",
+                    self.expected
+                )));
+            }
+            (self.left, self.value) = (count, value);
+            self.at += 3;
+        }
+        self.done += out.len();
+        Ok(())
+    }
+
+    /// With `exact` (the header gave the encoded length), every encoded
+    /// byte must have been used; otherwise the rest is ignored.
+    fn finish(&self, exact: bool) -> Result<(), RasterError> {
+        if exact && self.at < self.src.len() {
+            return Err(RasterError::Rle(format!(
+                "data continues past the end of the image at encoded byte {}",
+                self.at
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The image data of a file: raw, present in full, or byte-encoded and
+/// decoded a padded row at a time into `row`.
+enum ImageData<'a> {
+    Raw(&'a [u8]),
+    Encoded {
+        decoder: RunDecoder<'a>,
+        exact: bool,
+        row: Vec<u8>,
+    },
+}
+
+/// Reads a raster file from its bytes, up to [`MAX_PIXELS`] pixels.
 ///
 /// Reconstructed: the Sun rasterfile layout (module doc). Bytes after the
 /// image are ignored; everything else that does not fit the layout is an
 /// error. 8-bit pixels without a map are grey.
 pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
+    read_raster_within(bytes, PixelLimit::RASTER)
+}
+
+/// [`read_raster`] with another pixel limit: a raster with more pixels is
+/// refused from its header, before anything is allocated.
+pub fn read_raster_within(bytes: &[u8], limit: PixelLimit) -> Result<Raster, RasterError> {
     let h = parse_header(bytes)?;
-    let lay = layout(&h)?;
+    let lay = layout(&h, limit)?;
 
     let map = if h.maptype == RMT_EQUAL_RGB {
         let end = lay.data_start;
@@ -354,8 +467,7 @@ pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
     };
 
     let rest = &bytes[lay.data_start.min(bytes.len())..];
-    let decoded;
-    let data: &[u8] = if h.ras_type == RT_BYTE_ENCODED {
+    let mut source = if h.ras_type == RT_BYTE_ENCODED {
         let (src, exact) = if h.length != 0 {
             let length = h.length as usize;
             let src = rest.get(..length).ok_or(RasterError::Truncated {
@@ -367,22 +479,32 @@ pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
         } else {
             (rest, false)
         };
-        decoded = decode_byte_encoded(src, lay.data_bytes, exact)?;
-        &decoded
+        ImageData::Encoded {
+            decoder: RunDecoder::new(src, lay.data_bytes)?,
+            exact,
+            row: vec![0; lay.row_bytes],
+        }
     } else {
-        rest.get(..lay.data_bytes).ok_or(RasterError::Truncated {
+        ImageData::Raw(rest.get(..lay.data_bytes).ok_or(RasterError::Truncated {
             part: "image",
             needed: lay.data_start + lay.data_bytes,
             found: bytes.len(),
-        })?
+        })?)
     };
 
-    // `data` is present in full, so this allocation is no larger than the
-    // input (or its checked decoding).
+    // Raw data is present in full, and encoded data can hold the image
+    // (`RunDecoder::new`), so this is no larger than the input allows.
     let mut pixels = Vec::with_capacity(lay.width * lay.height);
     let rgb_order = h.ras_type == RT_FORMAT_RGB;
     let entries = map.map_or(0, |m| m.len() / 3);
-    for (y, row) in data.chunks_exact(lay.row_bytes).enumerate() {
+    for y in 0..lay.height {
+        let row = match &mut source {
+            ImageData::Raw(data) => &data[y * lay.row_bytes..(y + 1) * lay.row_bytes],
+            ImageData::Encoded { decoder, row, .. } => {
+                decoder.fill(row)?;
+                &row[..]
+            }
+        };
         let row = &row[..lay.width * lay.bytes_per_pixel];
         match lay.bytes_per_pixel {
             1 => {
@@ -408,6 +530,9 @@ pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
             }
         }
     }
+    if let ImageData::Encoded { decoder, exact, .. } = &source {
+        decoder.finish(*exact)?;
+    }
     Ok(Raster {
         width: lay.width,
         height: lay.height,
@@ -415,23 +540,28 @@ pub fn read_raster(bytes: &[u8]) -> Result<Raster, RasterError> {
     })
 }
 
-/// Reads a raster file.
+/// Reads a raster file, up to [`MAX_PIXELS`] pixels.
 ///
 /// Reconstructed (as [`read_raster`]). Only the bytes the header can need
 /// are read, so a huge file costs no more memory than its raster.
 pub fn read_raster_file(path: &Path) -> Result<Raster, RasterError> {
+    read_raster_file_within(path, PixelLimit::RASTER)
+}
+
+/// [`read_raster_file`] with another pixel limit ([`read_raster_within`]).
+pub fn read_raster_file_within(path: &Path, limit: PixelLimit) -> Result<Raster, RasterError> {
     let mut file = File::open(path)?;
     let mut head = Vec::with_capacity(HEADER_LEN);
     (&mut file).take(HEADER_LEN as u64).read_to_end(&mut head)?;
-    let limit = match parse_header(&head) {
-        Ok(h) => bytes_needed(&h, &layout(&h)?),
+    let needed = match parse_header(&head) {
+        Ok(h) => bytes_needed(&h, &layout(&h, limit)?),
         // Let read_raster report the short header.
         Err(_) => HEADER_LEN,
     };
     let mut bytes = head;
-    file.take((limit - bytes.len().min(limit)) as u64)
+    file.take((needed - bytes.len().min(needed)) as u64)
         .read_to_end(&mut bytes)?;
-    read_raster(&bytes)
+    read_raster_within(&bytes, limit)
 }
 
 /// `rgbtochars(acolor, threechars)`: a colour of the renderer (each channel
@@ -464,9 +594,22 @@ pub fn encode_raster(raster: &Raster) -> Vec<u8> {
     if let Err(e) = raster.check() {
         panic!("encode_raster: {e}");
     }
+    let mut out = Vec::with_capacity(HEADER_LEN + (raster.width * 3).div_ceil(2) * 2 * raster.height);
+    match write_sun_raster(raster, &mut out) {
+        Ok(()) => out,
+        Err(e) => panic!("encode_raster: {e}"),
+    }
+}
+
+/// Writes the raster file of [`encode_raster`] to `w`, a row at a time (so
+/// a large raster is not copied whole first).
+///
+/// The raster must pass [`Raster::check`]; one that does not is refused.
+pub fn write_sun_raster(raster: &Raster, w: &mut dyn Write) -> Result<(), RasterError> {
+    raster.check()?;
     let row_bytes = (raster.width * 3).div_ceil(2) * 2;
     let data_bytes = row_bytes * raster.height;
-    let mut out = vec![0; HEADER_LEN];
+    let mut header = [0; HEADER_LEN];
     // The sizes are capped by `check`, so they fit in u32.
     BigEndian::write_u32_into(
         &[
@@ -479,99 +622,37 @@ pub fn encode_raster(raster: &Raster) -> Vec<u8> {
             RMT_NONE,
             0,
         ],
-        &mut out,
+        &mut header,
     );
-    out.reserve(data_bytes);
+    w.write_all(&header)?;
+    // The padding byte of an odd width stays 0.
+    let mut line = vec![0; row_bytes];
     for row in raster.pixels.chunks_exact(raster.width) {
-        for &[r, g, b] in row {
-            out.extend_from_slice(&[b, g, r]);
+        for (out, &[r, g, b]) in line.chunks_exact_mut(3).zip(row) {
+            out.copy_from_slice(&[b, g, r]);
         }
-        if raster.width % 2 == 1 {
-            out.push(0);
-        }
+        w.write_all(&line)?;
     }
-    out
+    Ok(())
 }
 
 /// `outputframe`: writes the finished frame as a raster file.
 ///
 /// Reconstructed: the main program calls `outputframe` once per frame (OCR
 /// lines 3217–3223, after `expandframe` when the image is scaled up); its
-/// body is not printed. The file is written to a temporary file beside
-/// `path` and renamed over it, so an interrupted write never leaves a
-/// truncated file or clobbers the last good one.
+/// body is not printed. The file goes through [`crate::output`]'s writer:
+/// to a temporary file beside `path` renamed over it, so an interrupted
+/// write never leaves a truncated file or clobbers the last good one (a
+/// device or FIFO is written into).
 pub fn outputframe(path: &Path, raster: &Raster) -> Result<(), RasterError> {
     raster.check()?;
-    let bytes = encode_raster(raster);
-    write_atomically(path, |w| Ok(w.write_all(&bytes)?))
+    crate::output::write_atomically(path, |w| write_sun_raster(raster, w))
 }
 
-/// Writes the raster as an 8-bit RGB PNG, through a temporary file beside
-/// `path` renamed over it.
+/// Writes the raster as an 8-bit RGB PNG through [`crate::output`]'s writer,
+/// as [`outputframe`] does.
 #[cfg(feature = "png")]
 pub fn write_png(path: &Path, raster: &Raster) -> Result<(), RasterError> {
-    use image::ImageEncoder;
     raster.check()?;
-    let flat: Vec<u8> = raster.pixels.iter().flatten().copied().collect();
-    write_atomically(path, |w| {
-        image::codecs::png::PngEncoder::new(w).write_image(
-            &flat,
-            raster.width as u32,
-            raster.height as u32,
-            image::ExtendedColorType::Rgb8,
-        )?;
-        Ok(())
-    })
-}
-
-/// Writes through `write` into a new temporary file in the directory of
-/// `path`, syncs it and renames it to `path`. On any error the temporary
-/// file is removed and `path` is untouched.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<&File>) -> Result<(), RasterError>,
-) -> Result<(), RasterError> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let name = path.file_name().ok_or_else(|| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            format!("{} does not name a file", path.display()),
-        )
-    })?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let (temp_path, file) = loop {
-        let mut temp_name = std::ffi::OsString::from(".");
-        temp_name.push(name);
-        temp_name.push(format!(
-            ".{}.{}.tmp",
-            std::process::id(),
-            COUNTER.fetch_add(1, Ordering::Relaxed)
-        ));
-        let temp_path = dir.join(temp_name);
-        match File::options().write(true).create_new(true).open(&temp_path) {
-            Ok(f) => break (temp_path, f),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(e.into()),
-        }
-    };
-    let result = (|| {
-        let mut w = BufWriter::new(&file);
-        write(&mut w)?;
-        w.flush()?;
-        drop(w);
-        file.sync_all()?;
-        std::fs::rename(&temp_path, path)?;
-        Ok(())
-    })();
-    if result.is_err() {
-        // Best effort: the error that matters is the one returned.
-        let _ = std::fs::remove_file(&temp_path);
-    } else if let Ok(d) = File::open(&dir) {
-        // Make the rename itself durable where the platform allows it.
-        let _ = d.sync_all();
-    }
-    result
+    crate::output::write_atomically(path, |w| crate::output::write_png_to(raster, w))
 }

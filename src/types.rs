@@ -127,21 +127,34 @@ pub struct Paint {
 }
 
 /// A raster picture pasted on a surface (deck `texture`, Fig. 5.3–5.4):
-/// texels row-major, row 0 at the top, colours 0–1.
+/// texels row-major, row 0 at the top, kept as the raster's bytes (3 a
+/// texel) and turned into colours 0–1 when looked up.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
     pub width: usize,
     pub height: usize,
-    pub texels: Vec<Intensity>,
+    pub texels: Vec<[u8; 3]>,
 }
 
+/// The most texels a deck texture may have: 4096 × 4096 (48 MiB), a
+/// sixteenth of a raster's [`crate::raster::MAX_PIXELS`], since a deck may
+/// paste several. The port's bound: the thesis's textures are 256×256.
+pub const MAX_TEXELS: usize = 4096 * 4096;
+
 impl Texture {
+    /// The reading limit of a deck texture ([`MAX_TEXELS`]).
+    pub const LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
+        pixels: MAX_TEXELS,
+        what: "deck texture",
+    };
+
     /// The texel under (s, t) in the unit square, s to the right, t upward; nearest
     /// texel, as a 1989 frame-buffer paste would take it.
     pub fn texel(&self, s: f64, t: f64) -> Intensity {
         let col = ((s.clamp(0.0, 1.0) * self.width as f64) as usize).min(self.width - 1);
         let row_up = ((t.clamp(0.0, 1.0) * self.height as f64) as usize).min(self.height - 1);
-        self.texels[(self.height - 1 - row_up) * self.width + col]
+        let [r, g, b] = self.texels[(self.height - 1 - row_up) * self.width + col];
+        Intensity::new(r as f64, g as f64, b as f64) / 255.0
     }
 }
 

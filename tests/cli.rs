@@ -75,6 +75,7 @@ fn good_deck_writes_raster_png_and_debug_log() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("small.deck");
     std::fs::write(&deck, SMALL).unwrap();
+    std::fs::create_dir(dir.path().join("nested")).unwrap();
     let out = dir.path().join("nested/small.ras");
     let png = dir.path().join("small.png");
     let debug = dir.path().join("small.log");

@@ -146,13 +146,16 @@ fn outputframe_refuses_an_inconsistent_raster_and_keeps_the_last_good_file() {
 }
 
 #[test]
-fn outputframe_into_a_missing_folder_is_an_io_error() {
+fn outputframe_into_a_missing_folder_names_the_folder_and_makes_none() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("no such folder").join("frame.ras");
-    assert!(matches!(
-        outputframe(&path, &test_raster(2, 2, 0)),
-        Err(RasterError::Io(_))
-    ));
+    let e = outputframe(&path, &test_raster(2, 2, 0)).unwrap_err();
+    assert!(
+        matches!(&e, RasterError::Output(raytrace::output::OutputError::MissingFolder(_))),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("no such folder does not exist"), "{e}");
+    assert!(!dir.path().join("no such folder").exists());
 }
 
 #[cfg(feature = "png")]
@@ -380,11 +383,14 @@ fn every_malformed_body_is_an_error() {
     assert_error(&rle_file(&[], 0), "empty encoding", |e| {
         matches!(e, Rle(_) | Truncated { .. })
     });
-    // A 16384×16384 32-bit header on 40 bytes of runs: refused before any
-    // allocation of the 1 GiB image.
+    // A 16384×16384 32-bit header on 40 bytes of runs: refused from its
+    // header, past the pixel limit; within the limit, for what 40 bytes
+    // of runs cannot hold.
     let huge = file(16384, 16384, 32, 0, 2, 0, &[], &[0x80, 0xff, 0x00].repeat(13));
-    assert_error(&huge, "huge RLE", rle);
-    let huge = file(16384, 16384, 32, 0, 1, 0, &[], &[0; 100]);
+    assert_error(&huge, "huge RLE", |e| matches!(e, TooLarge { .. }));
+    let big = file(8192, 8192, 32, 0, 2, 0, &[], &[0x80, 0xff, 0x00].repeat(13));
+    assert_error(&big, "big RLE on little data", rle);
+    let huge = file(8192, 8192, 32, 0, 1, 0, &[], &[0; 100]);
     assert_error(&huge, "huge raw", trunc);
 }
 

@@ -3,7 +3,9 @@
 //! PNG instead. See docs/psout.md and the `raytrace::psout` module.
 //!
 //! Exit codes: 0 done; 1 no window could be opened (or a screenshot could
-//! not be written); 2 the raster file (or the command line) is bad.
+//! not be written); 2 the raster file (or the command line) is bad; 130 or
+//! 143 stopped by SIGINT or SIGTERM (a screenshot being written leaves no
+//! temporary file).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -41,6 +43,10 @@ struct Failure {
 
 fn main() -> ExitCode {
     let args = Args::parse();
+    if let Err(e) = raytrace::output::remove_temp_files_on_signals() {
+        eprintln!("psout: cannot watch for SIGINT and SIGTERM: {e}");
+        return ExitCode::from(1);
+    }
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
@@ -51,12 +57,31 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
+    if let Some(out) = &args.screenshot {
+        check_screenshot_name(out)?;
+    }
     let lut = args.lut.map(usize::from);
     let raster = load(&args.file, lut).map_err(|message| Failure { code: 2, message })?;
     match &args.screenshot {
         Some(out) => screenshot(out, &raster, args.zoom),
         None => show(args, raster),
     }
+}
+
+/// A usage error (exit 2) unless `out` is standard output (`-`) or names
+/// a PNG: the format follows the extension, as for `raytrace -o`.
+fn check_screenshot_name(out: &Path) -> Result<(), Failure> {
+    use raytrace::output::{Format, OutputError, STDOUT};
+    let problem = match Format::of(out) {
+        _ if out.as_os_str() == STDOUT => return Ok(()),
+        Ok(Format::Png) => return Ok(()),
+        Ok(_) | Err(OutputError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
+        Err(e) => e.to_string(),
+    };
+    Err(Failure {
+        code: 2,
+        message: format!("--screenshot '{}': {problem}", out.display()),
+    })
 }
 
 /// Reads the raster, in lookup-table mode quantised; the message names the

@@ -8,6 +8,7 @@ use std::time::Instant;
 use clap::{Parser, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use raytrace::output::{Format, OutputError, PendingFile, STDOUT};
 use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
 
 /// The scene rendered when no deck is named: legacy_pascal/decks/nec_morph.deck,
@@ -19,12 +20,17 @@ With no DECK, renders the embedded default deck (legacy_pascal/decks/nec_morph.d
 'N' deforming into 'E' and then 'C' while it moves, blurred)
 to raster/default.ras and raster/default.png.
 
-The raster file is a Sun rasterfile (24-bit RT_STANDARD), the format the thesis
-sent to the PS 390 through psout; look at it with `psout FILE`.
+The format of -o follows its extension: .ras a Sun rasterfile (24-bit
+RT_STANDARD, the format the thesis sent to the PS 390 through psout; look at it
+with `psout FILE`), .png a PNG, .ppm or .pnm a netpbm pixmap. `-o -` writes the
+Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`). Only the
+default folder raster/ is created; every output is checked before rendering.
 
-Exit status: 0 on success, 2 for an error in the deck or an input file
-(reported as FILE:LINE:COLUMN), 1 for anything else (e.g. an output file that
-cannot be written). Nothing is written when the deck has an error.";
+Exit status: 0 on success; 2 for a usage error (a bad flag or output file name)
+or an error in the deck or an input file (reported as FILE:LINE:COLUMN); 1 for
+anything else (e.g. an output file that cannot be written, or a missing
+folder); 130 or 143 when stopped by SIGINT or SIGTERM. Nothing is written when
+the deck has an error, and no temporary file is left behind.";
 
 #[derive(Parser, Debug)]
 #[command(
@@ -37,11 +43,13 @@ struct Cli {
     /// The scene deck (format: legacy_pascal/DECK.md). Omit it for the embedded default deck.
     deck: Option<PathBuf>,
 
-    /// The raster file to write [default: raster/<deck name>.ras].
+    /// The image file to write, its format by its extension (.ras, .png, .ppm, .pnm),
+    /// or - for standard output [default: raster/<deck name>.ras].
     #[arg(short, long, value_name = "FILE")]
     output: Option<PathBuf>,
 
-    /// Also write the image as PNG to FILE (the default deck always gets raster/default.png).
+    /// Also write the image as PNG to FILE, a name ending in .png or - (the default deck always
+    /// gets raster/default.png).
     #[arg(long, value_name = "FILE")]
     png: Option<PathBuf>,
 
@@ -98,6 +106,8 @@ struct Failure {
     message: String,
 }
 
+/// A usage error (exit 2, as clap's own), or an input error: a deck or file
+/// that cannot be used.
 fn input_error(message: impl ToString) -> Failure {
     Failure {
         code: 2,
@@ -114,6 +124,10 @@ fn other_error(message: impl ToString) -> Failure {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Err(e) = raytrace::output::remove_temp_files_on_signals() {
+        eprintln!("raytrace: cannot watch for SIGINT and SIGTERM: {e}");
+        return ExitCode::from(1);
+    }
     match run(&cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(f) => {
@@ -140,6 +154,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         },
     };
 
+    let output_format = check_output_names(cli)?;
+
     // The deck: text, the name its errors carry, the folder its files are relative to.
     let (source, file_name, deck_dir, stem) = match &cli.deck {
         Some(path) => {
@@ -161,14 +177,25 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     let output = cli
         .output
         .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("raster/{stem}.ras")));
-    let png = cli
-        .png
-        .clone()
-        .or_else(|| cli.deck.is_none().then(|| PathBuf::from("raster/default.png")));
+        .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{stem}.ras")));
+    let png = cli.png.clone().or_else(|| {
+        cli.deck
+            .is_none()
+            .then(|| Path::new(DEFAULT_FOLDER).join("default.png"))
+    });
 
     let mut scene = raytrace::deck::initialize(&source, &file_name, &deck_dir, opts.fidelity).map_err(input_error)?;
     raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| input_error(format!("{file_name}:{e}")))?;
+
+    // Every output is checked and reserved before the render, so a long
+    // render never ends on a file it cannot write.
+    if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
+        std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| other_error(format!("{DEFAULT_FOLDER}: {e}")))?;
+    }
+    let reserve = |path: &Path| PendingFile::create(path).map_err(|e| other_error(format!("{}: {e}", path.display())));
+    let raster_file = reserve(&output)?;
+    let png_file = png.as_deref().map(reserve).transpose()?;
+    let debug_file = cli.debug.as_deref().map(reserve).transpose()?;
 
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
@@ -191,19 +218,17 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     let elapsed = started.elapsed();
     bar.finish_and_clear();
 
-    for path in std::iter::once(&output).chain(png.iter()).chain(cli.debug.iter()) {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
-        }
-    }
-    raytrace::raster::outputframe(&output, &render.raster)
+    raster_file
+        .commit(|w| output_format.write(&render.raster, w))
         .map_err(|e| other_error(format!("{}: {e}", output.display())))?;
-    if let Some(png) = &png {
-        write_png(png, &render.raster)?;
+    if let (Some(file), Some(path)) = (png_file, &png) {
+        file.commit(|w| Format::Png.write(&render.raster, w))
+            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
     }
-    if let Some(debug) = &cli.debug {
-        std::fs::write(debug, raytrace::raytrace::debug_log(&scene, &render))
-            .map_err(|e| other_error(format!("{}: {e}", debug.display())))?;
+    if let (Some(file), Some(path)) = (debug_file, &cli.debug) {
+        let log = raytrace::raytrace::debug_log(&scene, &render);
+        file.commit(|w| w.write_all(log.as_bytes()).map_err(OutputError::from))
+            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
     }
     if !cli.quiet {
         let img = &scene.image;
@@ -225,15 +250,40 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     Ok(())
 }
 
-#[cfg(feature = "png")]
-fn write_png(path: &Path, raster: &raytrace::raster::Raster) -> Result<(), Failure> {
-    raytrace::raster::write_png(path, raster).map_err(|e| other_error(format!("{}: {e}", path.display())))
-}
+/// The folder the default outputs go to, created when they are used.
+const DEFAULT_FOLDER: &str = "raster";
 
-#[cfg(not(feature = "png"))]
-fn write_png(path: &Path, _raster: &raytrace::raster::Raster) -> Result<(), Failure> {
-    Err(input_error(format!(
-        "{}: this build has no PNG export (the `png` feature is off)",
-        path.display()
-    )))
+/// Checks the output file names before anything is read or written, and
+/// gives the format of `-o`: a usage error (exit 2) when a name has an
+/// extension that names no format or (`--png`) is not a `.png`, or when
+/// more than one output goes to standard output. (An empty name is
+/// refused by the flag parser, also with exit 2.)
+fn check_output_names(cli: &Cli) -> Result<Format, Failure> {
+    let usage =
+        |flag: &str, path: &Path, e: &dyn std::fmt::Display| input_error(format!("{flag} '{}': {e}", path.display()));
+    let stdout = [&cli.output, &cli.png, &cli.debug]
+        .iter()
+        .filter(|p| p.as_deref().is_some_and(|p| p.as_os_str() == STDOUT))
+        .count();
+    if stdout > 1 {
+        return Err(input_error("only one output can go to standard output (-)"));
+    }
+    if let Some(png) = cli.png.as_deref().filter(|p| p.as_os_str() != STDOUT) {
+        match Format::of(png) {
+            Ok(Format::Png) => {}
+            Ok(_) | Err(OutputError::UnknownFormat(_)) => {
+                return Err(usage(
+                    "--png",
+                    png,
+                    &"--png writes a PNG, so the name must end in .png (-o writes .ras, .ppm or .pnm)",
+                ));
+            }
+            Err(e) => return Err(usage("--png", png, &e)),
+        }
+    }
+    match cli.output.as_deref() {
+        None => Ok(Format::SunRaster),
+        Some(out) if out.as_os_str() == STDOUT => Ok(Format::SunRaster),
+        Some(out) => Format::of(out).map_err(|e| usage("-o", out, &e)),
+    }
 }

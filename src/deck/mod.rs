@@ -63,8 +63,10 @@
 //!   where DECK.md says.
 //! - `paint`: `scale` LX LY > 0, default 1 1; `color` in 0..1, default
 //!   white. `texture`: FILE is relative to the deck's folder (`deck_dir`;
-//!   an absolute path stays absolute), read with `raster::read_raster_file` as a
-//!   raster file (texel = byte / 255); an empty raster is an error. A
+//!   an absolute path stays absolute), read with
+//!   `raster::read_raster_file_within` as a raster file of at most
+//!   `types::MAX_TEXELS` texels (texel = byte / 255, kept as bytes); an
+//!   empty raster is an error. A
 //!   surface gets at most one `paint` or `texture`, not both.
 //!
 //! # Objects

@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::objects::rotation;
 use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo};
-use crate::raster::read_raster_file;
+use crate::raster::read_raster_file_within;
 use crate::types::{
     Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint, PaintKind, PatternRecord,
     Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
@@ -314,7 +314,7 @@ impl Builder<'_> {
         let i = self.decorated_surface("texture", record_pos)?;
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
-        let raster = read_raster_file(&self.deck_dir.join(&file)).map_err(|e| {
+        let raster = read_raster_file_within(&self.deck_dir.join(&file), Texture::LIMIT).map_err(|e| {
             self.p
                 .error_at(file_pos, format!("cannot read the raster file '{file}': {e}"))
         })?;
@@ -330,15 +330,10 @@ impl Builder<'_> {
                 ),
             ));
         }
-        let texels = raster
-            .pixels
-            .iter()
-            .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) / 255.0)
-            .collect();
         self.surfaces[i].texture = Some(Texture {
             width: raster.width,
             height: raster.height,
-            texels,
+            texels: raster.pixels,
         });
         Ok(())
     }

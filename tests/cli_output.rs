@@ -1,0 +1,397 @@
+//! The output files of `raytrace` and `psout --screenshot` as a user meets
+//! them: standard output, the format by extension, usage errors, folders
+//! never made up, every output checked before the render, FIFOs written
+//! into, and signals that leave no temporary file.
+
+use std::os::unix::fs::FileTypeExt;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use raytrace::raster::{read_raster, read_raster_file};
+
+fn raytrace() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_raytrace"))
+}
+
+const SMALL: &str = "\
+view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
+image 16 12  mask 1
+light sun 5 -5 10  1 1 1
+surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0 kt 0
+sphere ball red at 0 0 0 radius 1
+";
+
+/// A folder with small.deck in it.
+fn small_deck() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("small.deck");
+    std::fs::write(&deck, SMALL).unwrap();
+    (dir, deck)
+}
+
+fn run(cmd: &mut Command) -> Output {
+    cmd.output().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// `-o -` writes the Sun raster to standard output, the same bytes as
+/// `-o FILE`, and nothing named `-`.
+#[test]
+fn dash_writes_the_raster_to_standard_output() {
+    let (dir, deck) = small_deck();
+    let piped = run(raytrace()
+        .arg("-q")
+        .arg(&deck)
+        .args(["-o", "-"])
+        .current_dir(dir.path()));
+    assert!(piped.status.success(), "{}", stderr(&piped));
+    let file = dir.path().join("small.ras");
+    let written = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&file));
+    assert!(written.status.success(), "{}", stderr(&written));
+    assert_eq!(piped.stdout, std::fs::read(&file).unwrap());
+    assert_eq!(read_raster(&piped.stdout).unwrap().width, 16);
+    assert_eq!(names(dir.path()), ["small.deck", "small.ras"]);
+}
+
+/// `raytrace deck -o - | rasttopnm` works (when netpbm is installed).
+#[test]
+fn dash_pipes_into_rasttopnm() {
+    let (_dir, deck) = small_deck();
+    let Ok(mut convert) = Command::new("rasttopnm")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+    else {
+        assert!(std::env::var_os("CI").is_none(), "CI needs netpbm's rasttopnm");
+        eprintln!("skipped: rasttopnm not installed (apt-get install -y netpbm)");
+        return;
+    };
+    let status = raytrace()
+        .arg("-q")
+        .arg(&deck)
+        .args(["-o", "-"])
+        .stdout(convert.stdin.take().unwrap())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = convert.wait_with_output().unwrap();
+    assert!(out.status.success());
+    assert!(out.stdout.starts_with(b"P6\n16 12\n255\n"), "{:?}", &out.stdout[..12]);
+}
+
+/// `.ras`, `.png`, `.ppm` and `.pnm` each get their format.
+#[test]
+fn the_format_follows_the_extension() {
+    let (dir, deck) = small_deck();
+    let reference = dir.path().join("ref.ras");
+    assert!(run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&reference))
+        .status
+        .success());
+    let pixels = read_raster_file(&reference).unwrap().pixels;
+    for name in ["x.png", "x.PNG", "x.ppm", "x.pnm"] {
+        let out = dir.path().join(name);
+        let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&out));
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let bytes = std::fs::read(&out).unwrap();
+        if name.to_lowercase().ends_with(".png") {
+            assert!(bytes.starts_with(b"\x89PNG"), "{name}");
+        } else {
+            let header = b"P6\n16 12\n255\n";
+            assert_eq!(&bytes[..header.len()], header, "{name}");
+            assert_eq!(&bytes[header.len()..], pixels.as_flattened(), "{name}");
+        }
+    }
+}
+
+/// A bad output name is a usage error: exit 2, a sentence naming the flag,
+/// the name and what is wrong, and nothing written.
+#[test]
+fn bad_output_names_are_usage_errors_and_write_nothing() {
+    let (dir, deck) = small_deck();
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["-o", "x.jpg"],
+            "-o 'x.jpg': unknown extension '.jpg': the format follows the extension, one of .ras",
+        ),
+        (&["-o", "x"], "-o 'x': no extension"),
+        (&["-o", ""], "a value is required for '--output <FILE>'"),
+        (
+            &["-o", "x.ras", "--png", "x.jpg"],
+            "--png 'x.jpg': --png writes a PNG, so the name must end in .png",
+        ),
+        (&["-o", "x.ras", "--png", "x.ras"], "--png 'x.ras': --png writes a PNG"),
+        (&["-o", "x.ras", "--png", ""], "a value is required for '--png <FILE>'"),
+        (
+            &["-o", "x.ras", "--debug", ""],
+            "a value is required for '--debug <FILE>'",
+        ),
+        (&["-o", "-", "--png", "-"], "only one output can go to standard output"),
+    ];
+    for (args, says) in cases {
+        let o = run(raytrace().arg(&deck).args(*args).current_dir(dir.path()));
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{args:?}");
+        assert_eq!(names(dir.path()), ["small.deck"], "{args:?}");
+    }
+    // The help says what exit status 2 means.
+    let help = String::from_utf8(run(raytrace().arg("--help")).stdout).unwrap();
+    assert!(help.contains("2 for a usage error"), "{help}");
+}
+
+/// Only the default raster/ folder is created: a folder the user names
+/// must exist, and a file in a folder's place is named as such.
+#[test]
+fn a_missing_or_blocked_folder_is_an_error_and_is_not_created() {
+    let (dir, deck) = small_deck();
+    let missing = dir.path().join("nonexistent/dir/x.ras");
+    let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&missing));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let folder = dir.path().join("nonexistent/dir");
+    assert!(
+        stderr(&o).contains(&format!("x.ras: the folder {} does not exist", folder.display())),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("nonexistent").exists());
+
+    std::fs::write(dir.path().join("old.ras"), b"old").unwrap();
+    let o = run(raytrace()
+        .arg("-q")
+        .arg(&deck)
+        .args(["-o", "old.ras/x.ras"])
+        .current_dir(dir.path()));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("old.ras/x.ras: old.ras is a file, not a folder"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(dir.path().join("old.ras")).unwrap(), b"old");
+
+    // The default output goes to raster/ under the working folder, made
+    // when missing, wherever the deck is.
+    let elsewhere = tempfile::tempdir().unwrap();
+    let o = run(raytrace().arg("-q").arg(&deck).current_dir(elsewhere.path()));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(read_raster_file(&elsewhere.path().join("raster/small.ras")).is_ok());
+}
+
+/// Run from a folder that is not the checkout, a deck whose texture path is
+/// relative to the deck (fig5_3.deck's `../../raster/card.tex.ras`) finds
+/// it, and the default raster lands under the working folder.
+#[test]
+fn a_deck_with_a_texture_renders_from_another_folder() {
+    let root = tempfile::tempdir().unwrap();
+    let checkout = Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::create_dir_all(root.path().join("legacy_pascal/decks")).unwrap();
+    std::fs::create_dir_all(root.path().join("raster")).unwrap();
+    std::fs::copy(
+        checkout.join("raster/card.tex.ras"),
+        root.path().join("raster/card.tex.ras"),
+    )
+    .unwrap();
+    let deck = std::fs::read_to_string(checkout.join("legacy_pascal/decks/fig5_3.deck")).unwrap();
+    assert!(deck.contains("texture picture   ../../raster/card.tex.ras"));
+    let deck_path = root.path().join("legacy_pascal/decks/tex.deck");
+    std::fs::write(
+        &deck_path,
+        deck.replace("image      256 256  mask 2", "image 24 24 mask 1"),
+    )
+    .unwrap();
+    let work = tempfile::tempdir().unwrap();
+    let o = run(raytrace().arg("-q").arg(&deck_path).current_dir(work.path()));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = read_raster_file(&work.path().join("raster/tex.ras")).unwrap();
+    assert_eq!((r.width, r.height), (24, 24));
+}
+
+/// When the PNG or the debug log cannot be written, that is found before
+/// the render: exit 1, the reason, and neither the raster nor a temporary
+/// file written.
+#[test]
+fn every_output_is_checked_before_rendering() {
+    let (dir, deck) = small_deck();
+    let out = dir.path().join("small.ras");
+    for (flag, bad) in [("--png", "gone/x.png"), ("--debug", "gone/x.log")] {
+        let o = run(raytrace()
+            .arg("-q")
+            .arg(&deck)
+            .arg("-o")
+            .arg(&out)
+            .arg(flag)
+            .arg(dir.path().join(bad)));
+        assert_eq!(o.status.code(), Some(1), "{flag}: {}", stderr(&o));
+        assert!(stderr(&o).contains("gone does not exist"), "{flag}: {}", stderr(&o));
+        assert_eq!(names(dir.path()), ["small.deck"], "{flag}");
+    }
+}
+
+/// A FIFO named as the output is written into and stays a FIFO, for
+/// `raytrace -o` and `psout --screenshot` alike.
+#[test]
+fn a_fifo_output_is_written_into() {
+    let (dir, deck) = small_deck();
+    let fifo = dir.path().join("pipe.ras");
+    let shot = dir.path().join("pipe.png");
+    for f in [&fifo, &shot] {
+        if !Command::new("mkfifo").arg(f).status().is_ok_and(|s| s.success()) {
+            eprintln!("skipped: mkfifo failed");
+            return;
+        }
+    }
+    let reader = |path: &Path| {
+        let path = path.to_path_buf();
+        std::thread::spawn(move || std::fs::read(path).unwrap())
+    };
+    let got = reader(&fifo);
+    let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&fifo));
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Checked before joining: a replaced FIFO would leave the reader waiting.
+    assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    let bytes = got.join().unwrap();
+    assert_eq!(read_raster(&bytes).unwrap().height, 12);
+
+    let raster = dir.path().join("small.ras");
+    std::fs::write(&raster, &bytes).unwrap();
+    let got = reader(&shot);
+    let o = run(Command::new(env!("CARGO_BIN_EXE_psout"))
+        .arg("--screenshot")
+        .arg(&shot)
+        .arg(&raster));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::symlink_metadata(&shot).unwrap().file_type().is_fifo());
+    assert!(got.join().unwrap().starts_with(b"\x89PNG"));
+    assert_eq!(names(dir.path()), ["pipe.png", "pipe.ras", "small.deck", "small.ras"]);
+}
+
+/// `psout --screenshot` writes a PNG, so its name must say so.
+#[test]
+fn psout_screenshot_name_must_be_a_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(Command::new(env!("CARGO_BIN_EXE_psout"))
+        .arg("--screenshot")
+        .arg(dir.path().join("shot.jpg"))
+        .arg(dir.path().join("whatever.ras")));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("shot.jpg': a screenshot is a PNG"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A deck big enough that its render takes far longer than the test's
+/// signal: 4096×4096 pixels, one thread.
+const BIG: &str = "\
+view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
+image 4096 4096  mask 2
+light sun 5 -5 10  1 1 1
+surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0.5 kt 0
+sphere ball red at 0 0 0 radius 1
+";
+
+/// Starts a big render into `out` and waits until its temporary file is
+/// there (it is made before the render starts); returns the child and
+/// the temporary file.
+fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
+    let deck = dir.join("big.deck");
+    std::fs::write(&deck, BIG).unwrap();
+    let child = raytrace()
+        .args(["-q", "--threads", "1"])
+        .arg(&deck)
+        .arg("-o")
+        .arg(out)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let temp = PathBuf::from(format!(
+        "{}/.{}.{}.0.tmp",
+        out.parent().unwrap().display(),
+        out.file_name().unwrap().to_string_lossy(),
+        child.id()
+    ));
+    let started = Instant::now();
+    while !temp.exists() {
+        assert!(
+            started.elapsed() < Duration::from_secs(120),
+            "no temporary file {}",
+            temp.display()
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    (child, temp)
+}
+
+/// Waits for the child, killing it if it takes longer than a minute.
+fn wait(mut child: Child) -> std::process::ExitStatus {
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            return status;
+        }
+        if started.elapsed() > Duration::from_secs(60) {
+            child.kill().unwrap();
+            panic!("raytrace did not stop on the signal");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// SIGINT and SIGTERM while the output is pending: the temporary file is
+/// removed, the exit status is 130 or 143, the last good file is intact.
+#[test]
+fn sigint_and_sigterm_remove_the_temporary_file() {
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("big.ras");
+        std::fs::write(&out, b"the last good raster").unwrap();
+        let (child, temp) = start_big_render(dir.path(), &out);
+        let pid = child.id().to_string();
+        assert!(Command::new("kill")
+            .args([&format!("-{signal}"), &pid])
+            .status()
+            .unwrap()
+            .success());
+        let status = wait(child);
+        assert_eq!(status.code(), Some(code), "SIG{signal}: {status:?}");
+        assert!(!temp.exists(), "SIG{signal} left {}", temp.display());
+        assert_eq!(std::fs::read(&out).unwrap(), b"the last good raster");
+        assert_eq!(names(dir.path()), ["big.deck", "big.ras"]);
+    }
+}
+
+/// A SIGKILL leaves the temporary file; the next run that writes the same
+/// target removes it.
+#[test]
+fn after_sigkill_the_next_run_removes_the_stale_temporary_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.ras");
+    let (mut child, temp) = start_big_render(dir.path(), &out);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(temp.exists(), "SIGKILL cannot be caught: the temporary file stays");
+    std::fs::write(dir.path().join("small.deck"), SMALL).unwrap();
+    let o = run(raytrace()
+        .arg("-q")
+        .arg(dir.path().join("small.deck"))
+        .arg("-o")
+        .arg(&out));
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!temp.exists(), "{} is still there", temp.display());
+    assert_eq!(names(dir.path()), ["big.deck", "big.ras", "small.deck"]);
+}

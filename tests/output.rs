@@ -1,0 +1,258 @@
+//! The output writer (`raytrace::output`): formats by extension, devices
+//! and FIFOs written into and never replaced, symbolic links kept, clear
+//! errors for missing folders, reservations that leave nothing behind, and
+//! stale temporary files of dead processes removed.
+
+use std::os::unix::fs::FileTypeExt;
+use std::path::Path;
+use std::process::Command;
+
+use raytrace::output::{write_atomically, write_image, Format, OutputError, PendingFile};
+use raytrace::raster::{encode_raster, outputframe, read_raster, read_raster_file, Raster, RasterError};
+
+fn raster(width: usize, height: usize) -> Raster {
+    let pixels = (0..width * height)
+        .map(|i| [i as u8, (i * 7) as u8, (255 - i) as u8])
+        .collect();
+    Raster { width, height, pixels }
+}
+
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn the_extension_chooses_the_format_and_anything_else_is_an_error_naming_them() {
+    for (name, format) in [
+        ("a.ras", Format::SunRaster),
+        ("dir.d/A.RAS", Format::SunRaster),
+        ("a.png", Format::Png),
+        ("a.PNG", Format::Png),
+        ("a.ppm", Format::Netpbm),
+        ("a.pnm", Format::Netpbm),
+    ] {
+        assert_eq!(Format::of(Path::new(name)).unwrap(), format, "{name}");
+    }
+    for (name, says) in [
+        ("a.jpg", "unknown extension '.jpg'"),
+        ("a", "no extension"),
+        ("ras", "no extension"),
+    ] {
+        let e = Format::of(Path::new(name)).unwrap_err();
+        assert!(matches!(e, OutputError::UnknownFormat(_)), "{name}: {e:?}");
+        let message = e.to_string();
+        assert!(message.starts_with(says), "{name}: {message}");
+        for ext in [".ras", ".png", ".ppm", ".pnm"] {
+            assert!(message.contains(ext), "{name}: {message}");
+        }
+    }
+    assert!(matches!(Format::of(Path::new("")), Err(OutputError::Empty)));
+}
+
+#[test]
+fn each_format_writes_what_its_readers_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = raster(5, 3);
+    let ras = dir.path().join("x.ras");
+    write_image(&ras, &r, Format::SunRaster).unwrap();
+    assert_eq!(std::fs::read(&ras).unwrap(), encode_raster(&r));
+    let ppm = dir.path().join("x.ppm");
+    write_image(&ppm, &r, Format::Netpbm).unwrap();
+    let bytes = std::fs::read(&ppm).unwrap();
+    let header = b"P6\n5 3\n255\n";
+    assert_eq!(&bytes[..header.len()], header);
+    assert_eq!(&bytes[header.len()..], r.pixels.as_flattened());
+    #[cfg(feature = "png")]
+    {
+        let png = dir.path().join("x.png");
+        write_image(&png, &r, Format::Png).unwrap();
+        let back = image::open(&png).unwrap().to_rgb8();
+        assert_eq!(back.as_raw(), r.pixels.as_flattened());
+    }
+}
+
+/// `mkfifo PATH`; false (with a note) where the command is missing.
+fn mkfifo(path: &Path) -> bool {
+    match Command::new("mkfifo").arg(path).status() {
+        Ok(s) if s.success() => true,
+        other => {
+            eprintln!("skipped: mkfifo failed ({other:?})");
+            false
+        }
+    }
+}
+
+/// A FIFO in the target's place is written into: its reader gets the
+/// raster, and it is still a FIFO afterwards (a rename would have replaced
+/// it by a regular file).
+#[test]
+fn a_fifo_is_written_into_not_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("pipe.ras");
+    if !mkfifo(&fifo) {
+        return;
+    }
+    let reader = {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || std::fs::read(fifo).unwrap())
+    };
+    let r = raster(4, 4);
+    outputframe(&fifo, &r).unwrap();
+    // Checked before joining: a replaced FIFO would leave the reader waiting.
+    assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+    let got = reader.join().unwrap();
+    assert_eq!(read_raster(&got).unwrap(), r);
+    assert_eq!(names(dir.path()), ["pipe.ras"]);
+}
+
+/// A character device made with mknod in a temporary folder (a copy of
+/// /dev/null, never the real one) stays a device after a write. Needs
+/// root; skipped otherwise.
+#[test]
+fn a_device_is_written_into_not_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let null = dir.path().join("null.ras");
+    match Command::new("mknod").arg(&null).args(["c", "1", "3"]).output() {
+        Ok(o) if o.status.success() => {}
+        other => {
+            eprintln!("skipped: mknod needs root ({other:?})");
+            return;
+        }
+    }
+    outputframe(&null, &raster(3, 2)).unwrap();
+    let kind = std::fs::symlink_metadata(&null).unwrap().file_type();
+    assert!(kind.is_char_device(), "{kind:?}");
+    assert_eq!(names(dir.path()), ["null.ras"]);
+}
+
+#[test]
+fn a_symbolic_link_to_a_file_is_kept_and_its_file_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("real")).unwrap();
+    let file = dir.path().join("real/frame.ras");
+    std::fs::write(&file, b"old").unwrap();
+    let link = dir.path().join("link.ras");
+    std::os::unix::fs::symlink("real/frame.ras", &link).unwrap();
+    let r = raster(2, 2);
+    outputframe(&link, &r).unwrap();
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    assert_eq!(read_raster_file(&file).unwrap(), r);
+    assert_eq!(names(&dir.path().join("real")), ["frame.ras"]);
+}
+
+/// A missing folder, a file where a folder should be, and a folder where
+/// the file should be: each a clear error naming the culprit, nothing
+/// created.
+#[test]
+fn missing_folders_and_files_in_the_way_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no/such/x.ras");
+    let e = PendingFile::create(&missing).unwrap_err();
+    assert!(
+        matches!(&e, OutputError::MissingFolder(d) if d == &dir.path().join("no/such")),
+        "{e:?}"
+    );
+    assert_eq!(
+        e.to_string(),
+        format!("the folder {} does not exist", dir.path().join("no/such").display())
+    );
+
+    let old = dir.path().join("old.ras");
+    std::fs::write(&old, b"a raster").unwrap();
+    for path in [old.join("x.ras"), old.join("deeper/x.ras")] {
+        let e = PendingFile::create(&path).unwrap_err();
+        assert!(
+            matches!(&e, OutputError::NotAFolder(f) if f == &old),
+            "{}: {e:?}",
+            path.display()
+        );
+        assert_eq!(e.to_string(), format!("{} is a file, not a folder", old.display()));
+    }
+    let e = PendingFile::create(dir.path()).unwrap_err();
+    assert!(matches!(e, OutputError::IsAFolder), "{e:?}");
+    let e = PendingFile::create(Path::new("")).unwrap_err();
+    assert!(matches!(e, OutputError::Empty), "{e:?}");
+    // Through the raster writer, the same error.
+    assert!(matches!(
+        outputframe(&missing, &raster(1, 1)),
+        Err(RasterError::Output(OutputError::MissingFolder(_)))
+    ));
+    assert_eq!(names(dir.path()), ["old.ras"]);
+    assert_eq!(std::fs::read(&old).unwrap(), b"a raster");
+}
+
+/// A reservation holds a temporary file from `create` to `commit`; dropped
+/// uncommitted, or failing in its writer, it leaves the target as it was
+/// and no temporary file.
+#[test]
+fn a_reservation_left_or_failed_leaves_the_target_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("x.ras");
+    std::fs::write(&target, b"last good").unwrap();
+    let pending = PendingFile::create(&target).unwrap();
+    let during = names(dir.path());
+    assert_eq!(during.len(), 2, "{during:?}");
+    assert!(
+        during[0].starts_with(".x.ras.") && during[0].ends_with(".tmp"),
+        "{during:?}"
+    );
+    drop(pending);
+    assert_eq!(names(dir.path()), ["x.ras"]);
+    let failed: Result<(), OutputError> = write_atomically(&target, |w| {
+        w.write_all(b"half")?;
+        Err(std::io::Error::other("the render failed").into())
+    });
+    assert!(failed.is_err());
+    assert_eq!(names(dir.path()), ["x.ras"]);
+    assert_eq!(std::fs::read(&target).unwrap(), b"last good");
+    let pending = PendingFile::create(&target).unwrap();
+    pending
+        .commit(|w| w.write_all(b"new").map_err(OutputError::from))
+        .unwrap();
+    assert_eq!(std::fs::read(&target).unwrap(), b"new");
+    assert_eq!(names(dir.path()), ["x.ras"]);
+}
+
+/// The PID of a process that has exited (reaped, so /proc no longer lists it).
+fn dead_pid() -> u32 {
+    let mut child = Command::new("true").spawn().unwrap();
+    let pid = child.id();
+    child.wait().unwrap();
+    assert!(!Path::new("/proc").join(pid.to_string()).exists());
+    pid
+}
+
+/// After a SIGKILL the temporary file stays; the next write of the same
+/// target removes the ones of dead processes, and only those: a live
+/// process's, another target's and a file that merely looks alike stay.
+#[test]
+fn the_next_write_removes_stale_temporary_files_of_dead_processes() {
+    if !Path::new("/proc/self").exists() {
+        eprintln!("skipped: no /proc to tell dead processes from live ones");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let dead = dead_pid();
+    let live = std::process::id();
+    let stale = [format!(".x.ras.{dead}.0.tmp"), format!(".x.ras.{dead}.17.tmp")];
+    let kept = [
+        format!(".x.ras.{live}.999.tmp"),
+        format!(".y.ras.{dead}.0.tmp"),
+        format!(".x.ras.{dead}.tmp"),
+        format!(".x.ras.{dead}.z.tmp"),
+        format!("x.ras.{dead}.0.tmp"),
+    ];
+    for name in stale.iter().chain(&kept) {
+        std::fs::write(dir.path().join(name), b"left over").unwrap();
+    }
+    outputframe(&dir.path().join("x.ras"), &raster(2, 1)).unwrap();
+    let mut expected: Vec<String> = kept.to_vec();
+    expected.push("x.ras".into());
+    expected.sort();
+    assert_eq!(names(dir.path()), expected);
+}
