@@ -26,7 +26,7 @@
 //!   run (on Linux, where /proc tells which do).
 
 use std::collections::HashMap;
-use std::ffi::OsStr;
+use std::ffi::{OsStr, OsString};
 use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -315,7 +315,7 @@ fn temp_files() -> MutexGuard<'static, Vec<PathBuf>> {
 fn create_temp_file(dir: &Path, name: &OsStr) -> Result<(PathBuf, File), OutputError> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     loop {
-        let mut temp_name = std::ffi::OsString::from(".");
+        let mut temp_name = OsString::from(".");
         temp_name.push(name);
         temp_name.push(format!(
             ".{}.{}.tmp",
@@ -349,7 +349,7 @@ fn discard(temp: &Path) {
 /// nothing tells a dead writer from a live one. A folder is listed once per
 /// process, so writing many files into it stays linear.
 fn remove_stale_temp_files(dir: &Path, name: &OsStr) {
-    static LISTED: Mutex<Option<HashMap<PathBuf, Vec<(std::ffi::OsString, PathBuf)>>>> = Mutex::new(None);
+    static LISTED: Mutex<Option<HashMap<PathBuf, Vec<StaleTempFile>>>> = Mutex::new(None);
     if !Path::new("/proc/self").exists() {
         return;
     }
@@ -367,9 +367,11 @@ fn remove_stale_temp_files(dir: &Path, name: &OsStr) {
     });
 }
 
-/// The temporary files in `dir` of dead processes, with the target name
-/// each was for.
-fn stale_temp_files(dir: &Path) -> Vec<(std::ffi::OsString, PathBuf)> {
+/// A temporary file of a dead process: the target name it was for, and its path.
+type StaleTempFile = (OsString, PathBuf);
+
+/// The temporary files in `dir` of dead processes.
+fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
     let Ok(entries) = fs::read_dir(dir) else {
         return Vec::new();
     };

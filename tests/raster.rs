@@ -10,6 +10,9 @@ use raytrace::raster::{
 };
 use raytrace::types::Intensity;
 
+mod common;
+use common::sun_raster_file as file;
+
 /// A deterministic pseudo-random sequence (xorshift64*), so every run
 /// tests the same bytes.
 struct Rng(u64);
@@ -35,36 +38,6 @@ fn test_raster(width: usize, height: usize, seed: u64) -> Raster {
         })
         .collect();
     Raster { width, height, pixels }
-}
-
-/// A raster file from its header fields, colour map and (encoded) data.
-#[allow(clippy::too_many_arguments)]
-fn file(
-    width: u32,
-    height: u32,
-    depth: u32,
-    length: u32,
-    ras_type: u32,
-    maptype: u32,
-    map: &[u8],
-    data: &[u8],
-) -> Vec<u8> {
-    let mut out = Vec::new();
-    for v in [
-        0x59a6_6a95,
-        width,
-        height,
-        depth,
-        length,
-        ras_type,
-        maptype,
-        map.len() as u32,
-    ] {
-        out.extend_from_slice(&v.to_be_bytes());
-    }
-    out.extend_from_slice(map);
-    out.extend_from_slice(data);
-    out
 }
 
 fn grey(v: u8) -> [u8; 3] {

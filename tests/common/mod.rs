@@ -106,3 +106,33 @@ pub fn load_deck(name: &str, fidelity: Fidelity) -> Scene {
     raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
     scene
 }
+
+/// A raster file from its header fields, colour map and (encoded) data.
+#[allow(clippy::too_many_arguments)]
+pub fn sun_raster_file(
+    width: u32,
+    height: u32,
+    depth: u32,
+    length: u32,
+    ras_type: u32,
+    maptype: u32,
+    map: &[u8],
+    data: &[u8],
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    for v in [
+        0x59a6_6a95,
+        width,
+        height,
+        depth,
+        length,
+        ras_type,
+        maptype,
+        map.len() as u32,
+    ] {
+        out.extend_from_slice(&v.to_be_bytes());
+    }
+    out.extend_from_slice(map);
+    out.extend_from_slice(data);
+    out
+}
