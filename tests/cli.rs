@@ -1,22 +1,8 @@
 //! The `raytrace` command as a user meets it: exit codes, what it writes
 //! and what it refuses to write.
 
-use std::process::Command;
-
 mod common;
-use common::decks;
-
-fn raytrace() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_raytrace"))
-}
-
-const SMALL: &str = "\
-view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
-image 16 12  mask 1
-light sun 5 -5 10  1 1 1
-surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0 kt 0
-sphere ball red at 0 0 0 radius 1
-";
+use common::{decks, raytrace_command, SMALL_DECK};
 
 /// A deck with an error: exit status 2, the error as FILE:LINE:COLUMN,
 /// and no raster, no PNG, no debug log written (and an old raster left
@@ -25,12 +11,12 @@ sphere ball red at 0 0 0 radius 1
 fn deck_error_exits_2_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("bad.deck");
-    std::fs::write(&deck, SMALL.replace("radius 1", "radius lots")).unwrap();
+    std::fs::write(&deck, SMALL_DECK.replace("radius 1", "radius lots")).unwrap();
     let out = dir.path().join("bad.ras");
     std::fs::write(&out, b"the last good raster").unwrap();
     let png = dir.path().join("bad.png");
     let debug = dir.path().join("bad.log");
-    let run = raytrace()
+    let run = raytrace_command()
         .arg(&deck)
         .arg("-o")
         .arg(&out)
@@ -54,15 +40,18 @@ fn deck_error_exits_2_and_writes_nothing() {
 #[test]
 fn unreadable_inputs_exit_2() {
     let dir = tempfile::tempdir().unwrap();
-    let run = raytrace().arg(dir.path().join("missing.deck")).output().unwrap();
+    let run = raytrace_command()
+        .arg(dir.path().join("missing.deck"))
+        .output()
+        .unwrap();
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("missing.deck"));
 
     std::fs::write(dir.path().join("junk.ras"), b"not a raster at all, not even close").unwrap();
     let deck = dir.path().join("tex.deck");
-    std::fs::write(&deck, format!("{SMALL}texture red junk.ras\n")).unwrap();
+    std::fs::write(&deck, format!("{SMALL_DECK}texture red junk.ras\n")).unwrap();
     let out = dir.path().join("tex.ras");
-    let run = raytrace().arg(&deck).arg("-o").arg(&out).output().unwrap();
+    let run = raytrace_command().arg(&deck).arg("-o").arg(&out).output().unwrap();
     assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(String::from_utf8_lossy(&run.stderr).contains("tex.deck:6:"));
     assert!(!out.exists());
@@ -74,12 +63,12 @@ fn unreadable_inputs_exit_2() {
 fn good_deck_writes_raster_png_and_debug_log() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("small.deck");
-    std::fs::write(&deck, SMALL).unwrap();
+    std::fs::write(&deck, SMALL_DECK).unwrap();
     std::fs::create_dir(dir.path().join("nested")).unwrap();
     let out = dir.path().join("nested/small.ras");
     let png = dir.path().join("small.png");
     let debug = dir.path().join("small.log");
-    let run = raytrace()
+    let run = raytrace_command()
         .args(["--quiet", "--threads", "2"])
         .arg(&deck)
         .arg("-o")
@@ -113,10 +102,10 @@ fn good_deck_writes_raster_png_and_debug_log() {
 fn flags() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("small.deck");
-    std::fs::write(&deck, SMALL).unwrap();
+    std::fs::write(&deck, SMALL_DECK).unwrap();
     for f in ["listing", "thesis"] {
         let out = dir.path().join(format!("{f}.ras"));
-        let run = raytrace()
+        let run = raytrace_command()
             .args(["-q", "--fidelity", f])
             .arg(&deck)
             .arg("-o")
@@ -126,9 +115,13 @@ fn flags() {
         assert!(run.status.success());
         assert!(out.exists());
     }
-    let run = raytrace().args(["--fidelity", "pascal"]).arg(&deck).output().unwrap();
+    let run = raytrace_command()
+        .args(["--fidelity", "pascal"])
+        .arg(&deck)
+        .output()
+        .unwrap();
     assert_eq!(run.status.code(), Some(2));
-    let help = raytrace().arg("--help").output().unwrap();
+    let help = raytrace_command().arg("--help").output().unwrap();
     let text = String::from_utf8_lossy(&help.stdout);
     assert!(text.contains("--fidelity") && text.contains("Exit status"));
 }
@@ -179,7 +172,7 @@ fn every_legacy_deck_renders_without_nan() {
 #[test]
 fn no_deck_renders_the_embedded_default() {
     let dir = tempfile::tempdir().unwrap();
-    let run = raytrace().arg("-q").current_dir(dir.path()).output().unwrap();
+    let run = raytrace_command().arg("-q").current_dir(dir.path()).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let r = raytrace::raster::read_raster_file(&dir.path().join("raster/default.ras")).unwrap();
     assert_eq!((r.width, r.height), (256, 256));

@@ -10,23 +10,14 @@ use std::time::{Duration, Instant};
 
 use raytrace::raster::{read_raster, read_raster_file};
 
-fn raytrace() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_raytrace"))
-}
-
-const SMALL: &str = "\
-view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
-image 16 12  mask 1
-light sun 5 -5 10  1 1 1
-surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0 kt 0
-sphere ball red at 0 0 0 radius 1
-";
+mod common;
+use common::{file_names, raytrace_command, SMALL_DECK};
 
 /// A folder with small.deck in it.
 fn small_deck() -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("small.deck");
-    std::fs::write(&deck, SMALL).unwrap();
+    std::fs::write(&deck, SMALL_DECK).unwrap();
     (dir, deck)
 }
 
@@ -38,32 +29,23 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-fn names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
 /// `-o -` writes the Sun raster to standard output, the same bytes as
 /// `-o FILE`, and nothing named `-`.
 #[test]
 fn dash_writes_the_raster_to_standard_output() {
     let (dir, deck) = small_deck();
-    let piped = run(raytrace()
+    let piped = run(raytrace_command()
         .arg("-q")
         .arg(&deck)
         .args(["-o", "-"])
         .current_dir(dir.path()));
     assert!(piped.status.success(), "{}", stderr(&piped));
     let file = dir.path().join("small.ras");
-    let written = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&file));
+    let written = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&file));
     assert!(written.status.success(), "{}", stderr(&written));
     assert_eq!(piped.stdout, std::fs::read(&file).unwrap());
     assert_eq!(read_raster(&piped.stdout).unwrap().width, 16);
-    assert_eq!(names(dir.path()), ["small.deck", "small.ras"]);
+    assert_eq!(file_names(dir.path()), ["small.deck", "small.ras"]);
 }
 
 /// `raytrace deck -o - | rasttopnm` works (when netpbm is installed).
@@ -80,7 +62,7 @@ fn dash_pipes_into_rasttopnm() {
         eprintln!("skipped: rasttopnm not installed (apt-get install -y netpbm)");
         return;
     };
-    let status = raytrace()
+    let status = raytrace_command()
         .arg("-q")
         .arg(&deck)
         .args(["-o", "-"])
@@ -98,13 +80,13 @@ fn dash_pipes_into_rasttopnm() {
 fn the_format_follows_the_extension() {
     let (dir, deck) = small_deck();
     let reference = dir.path().join("ref.ras");
-    assert!(run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&reference))
+    assert!(run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&reference))
         .status
         .success());
     let pixels = read_raster_file(&reference).unwrap().pixels;
     for name in ["x.png", "x.PNG", "x.ppm", "x.pnm"] {
         let out = dir.path().join(name);
-        let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&out));
+        let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&out));
         assert!(o.status.success(), "{name}: {}", stderr(&o));
         let bytes = std::fs::read(&out).unwrap();
         if name.to_lowercase().ends_with(".png") {
@@ -142,14 +124,14 @@ fn bad_output_names_are_usage_errors_and_write_nothing() {
         (&["-o", "-", "--png", "-"], "only one output can go to standard output"),
     ];
     for (args, says) in cases {
-        let o = run(raytrace().arg(&deck).args(*args).current_dir(dir.path()));
+        let o = run(raytrace_command().arg(&deck).args(*args).current_dir(dir.path()));
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
         assert!(o.stdout.is_empty(), "{args:?}");
-        assert_eq!(names(dir.path()), ["small.deck"], "{args:?}");
+        assert_eq!(file_names(dir.path()), ["small.deck"], "{args:?}");
     }
     // The help says what exit status 2 means.
-    let help = String::from_utf8(run(raytrace().arg("--help")).stdout).unwrap();
+    let help = String::from_utf8(run(raytrace_command().arg("--help")).stdout).unwrap();
     assert!(help.contains("2 for a usage error"), "{help}");
 }
 
@@ -159,7 +141,7 @@ fn bad_output_names_are_usage_errors_and_write_nothing() {
 fn a_missing_or_blocked_folder_is_an_error_and_is_not_created() {
     let (dir, deck) = small_deck();
     let missing = dir.path().join("nonexistent/dir/x.ras");
-    let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&missing));
+    let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&missing));
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     let folder = dir.path().join("nonexistent/dir");
     assert!(
@@ -170,7 +152,7 @@ fn a_missing_or_blocked_folder_is_an_error_and_is_not_created() {
     assert!(!dir.path().join("nonexistent").exists());
 
     std::fs::write(dir.path().join("old.ras"), b"old").unwrap();
-    let o = run(raytrace()
+    let o = run(raytrace_command()
         .arg("-q")
         .arg(&deck)
         .args(["-o", "old.ras/x.ras"])
@@ -186,7 +168,7 @@ fn a_missing_or_blocked_folder_is_an_error_and_is_not_created() {
     // The default output goes to raster/ under the working folder, made
     // when missing, wherever the deck is.
     let elsewhere = tempfile::tempdir().unwrap();
-    let o = run(raytrace().arg("-q").arg(&deck).current_dir(elsewhere.path()));
+    let o = run(raytrace_command().arg("-q").arg(&deck).current_dir(elsewhere.path()));
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(read_raster_file(&elsewhere.path().join("raster/small.ras")).is_ok());
 }
@@ -214,7 +196,7 @@ fn a_deck_with_a_texture_renders_from_another_folder() {
     )
     .unwrap();
     let work = tempfile::tempdir().unwrap();
-    let o = run(raytrace().arg("-q").arg(&deck_path).current_dir(work.path()));
+    let o = run(raytrace_command().arg("-q").arg(&deck_path).current_dir(work.path()));
     assert!(o.status.success(), "{}", stderr(&o));
     let r = read_raster_file(&work.path().join("raster/tex.ras")).unwrap();
     assert_eq!((r.width, r.height), (24, 24));
@@ -228,7 +210,7 @@ fn every_output_is_checked_before_rendering() {
     let (dir, deck) = small_deck();
     let out = dir.path().join("small.ras");
     for (flag, bad) in [("--png", "gone/x.png"), ("--debug", "gone/x.log")] {
-        let o = run(raytrace()
+        let o = run(raytrace_command()
             .arg("-q")
             .arg(&deck)
             .arg("-o")
@@ -237,7 +219,7 @@ fn every_output_is_checked_before_rendering() {
             .arg(dir.path().join(bad)));
         assert_eq!(o.status.code(), Some(1), "{flag}: {}", stderr(&o));
         assert!(stderr(&o).contains("gone does not exist"), "{flag}: {}", stderr(&o));
-        assert_eq!(names(dir.path()), ["small.deck"], "{flag}");
+        assert_eq!(file_names(dir.path()), ["small.deck"], "{flag}");
     }
 }
 
@@ -259,7 +241,7 @@ fn a_fifo_output_is_written_into() {
         std::thread::spawn(move || std::fs::read(path).unwrap())
     };
     let got = reader(&fifo);
-    let o = run(raytrace().arg("-q").arg(&deck).arg("-o").arg(&fifo));
+    let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&fifo));
     assert!(o.status.success(), "{}", stderr(&o));
     // Checked before joining: a replaced FIFO would leave the reader waiting.
     assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
@@ -276,7 +258,10 @@ fn a_fifo_output_is_written_into() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(std::fs::symlink_metadata(&shot).unwrap().file_type().is_fifo());
     assert!(got.join().unwrap().starts_with(b"\x89PNG"));
-    assert_eq!(names(dir.path()), ["pipe.png", "pipe.ras", "small.deck", "small.ras"]);
+    assert_eq!(
+        file_names(dir.path()),
+        ["pipe.png", "pipe.ras", "small.deck", "small.ras"]
+    );
 }
 
 /// `psout --screenshot` writes a PNG, so its name must say so.
@@ -311,7 +296,7 @@ sphere ball red at 0 0 0 radius 1
 fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
     let deck = dir.join("big.deck");
     std::fs::write(&deck, BIG).unwrap();
-    let child = raytrace()
+    let child = raytrace_command()
         .args(["-q", "--threads", "1"])
         .arg(&deck)
         .arg("-o")
@@ -371,7 +356,7 @@ fn sigint_and_sigterm_remove_the_temporary_file() {
         assert_eq!(status.code(), Some(code), "SIG{signal}: {status:?}");
         assert!(!temp.exists(), "SIG{signal} left {}", temp.display());
         assert_eq!(std::fs::read(&out).unwrap(), b"the last good raster");
-        assert_eq!(names(dir.path()), ["big.deck", "big.ras"]);
+        assert_eq!(file_names(dir.path()), ["big.deck", "big.ras"]);
     }
 }
 
@@ -385,13 +370,13 @@ fn after_sigkill_the_next_run_removes_the_stale_temporary_file() {
     child.kill().unwrap();
     child.wait().unwrap();
     assert!(temp.exists(), "SIGKILL cannot be caught: the temporary file stays");
-    std::fs::write(dir.path().join("small.deck"), SMALL).unwrap();
-    let o = run(raytrace()
+    std::fs::write(dir.path().join("small.deck"), SMALL_DECK).unwrap();
+    let o = run(raytrace_command()
         .arg("-q")
         .arg(dir.path().join("small.deck"))
         .arg("-o")
         .arg(&out));
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!temp.exists(), "{} is still there", temp.display());
-    assert_eq!(names(dir.path()), ["big.deck", "big.ras", "small.deck"]);
+    assert_eq!(file_names(dir.path()), ["big.deck", "big.ras", "small.deck"]);
 }

@@ -10,20 +10,14 @@ use std::process::Command;
 use raytrace::output::{write_atomically, write_image, Format, OutputError, PendingFile};
 use raytrace::raster::{encode_raster, outputframe, read_raster, read_raster_file, Raster, RasterError};
 
+mod common;
+use common::file_names;
+
 fn raster(width: usize, height: usize) -> Raster {
     let pixels = (0..width * height)
         .map(|i| [i as u8, (i * 7) as u8, (255 - i) as u8])
         .collect();
     Raster { width, height, pixels }
-}
-
-fn names(dir: &Path) -> Vec<String> {
-    let mut names: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 #[test]
@@ -107,7 +101,7 @@ fn a_fifo_is_written_into_not_replaced() {
     assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
     let got = reader.join().unwrap();
     assert_eq!(read_raster(&got).unwrap(), r);
-    assert_eq!(names(dir.path()), ["pipe.ras"]);
+    assert_eq!(file_names(dir.path()), ["pipe.ras"]);
 }
 
 /// A character device made with mknod in a temporary folder (a copy of
@@ -127,7 +121,7 @@ fn a_device_is_written_into_not_replaced() {
     outputframe(&null, &raster(3, 2)).unwrap();
     let kind = std::fs::symlink_metadata(&null).unwrap().file_type();
     assert!(kind.is_char_device(), "{kind:?}");
-    assert_eq!(names(dir.path()), ["null.ras"]);
+    assert_eq!(file_names(dir.path()), ["null.ras"]);
 }
 
 #[test]
@@ -142,7 +136,7 @@ fn a_symbolic_link_to_a_file_is_kept_and_its_file_replaced() {
     outputframe(&link, &r).unwrap();
     assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
     assert_eq!(read_raster_file(&file).unwrap(), r);
-    assert_eq!(names(&dir.path().join("real")), ["frame.ras"]);
+    assert_eq!(file_names(&dir.path().join("real")), ["frame.ras"]);
 }
 
 /// A missing folder, a file where a folder should be, and a folder where
@@ -182,7 +176,7 @@ fn missing_folders_and_files_in_the_way_are_named() {
         outputframe(&missing, &raster(1, 1)),
         Err(RasterError::Output(OutputError::MissingFolder(_)))
     ));
-    assert_eq!(names(dir.path()), ["old.ras"]);
+    assert_eq!(file_names(dir.path()), ["old.ras"]);
     assert_eq!(std::fs::read(&old).unwrap(), b"a raster");
 }
 
@@ -195,27 +189,27 @@ fn a_reservation_left_or_failed_leaves_the_target_as_it_was() {
     let target = dir.path().join("x.ras");
     std::fs::write(&target, b"last good").unwrap();
     let pending = PendingFile::create(&target).unwrap();
-    let during = names(dir.path());
+    let during = file_names(dir.path());
     assert_eq!(during.len(), 2, "{during:?}");
     assert!(
         during[0].starts_with(".x.ras.") && during[0].ends_with(".tmp"),
         "{during:?}"
     );
     drop(pending);
-    assert_eq!(names(dir.path()), ["x.ras"]);
+    assert_eq!(file_names(dir.path()), ["x.ras"]);
     let failed: Result<(), OutputError> = write_atomically(&target, |w| {
         w.write_all(b"half")?;
         Err(std::io::Error::other("the render failed").into())
     });
     assert!(failed.is_err());
-    assert_eq!(names(dir.path()), ["x.ras"]);
+    assert_eq!(file_names(dir.path()), ["x.ras"]);
     assert_eq!(std::fs::read(&target).unwrap(), b"last good");
     let pending = PendingFile::create(&target).unwrap();
     pending
         .commit(|w| w.write_all(b"new").map_err(OutputError::from))
         .unwrap();
     assert_eq!(std::fs::read(&target).unwrap(), b"new");
-    assert_eq!(names(dir.path()), ["x.ras"]);
+    assert_eq!(file_names(dir.path()), ["x.ras"]);
 }
 
 /// The PID of a process that has exited (reaped, so /proc no longer lists it).
@@ -254,5 +248,5 @@ fn the_next_write_removes_stale_temporary_files_of_dead_processes() {
     let mut expected: Vec<String> = kept.to_vec();
     expected.push("x.ras".into());
     expected.sort();
-    assert_eq!(names(dir.path()), expected);
+    assert_eq!(file_names(dir.path()), expected);
 }

@@ -136,3 +136,27 @@ pub fn sun_raster_file(
     out.extend_from_slice(data);
     out
 }
+
+/// The `raytrace` binary of this build.
+pub fn raytrace_command() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_raytrace"))
+}
+
+/// A deck that renders in a moment: a red ball, 16×12 pixels.
+pub const SMALL_DECK: &str = "\
+view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
+image 16 12  mask 1
+light sun 5 -5 10  1 1 1
+surface red opaque color 1 0 0 ka 0.2 kd 0.8 ks 0 kt 0
+sphere ball red at 0 0 0 radius 1
+";
+
+/// The names in a folder, sorted.
+pub fn file_names(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
