@@ -15,7 +15,7 @@ use raytrace::deck::{initialize, DeckError, MAX_DECK_BYTES, RECORDS};
 use raytrace::types::{Fidelity, Options, Scene};
 
 fn read(deck: impl AsRef<[u8]>) -> Result<Scene, DeckError> {
-    initialize(deck, "t.deck", Path::new("."), Fidelity::Thesis)
+    initialize(&deck, "t.deck", Path::new("."), Fidelity::Thesis)
 }
 
 /// The message of a deck's error, without the file name.
@@ -153,7 +153,13 @@ fn unknown_records_fields_and_names_get_the_nearest_one() {
 #[test]
 fn the_suggested_records_are_deck_md_s() {
     let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/DECK.md")).unwrap();
-    let block = doc.split("## Records\n```\n").nth(1).unwrap().split("```").next().unwrap();
+    let block = doc
+        .split("## Records\n```\n")
+        .nth(1)
+        .unwrap()
+        .split("```")
+        .next()
+        .unwrap();
     let mut listed: Vec<&str> = block
         .lines()
         .filter(|l| l.starts_with(|c: char| c.is_ascii_lowercase()))
@@ -175,11 +181,19 @@ fn the_suggested_records_are_deck_md_s() {
 fn deck_md_s_sample_error_is_real() {
     let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/DECK.md")).unwrap();
     let errors = doc.split("## Errors\n").nth(1).unwrap();
-    let sample: String = errors.split('`').nth(1).unwrap().split_whitespace().collect::<Vec<_>>().join(" ");
+    let sample: String = errors
+        .split('`')
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     // `FILE:LINE:…`: the shipped deck FILE with `length` misspelt on LINE.
     let mut parts = sample.split(':');
     let (file, line) = (parts.next().unwrap(), parts.next().unwrap().parse::<usize>().unwrap());
-    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks").join(file);
+    let deck = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("legacy_pascal/decks")
+        .join(file);
     let text = std::fs::read_to_string(&deck).unwrap();
     assert!(text.lines().nth(line - 1).unwrap().contains(" length "));
     let broken: String = text
@@ -200,7 +214,10 @@ fn a_deck_past_the_size_limit_is_refused_where_the_limit_is_passed() {
     let lines = MAX_DECK_BYTES - BASE.len() + 5;
     assert_eq!(
         error(&deck),
-        format!("{}:1: deck: the deck is larger than 64 MiB, the most the reader takes", lines + 1)
+        format!(
+            "{}:1: deck: the deck is larger than 64 MiB, the most the reader takes",
+            lines + 1
+        )
     );
 }
 
@@ -208,7 +225,10 @@ fn a_deck_past_the_size_limit_is_refused_where_the_limit_is_passed() {
 fn echoed_words_are_cut_and_escaped() {
     let long = "x".repeat(100_000);
     let e = error(format!("{BASE}{long}\n"));
-    assert_eq!(e, format!("6:1: deck: unknown record '{}…' (100000 characters)", "x".repeat(40)));
+    assert_eq!(
+        e,
+        format!("6:1: deck: unknown record '{}…' (100000 characters)", "x".repeat(40))
+    );
     let e = error(format!("{BASE}a\0b\tc\x1b\n"));
     assert_eq!(e, "6:1: deck: unknown record 'a\\0b'");
     let e = error(format!("{BASE}sphere b red at 0 0 0 radius 1\x07\n"));
@@ -276,11 +296,20 @@ fn a_deck_that_is_not_utf8_is_read_by_the_binary() {
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     assert!(out.exists());
     let deck = fixtures.join("latin1_outside_comment.deck");
-    let run = raytrace().arg("-q").arg(&deck).arg("-o").arg(dir.path().join("y.ras")).output().unwrap();
+    let run = raytrace()
+        .arg("-q")
+        .arg(&deck)
+        .arg("-o")
+        .arg(dir.path().join("y.ras"))
+        .output()
+        .unwrap();
     assert_eq!(run.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(
-        stderr.starts_with(&format!("raytrace: {}:7:9: sphere: the byte 0xE9 is not ASCII", deck.display())),
+        stderr.starts_with(&format!(
+            "raytrace: {}:7:9: sphere: the byte 0xE9 is not ASCII",
+            deck.display()
+        )),
         "{stderr}"
     );
     assert!(!dir.path().join("y.ras").exists());

@@ -143,7 +143,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     // The deck: text, the name its errors carry, the folder its files are relative to.
     let (source, file_name, deck_dir, stem) = match &cli.deck {
         Some(path) => {
-            let source = raytrace::deck::read_deck_file(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+            let source =
+                raytrace::deck::read_deck_file(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
             let stem = path
                 .file_stem()
@@ -190,7 +191,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
     let elapsed = started.elapsed();
     bar.finish_and_clear();
-    render.check_finite().map_err(|e| other_error(format!("{file_name}: {e}")))?;
+    render
+        .check_finite()
+        .map_err(|e| other_error(format!("{file_name}: {e}")))?;
 
     for path in std::iter::once(&output).chain(png.iter()).chain(cli.debug.iter()) {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {

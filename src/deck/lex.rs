@@ -169,7 +169,10 @@ impl<'a> Lexer<'a> {
             if b == b'\n' {
                 self.last_eol = Some(here);
                 self.cur.step();
-                return Token { tok: Tok::Eol, pos: here };
+                return Token {
+                    tok: Tok::Eol,
+                    pos: here,
+                };
             } else if is_blank(b) {
                 self.cur.step();
             } else if b == b'{' || rest.starts_with(b"(*") {
@@ -215,7 +218,10 @@ impl<'a> Lexer<'a> {
             Some(eol) if self.cur.src.ends_with(b"\n") => eol,
             _ => self.cur.pos(),
         };
-        let t = Token { tok: Tok::Eof, pos: end };
+        let t = Token {
+            tok: Tok::Eof,
+            pos: end,
+        };
         self.last = Some(t.clone());
         t
     }

@@ -166,8 +166,8 @@ use crate::types::{
     PatternRecord, Pos, Scene, SurfaceRecord, View,
 };
 pub use lex::MAX_DECK_BYTES;
-pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
 use parse::Parser;
+pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
 
 /// Reads a deck file's bytes for [`initialize`]: at most one byte more than
 /// [`MAX_DECK_BYTES`], so that a file without end (`/dev/zero`, a pipe)
@@ -240,7 +240,7 @@ fn name_part(name: &Option<String>) -> String {
 /// A deck longer than [`MAX_DECK_BYTES`] is an error at the first byte past
 /// the limit.
 pub fn initialize(
-    source: impl AsRef<[u8]>,
+    source: &(impl AsRef<[u8]> + ?Sized),
     file_name: &str,
     deck_dir: &Path,
     fidelity: Fidelity,
@@ -377,7 +377,11 @@ impl Builder<'_> {
             "pattern" => self.pattern(pos),
             _ => Err(self.p.error_at(
                 pos,
-                format!("unknown record {}{}", parse::shown(&word), parse::did_you_mean(&word, RECORDS)),
+                format!(
+                    "unknown record {}{}",
+                    parse::shown(&word),
+                    parse::did_you_mean(&word, RECORDS)
+                ),
             )),
         }
     }

@@ -286,10 +286,16 @@ impl<'a> Parser<'a> {
             return Err(self.error_at(pos, format!("expected {what}, found the number {}", shown(&w))));
         }
         if !w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return Err(self.error_at(pos, format!("expected {what} (letters, digits and '_'), found {}", shown(&w))));
+            return Err(self.error_at(
+                pos,
+                format!("expected {what} (letters, digits and '_'), found {}", shown(&w)),
+            ));
         }
         if w.len() > STRINGLENGTH {
-            return Err(self.error_at(pos, format!("the name {} is longer than {STRINGLENGTH} characters", shown(&w))));
+            return Err(self.error_at(
+                pos,
+                format!("the name {} is longer than {STRINGLENGTH} characters", shown(&w)),
+            ));
         }
         self.advance();
         Ok((w, pos))
@@ -357,7 +363,10 @@ impl<'a> Parser<'a> {
                         self.advance();
                         Ok((v, pos))
                     }
-                    _ => Err(self.error_at(pos, format!("expected an integer in {lo}..{hi} {what}, found {}", shown(&w)))),
+                    _ => Err(self.error_at(
+                        pos,
+                        format!("expected an integer in {lo}..{hi} {what}, found {}", shown(&w)),
+                    )),
                 };
             }
         }

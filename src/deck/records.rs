@@ -325,8 +325,10 @@ impl Builder<'_> {
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
         let raster = read_raster_file(&self.deck_dir.join(&file)).map_err(|e| {
-            self.p
-                .error_at(file_pos, format!("cannot read the raster file {}: {e}", super::parse::shown(&file)))
+            self.p.error_at(
+                file_pos,
+                format!("cannot read the raster file {}: {e}", super::parse::shown(&file)),
+            )
         })?;
         if raster.width == 0
             || raster.height == 0

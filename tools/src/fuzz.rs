@@ -97,17 +97,84 @@ impl Rng {
 /// Words and numbers the deck mutations put in: keywords, numbers at and
 /// past the deck's ranges, comment brackets, bytes that are not ASCII.
 const DECK_WORDS: &[&str] = &[
-    "view", "image", "surface", "sphere", "block", "cylinder", "prism", "sweep", "motion", "keyframe", "pattern",
-    "blur", "rotate", "translate", "delete", "end", "at", "radius", "length", "scale", "axis", "via", "turn",
-    "expander", "burtnyk", "texture", "paint", "0", "-0", "1", "1e7", "-1e7", "1.0000001e7", "1e-7", "9e-8", "1e155",
-    "1e308", "1e400", "1e-320", "0.5", "2.", ".5", "8192", "8193", "60", "{", "}", "(*", "*)", "\n", "end\n",
-    "\u{e9}", "\u{0}", "\x1b",
+    "view",
+    "image",
+    "surface",
+    "sphere",
+    "block",
+    "cylinder",
+    "prism",
+    "sweep",
+    "motion",
+    "keyframe",
+    "pattern",
+    "blur",
+    "rotate",
+    "translate",
+    "delete",
+    "end",
+    "at",
+    "radius",
+    "length",
+    "scale",
+    "axis",
+    "via",
+    "turn",
+    "expander",
+    "burtnyk",
+    "texture",
+    "paint",
+    "0",
+    "-0",
+    "1",
+    "1e7",
+    "-1e7",
+    "1.0000001e7",
+    "1e-7",
+    "9e-8",
+    "1e155",
+    "1e308",
+    "1e400",
+    "1e-320",
+    "0.5",
+    "2.",
+    ".5",
+    "8192",
+    "8193",
+    "60",
+    "{",
+    "}",
+    "(*",
+    "*)",
+    "\n",
+    "end\n",
+    "\u{e9}",
+    "\u{0}",
+    "\x1b",
 ];
 
 /// Big-endian words the raster mutations write into the header.
 const RASTER_WORDS: &[u32] = &[
-    0, 1, 2, 3, 4, 5, 8, 24, 32, 255, 256, 768, 8192, 8193, 0x59a6_6a95, 0x7fff_ffff, 0x8000_0000, 0xffff_ffff,
-    0x0001_0000, 46341,
+    0,
+    1,
+    2,
+    3,
+    4,
+    5,
+    8,
+    24,
+    32,
+    255,
+    256,
+    768,
+    8192,
+    8193,
+    0x59a6_6a95,
+    0x7fff_ffff,
+    0x8000_0000,
+    0xffff_ffff,
+    0x0001_0000,
+    46341,
 ];
 
 /// Bytes the mutations set.
@@ -159,12 +226,35 @@ fn mutate(rng: &mut Rng, target: Target, input: &mut Vec<u8>, other: &[u8]) {
         }
         5 | 6 => {
             // A header word (the first 32 bytes), or any word.
-            let at = if rng.below(2) == 0 { 4 * rng.below(8) } else { rng.below(len + 1) };
+            let at = if rng.below(2) == 0 {
+                4 * rng.below(8)
+            } else {
+                rng.below(len + 1)
+            };
             let word = RASTER_WORDS[rng.below(RASTER_WORDS.len())].to_be_bytes();
             for (k, b) in word.iter().enumerate() {
                 if let Some(x) = input.get_mut(at + k) {
                     *x = *b;
                 }
+            }
+        }
+        7 if target == Target::Deck => {
+            // A number in place of a number: ±10^k for k in -9..=9, a
+            // mantissa of 1 to 10, so that the range's edges are tried.
+            let starts: Vec<usize> = (0..len)
+                .filter(|&i| input[i].is_ascii_digit() && (i == 0 || input[i - 1].is_ascii_whitespace()))
+                .collect();
+            if !starts.is_empty() {
+                let at = starts[rng.below(starts.len())];
+                let end = input[at..]
+                    .iter()
+                    .position(|b| b.is_ascii_whitespace())
+                    .map_or(len, |k| at + k);
+                let sign = if rng.below(2) == 0 { "" } else { "-" };
+                let mantissa = 1.0 + rng.below(9000) as f64 / 1000.0;
+                let exp = rng.below(19) as i32 - 9;
+                let number = format!("{sign}{mantissa}e{exp}");
+                input.splice(at..end, number.bytes());
             }
         }
         _ => {
@@ -280,8 +370,7 @@ pub struct Config {
 }
 
 /// The mutation loop: mutated seeds through `check` until the input count
-/// or the time is reached. Panics inside `check` are caught there; the
-/// panic hook is silenced for the run.
+/// or the time is reached. `check` catches the panics it looks for.
 pub fn fuzz(target: Target, seeds: &[Vec<u8>], config: &Config, check: &dyn Fn(&[u8]) -> Outcome) -> Report {
     let started = Instant::now();
     let mut rng = Rng::new(config.seed);
@@ -289,13 +378,15 @@ pub fn fuzz(target: Target, seeds: &[Vec<u8>], config: &Config, check: &dyn Fn(&
     if pool.is_empty() {
         pool.push(Vec::new());
     }
+    let n_seeds = pool.len();
     let mut seen = std::collections::HashSet::new();
     let mut report = Report::default();
-    let hook = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
     while report.inputs < config.inputs && config.time.is_none_or(|t| started.elapsed() < t) {
-        let mut input = pool[rng.below(pool.len())].clone();
-        for _ in 0..1 + rng.below(4) {
+        // Half the inputs start from a seed as written: most of the pool is
+        // inputs the reader refuses, and a valid deck reaches further.
+        let from = if rng.below(2) == 0 { n_seeds } else { pool.len() };
+        let mut input = pool[rng.below(from)].clone();
+        for _ in 0..1 + rng.below(3) {
             let other = &pool[rng.below(pool.len())];
             mutate(&mut rng, target, &mut input, other);
         }
@@ -315,7 +406,6 @@ pub fn fuzz(target: Target, seeds: &[Vec<u8>], config: &Config, check: &dyn Fn(&
             pool.push(input);
         }
     }
-    std::panic::set_hook(hook);
     report.outcomes = seen.len();
     report.elapsed = started.elapsed();
     report
@@ -364,7 +454,10 @@ pub fn run(target: Target, root: &Path, config: &Config, out: &Path) -> Result<(
         Target::Deck => check_deck(input, &deck_dir),
         Target::Raster => check_raster(input),
     };
+    // The panics are caught and reported as findings: not printed as well.
+    std::panic::set_hook(Box::new(|_| {}));
     let report = fuzz(target, &seeds, config, &check);
+    drop(std::panic::take_hook());
     let (name, ext) = match target {
         Target::Deck => ("deck", "deck"),
         Target::Raster => ("raster", "ras"),
@@ -390,7 +483,11 @@ pub fn run(target: Target, root: &Path, config: &Config, out: &Path) -> Result<(
             .map_err(|e| format!("{}: {e}", file.display()))?;
         println!("  {}: {}", file.display(), f.what);
     }
-    Err(format!("{} findings, written to {}", report.findings.len(), out.display()))
+    Err(format!(
+        "{} findings, written to {}",
+        report.findings.len(),
+        out.display()
+    ))
 }
 
 /// `tools fuzz TARGET`: the command line's arguments to [`run`], seeds from
@@ -419,9 +516,10 @@ mod tests {
 
     #[test]
     fn the_loop_reports_what_a_check_finds_and_is_reproducible() {
-        // A check that breaks on any 0xFF byte: the mutations set such bytes.
+        // A check that breaks on any byte that is not ASCII: the mutations
+        // put such bytes in.
         let check = |input: &[u8]| {
-            if input.contains(&0xff) {
+            if !input.is_ascii() {
                 panic!("planted");
             }
             Outcome::Refused(format!("{}", input.len() % 7))
@@ -432,14 +530,17 @@ mod tests {
         };
         let config = Config {
             seed: 7,
-            inputs: 500,
+            inputs: 1000,
             time: None,
         };
         let seeds = vec![b"sphere a b at 0 0 0 radius 1\n".to_vec()];
         let a = fuzz(Target::Deck, &seeds, &config, &guarded);
-        assert_eq!(a.inputs, 500);
-        assert!(!a.findings.is_empty());
-        assert!(a.findings.iter().all(|f| f.input.contains(&0xff) && f.what == "planted panic"));
+        assert_eq!(a.inputs, 1000);
+        assert!(a.findings.len() > 10, "{}", a.findings.len());
+        assert!(a
+            .findings
+            .iter()
+            .all(|f| !f.input.is_ascii() && f.what == "planted panic"));
         let b = fuzz(Target::Deck, &seeds, &config, &guarded);
         let inputs = |r: &Report| r.findings.iter().map(|f| f.input.clone()).collect::<Vec<_>>();
         assert_eq!(inputs(&a), inputs(&b), "the same seed tries the same inputs");
@@ -449,7 +550,9 @@ mod tests {
     fn the_seeds_are_the_repositorys_decks_and_rasters() {
         let decks = seeds(&root(), Target::Deck);
         assert!(decks.len() >= 15, "{}", decks.len());
-        assert!(decks.iter().any(|d| d.starts_with(b"{") || d.windows(4).any(|w| w == b"view")));
+        assert!(decks
+            .iter()
+            .any(|d| d.starts_with(b"{") || d.windows(4).any(|w| w == b"view")));
         let rasters = seeds(&root(), Target::Raster);
         assert!(rasters.len() >= 3, "{}", rasters.len());
         assert!(rasters.iter().all(|r| r.starts_with(&[0x59, 0xa6, 0x6a, 0x95])));
@@ -474,12 +577,9 @@ mod tests {
             time: None,
         };
         let dir = root().join("legacy_pascal/decks");
-        let deck = fuzz(
-            Target::Deck,
-            &seeds(&root(), Target::Deck),
-            &config,
-            &|i: &[u8]| check_deck(i, &dir),
-        );
+        let deck = fuzz(Target::Deck, &seeds(&root(), Target::Deck), &config, &|i: &[u8]| {
+            check_deck(i, &dir)
+        });
         let what: Vec<&str> = deck.findings.iter().map(|f| f.what.as_str()).collect();
         assert!(what.is_empty(), "{what:?}");
         assert!(deck.accepted > 0 && deck.outcomes > 20, "{deck:?}");

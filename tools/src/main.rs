@@ -159,6 +159,12 @@ fn main() -> Result<(), String> {
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Stability { out } => tools::stability::run(&out),
-        Command::Fuzz { target, seed, inputs, seconds, out } => tools::fuzz::main(&target, seed, inputs, seconds, &out),
+        Command::Fuzz {
+            target,
+            seed,
+            inputs,
+            seconds,
+            out,
+        } => tools::fuzz::main(&target, seed, inputs, seconds, &out),
     }
 }
