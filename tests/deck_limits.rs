@@ -136,7 +136,7 @@ fn unknown_records_fields_and_names_get_the_nearest_one() {
     );
     assert_eq!(
         error(BASE.replace("opaque", "opaqe")),
-        "4:18: surface 'red': expected a surface kind (opaque, mirrored, transparent, crystal, light, background), found 'opaqe' — did you mean 'opaque'?"
+        "4:13: surface 'red': expected a surface kind (opaque, mirrored, transparent, crystal, light, background), found 'opaqe' — did you mean 'opaque'?"
     );
     assert_eq!(
         error(BASE.replace("ball red", "ball rde")),

@@ -407,3 +407,50 @@ impl<'a> Parser<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn distance(a: &str, b: &str) -> usize {
+        let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+        edit_distance(&a, &b)
+    }
+
+    #[test]
+    fn edit_distance_counts_each_slip_once() {
+        assert_eq!(distance("surface", "surface"), 0);
+        assert_eq!(distance("surfce", "surface"), 1);
+        assert_eq!(distance("surfaces", "surface"), 1);
+        assert_eq!(distance("surfoce", "surface"), 1);
+        assert_eq!(distance("lenght", "length"), 1);
+        assert_eq!(distance("", "abc"), 3);
+        assert_eq!(distance("abc", ""), 3);
+        assert_eq!(distance("kitten", "sitting"), 3);
+    }
+
+    #[test]
+    fn nearest_takes_the_closest_slip_only() {
+        let names = ["sphere", "surface", "sweep"];
+        assert_eq!(nearest("SURFCE", &names), Some("surface"));
+        // "swep" is one edit from "sweep" and three from the others.
+        assert_eq!(nearest("swep", &names), Some("sweep"));
+        // Two edits in a five-letter name are more than a slip.
+        assert_eq!(nearest("swxxp", &names), None);
+        // Ties go to the first name.
+        assert_eq!(nearest("b", &["a", "bb", "ba"]), Some("bb"));
+        // A one-letter word that is not the name is no slip of it.
+        assert_eq!(nearest("q", &["x"]), None);
+        assert_eq!(nearest(&"s".repeat(100), &names), None);
+        assert_eq!(did_you_mean("swep", &names), " — did you mean 'sweep'?");
+        assert_eq!(did_you_mean("zzz", &names), "");
+    }
+
+    #[test]
+    fn shown_cuts_after_forty_characters() {
+        let forty = "a".repeat(SHOWN_CHARS);
+        assert_eq!(shown(&forty), format!("'{forty}'"));
+        assert_eq!(shown(&format!("{forty}b")), format!("'{forty}…' (41 characters)"));
+        assert_eq!(shown("\0\t\r\x1b\x7f"), "'\\0\\t\\r\\x1B\\x7F'");
+    }
+}
