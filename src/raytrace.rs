@@ -35,6 +35,12 @@ pub enum RenderError {
         record: &'static str,
         message: String,
     },
+    /// Pixels whose colour came out NaN or infinite (the port's extension:
+    /// the listing wrote them as black). The deck reader's ranges keep every
+    /// deck in range from this; it is the last guard, so that such an image
+    /// is refused rather than written.
+    #[error("{pixels} of {total} pixels have a colour that is not finite (NaN or infinite): the scene's numbers overflowed; nothing was written")]
+    NonFinite { pixels: usize, total: usize },
 }
 
 /// The subpixel times of a scene: its `pattern` and `blur` records, or
@@ -218,6 +224,23 @@ pub struct Render {
     pub stats: TraceStats,
     /// Primary rays traced, the listing's extra column included.
     pub primary: u64,
+    /// Pixels whose colour was NaN or infinite before `rgbtochars` (which
+    /// would write them black); see [`Render::check_finite`].
+    pub nonfinite: usize,
+}
+
+impl Render {
+    /// An error if any pixel's colour was not finite: such a raster must
+    /// not be written.
+    pub fn check_finite(&self) -> Result<(), RenderError> {
+        match self.nonfinite {
+            0 => Ok(()),
+            pixels => Err(RenderError::NonFinite {
+                pixels,
+                total: self.raster.pixels.len(),
+            }),
+        }
+    }
 }
 
 /// The scanline loop of the main program over a prepared scene. `progress`
@@ -239,6 +262,7 @@ pub struct Render {
 /// `Isblur` says moves; the others keep their rest pose at no cost.
 pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
     let (colours, stats, primary) = render_rows(scene, opts, progress);
+    let nonfinite = colours.iter().filter(|c| !c.is_finite()).count();
     let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
     let img = &scene.image;
     Render {
@@ -249,6 +273,7 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
         },
         stats,
         primary,
+        nonfinite,
     }
 }
 

@@ -150,7 +150,7 @@ fn name_with_a_bad_character() {
 fn unknown_record() {
     check(
         &plus("sphear b2 red at 0 0 3 radius 1\n"),
-        "t.deck:12:1: deck: unknown record 'sphear'",
+        "t.deck:12:1: deck: unknown record 'sphear' — did you mean 'sphere'?",
     );
 }
 
@@ -198,7 +198,7 @@ fn eye_straight_above_look() {
 fn screen_not_positive() {
     check(
         &replacing(1, "view eye 0 -10 4 look 0 0 1 screen 0 distance 5"),
-        "t.deck:1:36: view: expected a number > 0 after 'screen', found '0'",
+        "t.deck:1:36: view: expected a number in 1e-7..1e7 after 'screen', found '0'",
     );
 }
 
@@ -277,7 +277,7 @@ fn surface_field_given_twice() {
 fn surface_index_not_positive() {
     check(
         &plus("surface s2 transparent color 1 1 1 ka 0 kd 0 ks 0 kt 1 index 0\n"),
-        "t.deck:12:62: surface 's2': expected a number > 0 after 'index', found '0'",
+        "t.deck:12:62: surface 's2': expected a number in 1e-7..1e7 after 'index', found '0'",
     );
 }
 
@@ -347,7 +347,7 @@ fn duplicate_object() {
 fn block_edge_not_positive() {
     check(
         &plus("block b2 red at 0 0 0 size 1 0 1\n"),
-        "t.deck:12:30: block 'b2': expected a number > 0 after 'size', found '0'",
+        "t.deck:12:30: block 'b2': expected a number in 1e-7..1e7 after 'size', found '0'",
     );
 }
 
@@ -453,7 +453,7 @@ fn rotation_contour_with_negative_u() {
 fn length_not_positive() {
     check(
         &replacing(6, "sweep wave red translation bspline at 0 0 0 length 0"),
-        "t.deck:6:52: sweep 'wave': expected a number > 0 after 'length', found '0'",
+        "t.deck:6:52: sweep 'wave': expected a number in 1e-7..1e7 after 'length', found '0'",
     );
 }
 
@@ -493,7 +493,7 @@ fn scale_on_a_translation_sweep() {
 fn unknown_sweep_field() {
     check(
         &replacing(6, "sweep wave red translation bspline at 0 0 0 lenght 2"),
-        "t.deck:6:45: sweep 'wave': expected end of line or 'length', 'scale', 'axis', found 'lenght'",
+        "t.deck:6:45: sweep 'wave': expected end of line or 'length', 'scale', 'axis', found 'lenght' — did you mean 'length'?",
     );
 }
 
@@ -503,7 +503,7 @@ fn unknown_sweep_field() {
 fn rotate_unknown_object() {
     check(
         &plus("rotate boll z 10\n"),
-        "t.deck:12:8: rotate: unknown object 'boll'",
+        "t.deck:12:8: rotate: unknown object 'boll' — did you mean 'ball'?",
     );
 }
 
@@ -537,7 +537,7 @@ fn motion_unknown_law() {
 fn motion_of_an_unknown_object() {
     check(
         &plus("motion bal to 1 2 3\n"),
-        "t.deck:12:8: motion: unknown object 'bal'",
+        "t.deck:12:8: motion: unknown object 'bal' — did you mean 'ball'?",
     );
 }
 

@@ -159,7 +159,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     // The deck: text, the name its errors carry, the folder its files are relative to.
     let (source, file_name, deck_dir, stem) = match &cli.deck {
         Some(path) => {
-            let source = std::fs::read_to_string(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
+            let source =
+                raytrace::deck::read_deck_file(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
             let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
             let stem = path
                 .file_stem()
@@ -168,7 +169,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             (source, path.display().to_string(), dir, stem)
         }
         None => (
-            DEFAULT_DECK.to_string(),
+            DEFAULT_DECK.as_bytes().to_vec(),
             "nec_morph.deck".to_string(),
             PathBuf::from("legacy_pascal/decks"),
             "default".to_string(),
@@ -217,6 +218,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
     let elapsed = started.elapsed();
     bar.finish_and_clear();
+    render
+        .check_finite()
+        .map_err(|e| other_error(format!("{file_name}: {e}")))?;
 
     raster_file
         .commit(|w| output_format.write(&render.raster, w))

@@ -18,12 +18,23 @@
 //!   left open at the end of the deck is an error at its opening bracket.
 //! - A word is a run of characters other than white space and comment
 //!   openers. Keywords and field names are case-insensitive.
+//! - Outside comments a deck is ASCII: a byte that is not is an error at its
+//!   line and column. Inside comments any bytes may stand (Big5, Latin-1).
+//!   Columns count characters: a UTF-8 character, or a byte that is not
+//!   part of one, is one column.
+//! - A deck longer than [`MAX_DECK_BYTES`] (64 MiB) is an error at the first
+//!   byte past the limit; [`read_deck_file`] reads no more than that.
 //! - Names (surfaces, lights, objects) are case-sensitive, 1–10 characters
 //!   of `[A-Za-z0-9_]`; a word that is a number is never a name (`5` where a
 //!   name is expected is an error), but `2nd` is a name.
 //! - Numbers: `[+|-] (digits [. [digits]] | . digits) [(e|E) [+|-] digits]`,
-//!   so `2`, `-0.5`, `1.5E-3`, `.5` and `5.` are numbers; a number too large
-//!   for a 64-bit real is an error. Where DECK.md says integer (WIDTH,
+//!   so `2`, `-0.5`, `1.5E-3`, `.5` and `5.` are numbers. Every real number
+//!   lies in −[`MAX_MAGNITUDE`]..[`MAX_MAGNITUDE`] (1e7), every size (`> 0`
+//!   below: radii, edges, heights, lengths, `screen`, `distance`, a paint's
+//!   `scale`, `index`) in [`MIN_SIZE`]..[`MAX_MAGNITUDE`] (1e-7..1e7), and
+//!   a `translate` may not carry `sphereo` out of the range: the port's
+//!   extension, so that no product or square the renderer forms overflows
+//!   (a radius of 1e155 made every pixel NaN). Where DECK.md says integer (WIDTH,
 //!   HEIGHT, mask, blur, pattern), only `[+|-] digits` is accepted (`2.` is
 //!   not an integer).
 //! - A file name (`texture`) is one word: it cannot hold spaces or braces.
@@ -136,6 +147,10 @@
 //! or object of a referring record once it has been found. The position is
 //! that of the offending token; a missing token is reported where it was
 //! expected: at the next token, the end of the line or the end of the deck.
+//! An unknown record, optional field, keyword choice, surface or object
+//! ends with ` — did you mean 'NAME'?` when a valid name is within a third
+//! of its letters (case-insensitive edit distance). A word echoed in a
+//! message is cut after 40 characters, its control characters escaped.
 //! A missing `view` or `image` is reported at the end of the deck.
 
 mod lex;
@@ -152,7 +167,47 @@ use crate::types::{
     BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord, MotionRecord, ObjectRecord,
     PatternRecord, Pos, Scene, SurfaceRecord, View,
 };
+pub use lex::MAX_DECK_BYTES;
 use parse::Parser;
+pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
+
+/// Reads a deck file's bytes for [`initialize`]: at most one byte more than
+/// [`MAX_DECK_BYTES`], so that a file without end (`/dev/zero`, a pipe)
+/// ends with `initialize`'s error for a deck too large, not with all memory
+/// taken.
+pub fn read_deck_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_DECK_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// The record keywords, for the suggestion after an unknown one; every
+/// keyword that [`Builder::record`] reads is here (a test holds them equal
+/// to DECK.md's list).
+pub const RECORDS: &[&str] = &[
+    "view",
+    "image",
+    "background",
+    "light",
+    "surface",
+    "paint",
+    "texture",
+    "sphere",
+    "block",
+    "cylinder",
+    "prism",
+    "sweep",
+    "rotate",
+    "translate",
+    "delete",
+    "motion",
+    "keyframe",
+    "blur",
+    "pattern",
+];
 
 /// A deck error: where (file, 1-based line and column, the column counting
 /// characters), in which record, and what was wrong.
@@ -181,7 +236,32 @@ fn name_part(name: &Option<String>) -> String {
 /// it in errors, `deck_dir` is the folder `texture` files are relative to,
 /// and `fidelity` decides whether a `pattern` must be a permutation
 /// (erratum 1).
-pub fn initialize(source: &str, file_name: &str, deck_dir: &Path, fidelity: Fidelity) -> Result<Scene, DeckError> {
+///
+/// `source` is bytes: outside comments a deck must be ASCII (a byte that is
+/// not is an error at its line and column), inside them any bytes may stand.
+/// A deck longer than [`MAX_DECK_BYTES`] is an error at the first byte past
+/// the limit.
+pub fn initialize(
+    source: &(impl AsRef<[u8]> + ?Sized),
+    file_name: &str,
+    deck_dir: &Path,
+    fidelity: Fidelity,
+) -> Result<Scene, DeckError> {
+    let source = source.as_ref();
+    if source.len() > MAX_DECK_BYTES {
+        let pos = lex::Cursor::new(source).pos_at(MAX_DECK_BYTES);
+        return Err(DeckError {
+            file: file_name.to_string(),
+            line: pos.line,
+            column: pos.column,
+            record: "deck".to_string(),
+            name: None,
+            message: format!(
+                "the deck is larger than {} MiB, the most the reader takes",
+                MAX_DECK_BYTES >> 20
+            ),
+        });
+    }
     let mut b = Builder {
         p: Parser::new(source, file_name),
         deck_dir,
@@ -297,7 +377,14 @@ impl Builder<'_> {
             "keyframe" => self.keyframe(pos),
             "blur" => self.blur(pos),
             "pattern" => self.pattern(pos),
-            _ => Err(self.p.error_at(pos, format!("unknown record '{word}'"))),
+            _ => Err(self.p.error_at(
+                pos,
+                format!(
+                    "unknown record {}{}",
+                    parse::shown(&word),
+                    parse::did_you_mean(&word, RECORDS)
+                ),
+            )),
         }
     }
 

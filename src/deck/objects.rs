@@ -224,7 +224,7 @@ impl Builder<'_> {
         let (name, surface) = self.declare()?;
         let sphereo = self.at()?;
         self.p.keyword("radius")?;
-        let radius = self.p.positive("after 'radius'")?.value;
+        let radius = self.p.size("after 'radius'")?.value;
         self.p.end_of_line()?;
         self.push_object(
             pos,
@@ -248,9 +248,9 @@ impl Builder<'_> {
         let (name, surface) = self.declare()?;
         let sphereo = self.at()?;
         self.p.keyword("size")?;
-        let lx = self.p.positive("after 'size'")?.value;
-        let ly = self.p.positive("after 'size'")?.value;
-        let lz = self.p.positive("after 'size'")?.value;
+        let lx = self.p.size("after 'size'")?.value;
+        let ly = self.p.size("after 'size'")?.value;
+        let lz = self.p.size("after 'size'")?.value;
         self.p.end_of_line()?;
         let lengths = DVec3::new(lx, ly, lz);
         let radius = lengths.length() / 2.0;
@@ -275,7 +275,7 @@ impl Builder<'_> {
         let (name, surface) = self.declare()?;
         let sphereo = self.at()?;
         self.p.keyword("radius")?;
-        let cylradius = self.p.positive("after 'radius'")?.value;
+        let cylradius = self.p.size("after 'radius'")?.value;
         self.p.keyword("bottom")?;
         let bottom: Num = self.p.number("after 'bottom'")?;
         self.p.keyword("top")?;
@@ -361,7 +361,7 @@ impl Builder<'_> {
         let (name, surface) = self.declare()?;
         let sphereo = self.at()?;
         self.p.keyword("height")?;
-        let height = self.p.positive("after 'height'")?.value;
+        let height = self.p.size("after 'height'")?.value;
         let mut orientp = Axis::Z;
         let mut seen = Vec::new();
         while self.p.field(&["axis"], &mut seen)?.is_some() {
@@ -426,7 +426,7 @@ impl Builder<'_> {
                     if class == PrimitiveClass::Rotation {
                         return Err(self.p.error_at(fpos, "a rotation sweep takes no 'length'"));
                     }
-                    length = Some(self.p.positive("after 'length'")?.value);
+                    length = Some(self.p.size("after 'length'")?.value);
                 }
                 "scale" => {
                     if class != PrimitiveClass::Conic {

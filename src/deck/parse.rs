@@ -2,7 +2,7 @@
 //! needs (keywords, names, numbers, choices, fields, record ends), each
 //! raising a [`DeckError`] at the offending token.
 
-use super::lex::{is_integer, is_number, tokenize, Tok, Token};
+use super::lex::{is_integer, is_number, Lexer, Tok, Token};
 use super::DeckError;
 use crate::types::{Pos, STRINGLENGTH};
 
@@ -18,8 +18,9 @@ pub(super) struct Num {
 /// The cursor. `record` and `name` say which record is being read, for the
 /// errors.
 pub(super) struct Parser<'a> {
-    toks: Vec<Token>,
-    i: usize,
+    lexer: Lexer<'a>,
+    /// The next token.
+    next: Token,
     file: &'a str,
     /// The record's keyword as DECK.md spells it, or `deck` between records.
     pub record: &'static str,
@@ -27,20 +28,116 @@ pub(super) struct Parser<'a> {
     pub name: Option<String>,
 }
 
+/// The largest magnitude of any real number in a deck: coordinates, sizes,
+/// distances, angles (the port's extension; the thesis's scenes are a few
+/// units across). Products and squares of such numbers stay far from
+/// overflow, so the renderer computes every ray of a deck in range.
+pub const MAX_MAGNITUDE: f64 = 1e7;
+
+/// The smallest size (a radius, edge, length, height, distance, screen,
+/// paint scale, refractive index): sizes lie in `MIN_SIZE..=MAX_MAGNITUDE`,
+/// so their squares and ratios stay far from underflow.
+pub const MIN_SIZE: f64 = 1e-7;
+
+/// The nearest of `names` to `word` (case-insensitive edit distance, a
+/// swap of two neighbours counting as one edit), if it is near enough to be
+/// a slip: at most a third of its letters (one for a short name) and not
+/// the whole word.
+pub(super) fn nearest<'n>(word: &str, names: &[&'n str]) -> Option<&'n str> {
+    let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    if word.chars().count() > 2 * longest + 1 {
+        return None;
+    }
+    let w: Vec<char> = word.to_lowercase().chars().collect();
+    let mut best: Option<(usize, &'n str)> = None;
+    for &name in names {
+        let n: Vec<char> = name.to_lowercase().chars().collect();
+        let most = (n.len() / 3).max(1);
+        // The distance is at least the difference of the lengths: a word
+        // far longer than the name is no slip (and costs nothing to skip).
+        if w.len() > n.len() + most {
+            continue;
+        }
+        let d = edit_distance(&w, &n);
+        let slip = d <= most && d < n.len().max(w.len());
+        if slip && best.is_none_or(|(b, _)| d < b) {
+            best = Some((d, name));
+        }
+    }
+    best.map(|(_, name)| name)
+}
+
+/// ` — did you mean 'NAME'?` for the nearest of `names`, or nothing.
+pub(super) fn did_you_mean(word: &str, names: &[&str]) -> String {
+    nearest(word, names)
+        .map(|n| format!(" — did you mean '{n}'?"))
+        .unwrap_or_default()
+}
+
+/// The optimal string alignment distance: insertions, deletions,
+/// substitutions and swaps of two neighbours, each one edit.
+fn edit_distance(a: &[char], b: &[char]) -> usize {
+    let w = b.len() + 1;
+    let mut d = vec![0usize; (a.len() + 1) * w];
+    for i in 0..=a.len() {
+        for j in 0..=b.len() {
+            d[i * w + j] = if i == 0 || j == 0 {
+                i + j
+            } else {
+                let cost = usize::from(a[i - 1] != b[j - 1]);
+                let mut v = (d[(i - 1) * w + j] + 1)
+                    .min(d[i * w + j - 1] + 1)
+                    .min(d[(i - 1) * w + j - 1] + cost);
+                if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                    v = v.min(d[(i - 2) * w + j - 2] + 1);
+                }
+                v
+            };
+        }
+    }
+    d[a.len() * w + b.len()]
+}
+
+/// The most characters of a word an error echoes.
+const SHOWN_CHARS: usize = 40;
+
+/// A word as an error echoes it: quoted, control characters escaped (`\0`,
+/// `\t`, `\x1B`), cut after [`SHOWN_CHARS`] characters with its length.
+pub(super) fn shown(word: &str) -> String {
+    let mut out = String::from("'");
+    for c in word.chars().take(SHOWN_CHARS) {
+        match c {
+            '\0' => out.push_str("\\0"),
+            '\t' => out.push_str("\\t"),
+            '\r' => out.push_str("\\r"),
+            c if c.is_control() => out.push_str(&format!("\\x{:02X}", u32::from(c))),
+            c => out.push(c),
+        }
+    }
+    out.push('\'');
+    let n = word.chars().count();
+    if n > SHOWN_CHARS {
+        out = format!("{}…' ({n} characters)", &out[..out.len() - 1]);
+    }
+    out
+}
+
 /// How a token is shown in "found …".
 fn found(tok: &Tok) -> String {
     match tok {
-        Tok::Word(w) => format!("'{w}'"),
+        Tok::Word(w) => shown(w),
         Tok::Eol => "end of line".to_string(),
         Tok::Eof | Tok::Bad(_) => "end of file".to_string(),
     }
 }
 
 impl<'a> Parser<'a> {
-    pub fn new(source: &str, file: &'a str) -> Self {
+    pub fn new(source: &'a [u8], file: &'a str) -> Self {
+        let mut lexer = Lexer::new(source);
+        let next = lexer.next_token();
         Parser {
-            toks: tokenize(source),
-            i: 0,
+            lexer,
+            next,
             file,
             record: "deck",
             name: None,
@@ -67,9 +164,7 @@ impl<'a> Parser<'a> {
 
     /// The next token; a lexical error surfaces here, in the current record.
     pub fn peek(&self) -> Result<&Token, DeckError> {
-        // `tokenize` always ends the list with Eof or Bad, and `advance`
-        // never passes them, so the index is in range.
-        let t = &self.toks[self.i.min(self.toks.len() - 1)];
+        let t = &self.next;
         match &t.tok {
             Tok::Bad(msg) => Err(self.error_at(t.pos, msg.clone())),
             _ => Ok(t),
@@ -78,12 +173,14 @@ impl<'a> Parser<'a> {
 
     /// Where the next token stands (also for a lexical error).
     pub fn pos(&self) -> Pos {
-        self.toks[self.i.min(self.toks.len() - 1)].pos
+        self.next.pos
     }
 
+    /// Moves to the token after the next; the end of the deck and a lexical
+    /// error stay.
     fn advance(&mut self) {
-        if matches!(self.toks.get(self.i).map(|t| &t.tok), Some(Tok::Word(_) | Tok::Eol)) {
-            self.i += 1;
+        if matches!(self.next.tok, Tok::Word(_) | Tok::Eol) {
+            self.next = self.lexer.next_token();
         }
     }
 
@@ -93,6 +190,16 @@ impl<'a> Parser<'a> {
             Ok(t) => self.error_at(t.pos, format!("expected {what}, found {}", found(&t.tok))),
             Err(e) => e,
         }
+    }
+
+    /// [`Parser::expected`], followed by the nearest of `names` to the word
+    /// found, if one is near.
+    pub fn expected_near(&self, what: &str, names: &[&str]) -> DeckError {
+        let mut e = self.expected(what);
+        if let Ok(Some((w, _))) = self.peek_word() {
+            e.message.push_str(&did_you_mean(&w, names));
+        }
+        e
     }
 
     /// The next word, if the next token is one (not consumed).
@@ -166,7 +273,7 @@ impl<'a> Parser<'a> {
             }
         }
         let names: Vec<&str> = options.iter().map(|(k, _)| *k).collect();
-        Err(self.expected(&format!("{what} ({})", names.join(", "))))
+        Err(self.expected_near(&format!("{what} ({})", names.join(", ")), &names))
     }
 
     /// A name: 1–10 characters of `[A-Za-z0-9_]`, not a number. `what`
@@ -176,49 +283,62 @@ impl<'a> Parser<'a> {
             return Err(self.expected(what));
         };
         if is_number(&w) {
-            return Err(self.error_at(pos, format!("expected {what}, found the number '{w}'")));
+            return Err(self.error_at(pos, format!("expected {what}, found the number {}", shown(&w))));
         }
         if !w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return Err(self.error_at(pos, format!("expected {what} (letters, digits and '_'), found '{w}'")));
+            return Err(self.error_at(
+                pos,
+                format!("expected {what} (letters, digits and '_'), found {}", shown(&w)),
+            ));
         }
         if w.len() > STRINGLENGTH {
-            return Err(self.error_at(pos, format!("the name '{w}' is longer than {STRINGLENGTH} characters")));
+            return Err(self.error_at(
+                pos,
+                format!("the name {} is longer than {STRINGLENGTH} characters", shown(&w)),
+            ));
         }
         self.advance();
         Ok((w, pos))
     }
 
-    /// A number; `what` places it in the message ("after 'radius'",
-    /// "for X").
-    pub fn number(&mut self, what: &str) -> Result<Num, DeckError> {
+    /// A number that meets `ok`; `what` places it in the message ("after
+    /// 'radius'", "for X"). A number past the deck's range, ±[`MAX_MAGNITUDE`]
+    /// (or too large for a 64-bit real), is refused as outside `outer`, one
+    /// in range that fails `ok` as outside `range`.
+    fn number_in(&mut self, what: &str, outer: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
         if let Some((w, pos)) = self.peek_word()? {
             if is_number(&w) {
-                return match w.parse::<f64>() {
-                    Ok(value) if value.is_finite() => {
-                        self.advance();
-                        Ok(Num { value, pos, text: w })
-                    }
-                    _ => Err(self.error_at(pos, format!("the number '{w}' is out of range"))),
-                };
+                // Rust parses every text of the number grammar; one too
+                // large for a real gives infinity.
+                let value = w.parse::<f64>().unwrap_or(f64::INFINITY);
+                let range = if value.abs() <= MAX_MAGNITUDE { range } else { outer };
+                if value.abs() <= MAX_MAGNITUDE && ok(value) {
+                    self.advance();
+                    return Ok(Num { value, pos, text: w });
+                }
+                return Err(self.error_at(pos, format!("expected a number {range} {what}, found {}", shown(&w))));
             }
         }
         Err(self.expected(&format!("a number {what}")))
     }
 
-    /// A number that must meet `ok`, described by `range` ("> 0",
-    /// "in 0..1").
-    pub fn number_where(&mut self, what: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
-        let n = self.number(what)?;
-        if ok(n.value) {
-            Ok(n)
-        } else {
-            Err(self.error_at(n.pos, format!("expected a number {range} {what}, found '{}'", n.text)))
-        }
+    /// A number in the deck's range, −[`MAX_MAGNITUDE`]..=[`MAX_MAGNITUDE`].
+    pub fn number(&mut self, what: &str) -> Result<Num, DeckError> {
+        let outer = format!("in -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}");
+        self.number_in(what, &outer, &outer, |_| true)
     }
 
-    /// A number > 0.
-    pub fn positive(&mut self, what: &str) -> Result<Num, DeckError> {
-        self.number_where(what, "> 0", |v| v > 0.0)
+    /// A number in the deck's range that must also meet `ok`, described by
+    /// `range` ("> 0", "in 0..1").
+    pub fn number_where(&mut self, what: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
+        let outer = format!("in -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}");
+        self.number_in(what, &outer, range, ok)
+    }
+
+    /// A size: a number in [`MIN_SIZE`]..=[`MAX_MAGNITUDE`].
+    pub fn size(&mut self, what: &str) -> Result<Num, DeckError> {
+        let range = format!("in {MIN_SIZE:e}..{MAX_MAGNITUDE:e}");
+        self.number_in(what, &range, &range, |v| v >= MIN_SIZE)
     }
 
     /// A number in 0..=1.
@@ -243,7 +363,10 @@ impl<'a> Parser<'a> {
                         self.advance();
                         Ok((v, pos))
                     }
-                    _ => Err(self.error_at(pos, format!("expected an integer in {lo}..{hi} {what}, found '{w}'"))),
+                    _ => Err(self.error_at(
+                        pos,
+                        format!("expected an integer in {lo}..{hi} {what}, found {}", shown(&w)),
+                    )),
                 };
             }
         }
@@ -276,10 +399,58 @@ impl<'a> Parser<'a> {
             .filter(|f| !seen.contains(f))
             .map(|f| format!("'{f}'"))
             .collect();
+        let unseen: Vec<&str> = allowed.iter().copied().filter(|f| !seen.contains(f)).collect();
         if list.is_empty() {
             Err(self.expected("end of line"))
         } else {
-            Err(self.expected(&format!("end of line or {}", list.join(", "))))
+            Err(self.expected_near(&format!("end of line or {}", list.join(", ")), &unseen))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn distance(a: &str, b: &str) -> usize {
+        let (a, b): (Vec<char>, Vec<char>) = (a.chars().collect(), b.chars().collect());
+        edit_distance(&a, &b)
+    }
+
+    #[test]
+    fn edit_distance_counts_each_slip_once() {
+        assert_eq!(distance("surface", "surface"), 0);
+        assert_eq!(distance("surfce", "surface"), 1);
+        assert_eq!(distance("surfaces", "surface"), 1);
+        assert_eq!(distance("surfoce", "surface"), 1);
+        assert_eq!(distance("lenght", "length"), 1);
+        assert_eq!(distance("", "abc"), 3);
+        assert_eq!(distance("abc", ""), 3);
+        assert_eq!(distance("kitten", "sitting"), 3);
+    }
+
+    #[test]
+    fn nearest_takes_the_closest_slip_only() {
+        let names = ["sphere", "surface", "sweep"];
+        assert_eq!(nearest("SURFCE", &names), Some("surface"));
+        // "swep" is one edit from "sweep" and three from the others.
+        assert_eq!(nearest("swep", &names), Some("sweep"));
+        // Two edits in a five-letter name are more than a slip.
+        assert_eq!(nearest("swxxp", &names), None);
+        // Ties go to the first name.
+        assert_eq!(nearest("b", &["a", "bb", "ba"]), Some("bb"));
+        // A one-letter word that is not the name is no slip of it.
+        assert_eq!(nearest("q", &["x"]), None);
+        assert_eq!(nearest(&"s".repeat(100), &names), None);
+        assert_eq!(did_you_mean("swep", &names), " — did you mean 'sweep'?");
+        assert_eq!(did_you_mean("zzz", &names), "");
+    }
+
+    #[test]
+    fn shown_cuts_after_forty_characters() {
+        let forty = "a".repeat(SHOWN_CHARS);
+        assert_eq!(shown(&forty), format!("'{forty}'"));
+        assert_eq!(shown(&format!("{forty}b")), format!("'{forty}…' (41 characters)"));
+        assert_eq!(shown("\0\t\r\x1b\x7f"), "'\\0\\t\\r\\x1B\\x7F'");
     }
 }

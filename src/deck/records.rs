@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::objects::rotation;
-use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo};
+use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo, MAX_MAGNITUDE};
 use crate::raster::read_raster_file_within;
 use crate::types::{
     Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint, PaintKind, PatternRecord,
@@ -49,7 +49,11 @@ impl Builder<'_> {
         let (name, pos) = self.p.name("a surface name")?;
         match self.surface_index.get(&name) {
             Some(&i) => Ok((i, pos)),
-            None => Err(self.p.error_at(pos, format!("unknown surface '{name}'"))),
+            None => {
+                let known: Vec<&str> = self.surfaces.iter().map(|s| s.name.as_str()).collect();
+                let hint = super::parse::did_you_mean(&name, &known);
+                Err(self.p.error_at(pos, format!("unknown surface '{name}'{hint}")))
+            }
         }
     }
 
@@ -62,7 +66,13 @@ impl Builder<'_> {
                 self.p.name = Some(name);
                 Ok((i, pos))
             }
-            None => Err(self.p.error_at(pos, format!("unknown object '{name}'"))),
+            None => {
+                // Sorted: the suggestion must not depend on the map's order.
+                let mut known: Vec<&str> = self.object_index.keys().map(String::as_str).collect();
+                known.sort_unstable();
+                let hint = super::parse::did_you_mean(&name, &known);
+                Err(self.p.error_at(pos, format!("unknown object '{name}'{hint}")))
+            }
         }
     }
 
@@ -105,9 +115,9 @@ impl Builder<'_> {
             ));
         }
         self.p.keyword("screen")?;
-        let screensize = self.p.positive("after 'screen'")?.value;
+        let screensize = self.p.size("after 'screen'")?.value;
         self.p.keyword("distance")?;
-        let scrndistance = self.p.positive("after 'distance'")?.value;
+        let scrndistance = self.p.size("after 'distance'")?.value;
         self.p.end_of_line()?;
         self.view = Some((
             View {
@@ -234,7 +244,7 @@ impl Builder<'_> {
             match field {
                 "ambient" => iobject = self.rgb(["after 'ambient'"; 3], emissive)?,
                 "reflect" => prcntrfl = self.p.unit("after 'reflect'")?.value,
-                _ => index = self.p.positive("after 'index'")?.value,
+                _ => index = self.p.size("after 'index'")?.value,
             }
         }
         self.p.end_of_line()?;
@@ -292,8 +302,8 @@ impl Builder<'_> {
         let mut seen = Vec::new();
         while let Some((field, _)) = self.p.field(&["scale", "color"], &mut seen)? {
             if field == "scale" {
-                lengthx = self.p.positive("after 'scale'")?.value;
-                lengthy = self.p.positive("after 'scale'")?.value;
+                lengthx = self.p.size("after 'scale'")?.value;
+                lengthy = self.p.size("after 'scale'")?.value;
             } else {
                 color = self.rgb(["after 'color'"; 3], false)?;
             }
@@ -315,8 +325,10 @@ impl Builder<'_> {
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
         let raster = read_raster_file_within(&self.deck_dir.join(&file), Texture::LIMIT).map_err(|e| {
-            self.p
-                .error_at(file_pos, format!("cannot read the raster file '{file}': {e}"))
+            self.p.error_at(
+                file_pos,
+                format!("cannot read the raster file {}: {e}", super::parse::shown(&file)),
+            )
         })?;
         if raster.width == 0
             || raster.height == 0
@@ -325,8 +337,10 @@ impl Builder<'_> {
             return Err(self.p.error_at(
                 file_pos,
                 format!(
-                    "the raster file '{file}' holds no picture ({}×{})",
-                    raster.width, raster.height
+                    "the raster file {} holds no picture ({}×{})",
+                    super::parse::shown(&file),
+                    raster.width,
+                    raster.height
                 ),
             ));
         }
@@ -363,11 +377,18 @@ impl Builder<'_> {
         self.p.begin("translate");
         let (i, pos) = self.object_ref()?;
         self.pose_free(i, pos, "moved")?;
-        let x = self.p.number("for X")?.value;
-        let y = self.p.number("for Y")?.value;
-        let z = self.p.number("for Z")?.value;
+        let x = self.p.number("for X")?;
+        let y = self.p.number("for Y")?;
+        let z = self.p.number("for Z")?;
         self.p.end_of_line()?;
-        self.entries[i].record.sphereo += DVec3::new(x, y, z);
+        let to = self.entries[i].record.sphereo + DVec3::new(x.value, y.value, z.value);
+        if to.abs().max_element() > MAX_MAGNITUDE {
+            return Err(self.p.error_at(
+                x.pos,
+                format!("this moves the object to ({}, {}, {}), out of the deck's range -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}", to.x, to.y, to.z),
+            ));
+        }
+        self.entries[i].record.sphereo = to;
         Ok(())
     }
 

@@ -91,6 +91,25 @@ enum Command {
         #[arg(long, default_value = "docs/STABILITY.md")]
         out: PathBuf,
     },
+    /// Fuzz the deck reader or the raster reader with mutations of the
+    /// repository's decks and rasters; findings are written to OUT.
+    Fuzz {
+        /// What to fuzz: deck or raster.
+        #[arg(value_parser = ["deck", "raster"])]
+        target: String,
+        /// The random seed: the same seed and input count try the same inputs.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Stop after this many inputs.
+        #[arg(long, default_value_t = 100_000)]
+        inputs: u64,
+        /// Stop after this many seconds.
+        #[arg(long)]
+        seconds: Option<f64>,
+        /// Where findings are written.
+        #[arg(long, default_value = "raster/fuzz")]
+        out: PathBuf,
+    },
 }
 
 fn main() -> Result<(), String> {
@@ -140,5 +159,12 @@ fn main() -> Result<(), String> {
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Stability { out } => tools::stability::run(&out),
+        Command::Fuzz {
+            target,
+            seed,
+            inputs,
+            seconds,
+            out,
+        } => tools::fuzz::main(&target, seed, inputs, seconds, &out),
     }
 }
