@@ -5,10 +5,28 @@ use std::path::Path;
 use raytrace::raster::Raster;
 use raytrace::types::{Fidelity, Options};
 
+/// Writes the [`filmstrip`] of `deck` to the PNG `out`; without `out`,
+/// to raster/<deck name>_frames.png (the folder the renders go to, which
+/// git ignores).
+pub fn frames(deck: &Path, out: Option<&Path>, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
+    let strip = filmstrip(deck, times, size, fidelity)?;
+    let out = match out {
+        Some(out) => out.to_path_buf(),
+        None => {
+            let stem = deck.file_stem().map(|s| s.to_string_lossy()).unwrap_or("deck".into());
+            std::fs::create_dir_all("raster").map_err(|e| format!("raster: {e}"))?;
+            Path::new("raster").join(format!("{stem}_frames.png"))
+        }
+    };
+    raytrace::raster::write_png(&out, &strip).map_err(|e| format!("{}: {e}", out.display()))?;
+    println!("wrote {} ({} frames at t = {:?})", out.display(), times.len(), times);
+    Ok(())
+}
+
 /// The scene of `deck` at each instant of `times`: every moving object at
 /// its pose then, every key-frame object at its in-between shape and pose,
-/// rendered still and laid side by side.
-pub fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
+/// rendered still, `size`×`size` pixels, and laid side by side.
+pub fn filmstrip(deck: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<Raster, String> {
     let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
     let dir = deck.parent().unwrap_or(Path::new("."));
     let opts = Options {
@@ -34,7 +52,5 @@ pub fn frames(deck: &Path, out: &Path, times: &[f64], size: usize, fidelity: Fid
             strip.pixels[row..row + size].copy_from_slice(&r.pixels[y * size..(y + 1) * size]);
         }
     }
-    raytrace::raster::write_png(out, &strip).map_err(|e| format!("{}: {e}", out.display()))?;
-    println!("wrote {} ({} frames at t = {:?})", out.display(), times.len(), times);
-    Ok(())
+    Ok(strip)
 }
