@@ -6,7 +6,7 @@ use raytrace::raster::Raster;
 use raytrace::types::{Fidelity, Options};
 
 /// Writes the [`filmstrip`] of `deck` to the PNG `out`; without `out`,
-/// to raster/<deck name>_frames.png (the folder the renders go to, which
+/// to `raster/<deck name>_frames.png` (the folder the renders go to, which
 /// git ignores).
 pub fn frames(deck: &Path, out: Option<&Path>, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
     let strip = filmstrip(deck, times, size, fidelity)?;

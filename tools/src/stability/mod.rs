@@ -15,9 +15,9 @@
 //! those missed, the spurious ones, the worst error of those found, and
 //! the time of one solve.
 //!
-//! One file a part: [`roots`] and [`rays`] build the families,
-//! [`keyframe`] the key-frame ones, [`tally`] counts what each method
-//! does on them, [`report`] writes the tables.
+//! One file a part: `roots` and `rays` build the families,
+//! `keyframe` the key-frame ones, `tally` counts what each method
+//! does on them, `report` writes the tables.
 
 use raytrace::types::{Fidelity, Options, Solver};
 
