@@ -1,6 +1,6 @@
 //! `tools frames DECK`: a filmstrip of a deck with key frames.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use raytrace::raster::Raster;
 use raytrace::types::{Fidelity, Options};
@@ -13,14 +13,19 @@ pub fn frames(deck: &Path, out: Option<&Path>, times: &[f64], size: usize, fidel
     let out = match out {
         Some(out) => out.to_path_buf(),
         None => {
-            let stem = deck.file_stem().map(|s| s.to_string_lossy()).unwrap_or("deck".into());
             std::fs::create_dir_all("raster").map_err(|e| format!("raster: {e}"))?;
-            Path::new("raster").join(format!("{stem}_frames.png"))
+            default_out(deck)
         }
     };
     raytrace::raster::write_png(&out, &strip).map_err(|e| format!("{}: {e}", out.display()))?;
     println!("wrote {} ({} frames at t = {:?})", out.display(), times.len(), times);
     Ok(())
+}
+
+/// Where `tools frames DECK` writes without `--out`: raster/<deck name>_frames.png.
+pub fn default_out(deck: &Path) -> PathBuf {
+    let stem = deck.file_stem().map(|s| s.to_string_lossy()).unwrap_or("deck".into());
+    Path::new("raster").join(format!("{stem}_frames.png"))
 }
 
 /// The scene of `deck` at each instant of `times`: every moving object at
@@ -53,4 +58,20 @@ pub fn filmstrip(deck: &Path, times: &[f64], size: usize, fidelity: Fidelity) ->
         }
     }
     Ok(strip)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Without --out the filmstrip goes to raster/, which git ignores.
+    #[test]
+    fn the_default_file_is_under_raster() {
+        assert_eq!(
+            default_out(Path::new("legacy_pascal/decks/fig5_10.deck")),
+            Path::new("raster/fig5_10_frames.png")
+        );
+        let ignore = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.gitignore")).unwrap();
+        assert!(ignore.lines().any(|l| l == "/raster/*.png"));
+    }
 }

@@ -154,3 +154,27 @@ fn main() -> Result<(), String> {
         Command::Stability { out } => tools::stability::run(&out),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `tools --version` prints the version (clap's `version` attribute).
+    #[test]
+    fn version_is_an_option() {
+        let err = Cli::try_parse_from(["tools", "--version"])
+            .err()
+            .expect("--version stops the parse");
+        assert_eq!(err.kind(), clap::error::ErrorKind::DisplayVersion);
+        assert!(err.to_string().contains(env!("CARGO_PKG_VERSION")));
+    }
+
+    /// `tools frames DECK` without --out leaves the file to the frames module.
+    #[test]
+    fn frames_has_no_default_file_in_the_checkout() {
+        let Command::Frames { out, .. } = Cli::try_parse_from(["tools", "frames", "x.deck"]).unwrap().command else {
+            panic!("frames parses as frames");
+        };
+        assert_eq!(out, None);
+    }
+}
