@@ -271,7 +271,7 @@ fn layout(h: &Header, limit: PixelLimit) -> Result<Layout, RasterError> {
                     h.depth
                 )));
             }
-            if maplength == 0 || maplength > MAX_MAP_LENGTH || maplength % 3 != 0 {
+            if maplength == 0 || maplength > MAX_MAP_LENGTH || !maplength.is_multiple_of(3) {
                 return Err(RasterError::BadMap(format!(
                     "map length {maplength} is not a multiple of 3 in 3..={MAX_MAP_LENGTH}"
                 )));

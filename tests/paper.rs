@@ -1045,7 +1045,7 @@ fn odd_contours_never_panic() {
                     ],
                 })
                 .collect();
-            let curve = if next() % 2 == 0 {
+            let curve = if next().is_multiple_of(2) {
                 CurveKind::Bspline
             } else {
                 CurveKind::Bezier

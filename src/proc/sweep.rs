@@ -383,7 +383,7 @@ pub fn roottesting_impossible_count() -> u64 {
 /// [`RootTest::Impossible`], also counted for
 /// [`roottesting_impossible_count`]. Both fidelities alike.
 pub fn roottesting(number: &mut usize, root: &mut [Root], temp: usize) -> RootTest {
-    if *number % 2 == 0 {
+    if number.is_multiple_of(2) {
         return RootTest::Even;
     }
     let end = temp + *number;

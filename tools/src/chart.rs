@@ -1,14 +1,14 @@
 //! `tools chart`: the speed/accuracy chart, docs/speed_accuracy.png and .svg.
 //!
 //! Panel 1, time samplers: for each motion-blurred deck of
-//! [`BLUR_DECKS`](crate::decks::BLUR_DECKS) and each way of choosing the
+//! [`BLUR_DECKS`] and each way of choosing the
 //! subpixel times, the RMSE of the float image (`render_colours`) against
 //! a reference of 1024 stratified time samples a pixel (mask 32), against
 //! the median render time (all threads), at 1, 4, 16 and 64 samples a
 //! pixel (mask 1, 2, 4, 8).
 //!
 //! Panel 2, root solvers: for each sweep deck of
-//! [`SOLVER_DECKS`](crate::decks::SOLVER_DECKS) and each solver, the share
+//! [`SOLVER_DECKS`] and each solver, the share
 //! of silhouette pixels whose colour differs (by more than
 //! [`DIFFER`] in a channel) from a reference rendered with the robust
 //! solver at mask 16, at masks 1, 2, 4 and 8, against the time per ray

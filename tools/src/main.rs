@@ -1,5 +1,6 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
-//! `frames` draws a key-frame deck's filmstrip; `bench` times the renderer
+//! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
+//! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
 //! chart; `stability` writes the root solvers' stability report. Timings
 //! are measured and printed, never asserted in tests.
@@ -7,12 +8,10 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
-use raytrace::raster::outputframe;
 use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
-use tools::textures::{nec_card, test_card};
 
 #[derive(Parser)]
-#[command(name = "tools", about = "Tools of the TR-88-036 port")]
+#[command(name = "tools", version, about = "Tools of the TR-88-036 port")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -32,9 +31,9 @@ enum Command {
     Frames {
         /// The deck.
         deck: PathBuf,
-        /// The PNG to write.
-        #[arg(long, default_value = "frames.png")]
-        out: PathBuf,
+        /// The PNG to write [default: raster/<deck name>_frames.png].
+        #[arg(long)]
+        out: Option<PathBuf>,
         /// The instants, in [0, 1].
         #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5,0.75,1")]
         times: Vec<f64>,
@@ -44,6 +43,18 @@ enum Command {
         /// Follow the listings instead of the thesis.
         #[arg(long)]
         listing: bool,
+    },
+    /// Draw every picture of the docs again from its deck, with the options
+    /// it was made with (the table is tools/src/gallery.rs).
+    Gallery {
+        /// Only the pictures whose path contains one of these (e.g. fig5_8).
+        only: Vec<String>,
+        /// Compare with the files instead of writing; fail if one is stale.
+        #[arg(long)]
+        check: bool,
+        /// List the pictures, their decks and the commands that draw them.
+        #[arg(long)]
+        list: bool,
     },
     /// Time renders of a deck: N runs, then the median, fastest and slowest.
     Bench {
@@ -114,15 +125,7 @@ enum Command {
 
 fn main() -> Result<(), String> {
     match Cli::parse().command {
-        Command::Texture { dir } => {
-            std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-            for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
-                let out = dir.join(name);
-                outputframe(&out, &raster).map_err(|e| format!("{}: {e}", out.display()))?;
-                println!("wrote {} ({}×{})", out.display(), raster.width, raster.height);
-            }
-            Ok(())
-        }
+        Command::Texture { dir } => tools::textures::write_textures(&dir),
         Command::Frames {
             deck,
             out,
@@ -131,7 +134,16 @@ fn main() -> Result<(), String> {
             listing,
         } => {
             let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
-            tools::frames::frames(&deck, &out, &times, size.clamp(8, 1024), fidelity)
+            tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity)
+        }
+        Command::Gallery { only, check, list } => {
+            if list {
+                for p in tools::gallery::GALLERY {
+                    println!("{}\t{}\t{}", p.image, p.deck, p.command());
+                }
+                return Ok(());
+            }
+            tools::gallery::run(&tools::gallery::checkout(), &only, check)
         }
         Command::Bench {
             deck,
@@ -166,5 +178,29 @@ fn main() -> Result<(), String> {
             seconds,
             out,
         } => tools::fuzz::main(&target, seed, inputs, seconds, &out),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `tools --version` prints the version (clap's `version` attribute).
+    #[test]
+    fn version_is_an_option() {
+        let err = Cli::try_parse_from(["tools", "--version"])
+            .err()
+            .expect("--version stops the parse");
+        assert_eq!(err.kind(), clap::error::ErrorKind::DisplayVersion);
+        assert!(err.to_string().contains(env!("CARGO_PKG_VERSION")));
+    }
+
+    /// `tools frames DECK` without --out leaves the file to the frames module.
+    #[test]
+    fn frames_has_no_default_file_in_the_checkout() {
+        let Command::Frames { out, .. } = Cli::try_parse_from(["tools", "frames", "x.deck"]).unwrap().command else {
+            panic!("frames parses as frames");
+        };
+        assert_eq!(out, None);
     }
 }

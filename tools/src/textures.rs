@@ -67,6 +67,23 @@ pub fn nec_card() -> Raster {
     Raster { width, height, pixels }
 }
 
+/// The texture rasters the decks paste, by file name: card.tex.ras
+/// ([`test_card`], 64×64) and nec.tex.ras ([`nec_card`]).
+pub fn textures() -> [(&'static str, Raster); 2] {
+    [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())]
+}
+
+/// Writes the [`textures`] into `dir` (created if missing).
+pub fn write_textures(dir: &std::path::Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    for (name, raster) in textures() {
+        let out = dir.join(name);
+        raytrace::raster::outputframe(&out, &raster).map_err(|e| format!("{}: {e}", out.display()))?;
+        println!("wrote {} ({}×{})", out.display(), raster.width, raster.height);
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,7 +93,7 @@ mod tests {
     #[test]
     fn shipped_textures_are_the_tools_output() {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../raster");
-        for (name, raster) in [("card.tex.ras", test_card(64, 64)), ("nec.tex.ras", nec_card())] {
+        for (name, raster) in textures() {
             let shipped = std::fs::read(dir.join(name)).expect("the shipped texture is readable");
             assert_eq!(
                 shipped,
