@@ -11,6 +11,7 @@
 
 pub mod deck;
 pub mod drt;
+pub mod film;
 pub mod paper;
 pub mod proc;
 pub mod psout;
