@@ -62,7 +62,7 @@ fn the_film_record_reads_its_fields_and_defaults() {
     let s = scene(&format!("{MOVING}film 36\n"), Fidelity::Thesis).unwrap();
     let film = s.film.unwrap();
     assert_eq!((film.frames, film.shutter, film.rate), (36, 0.5, 12));
-    assert_eq!((film.pos.line, film.pos.column), (24, 1));
+    assert_eq!((film.pos.line, film.pos.column), (22, 1));
     let s = scene(&format!("{MOVING}FILM 10000 rate 60 shutter 1\n"), Fidelity::Thesis).unwrap();
     let film = s.film.unwrap();
     assert_eq!((film.frames, film.shutter, film.rate), (10000, 1.0, 60));
@@ -72,21 +72,21 @@ fn the_film_record_reads_its_fields_and_defaults() {
 #[test]
 fn bad_film_records_are_errors_at_line_and_column() {
     for (record, at, words) in [
-        ("film 0", "t.deck:24:6:", "1..10000"),
-        ("film 10001", "t.deck:24:6:", "1..10000"),
-        ("film 2.5", "t.deck:24:6:", "integer"),
-        ("film", "t.deck:24:5:", "FRAMES"),
-        ("film 12 shutter 0", "t.deck:24:17:", "(0, 1]"),
-        ("film 12 shutter 1.5", "t.deck:24:17:", "(0, 1]"),
-        ("film 12 shutter -0.5", "t.deck:24:17:", "(0, 1]"),
-        ("film 12 rate 0", "t.deck:24:14:", "1..60"),
-        ("film 12 rate 61", "t.deck:24:14:", "1..60"),
-        ("film 12 rate 12 rate 12", "t.deck:24:17:", "twice"),
-        ("film 12 speed 3", "t.deck:24:9:", "'shutter', 'rate'"),
+        ("film 0", "t.deck:22:6:", "1..10000"),
+        ("film 10001", "t.deck:22:6:", "1..10000"),
+        ("film 2.5", "t.deck:22:6:", "integer"),
+        ("film", "t.deck:22:5:", "FRAMES"),
+        ("film 12 shutter 0", "t.deck:22:17:", "(0, 1]"),
+        ("film 12 shutter 1.5", "t.deck:22:17:", "(0, 1]"),
+        ("film 12 shutter -0.5", "t.deck:22:17:", "(0, 1]"),
+        ("film 12 rate 0", "t.deck:22:14:", "1..60"),
+        ("film 12 rate 61", "t.deck:22:14:", "1..60"),
+        ("film 12 rate 12 rate 12", "t.deck:22:17:", "twice"),
+        ("film 12 speed 3", "t.deck:22:9:", "'shutter', 'rate'"),
         (
             "film 12\nfilm 12",
-            "t.deck:25:1:",
-            "second 'film' record (the first is on line 24)",
+            "t.deck:23:1:",
+            "second 'film' record (the first is on line 22)",
         ),
     ] {
         let err = scene(&format!("{MOVING}{record}\n"), Fidelity::Thesis).unwrap_err();
@@ -324,7 +324,7 @@ fn bad_film_flags_exit_2_and_write_nothing() {
     std::fs::write(&bad, format!("{MOVING}film 12 shutter 0\n")).unwrap();
     let run = raytrace().arg(&bad).arg("-o").arg(&out).output().unwrap();
     assert_eq!(run.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&run.stderr).contains("bad.deck:24:17: film"));
+    assert!(String::from_utf8_lossy(&run.stderr).contains("bad.deck:22:17: film"));
     assert!(!dir.path().join("out").exists());
 }
 
