@@ -92,7 +92,7 @@ impl Frame {
     /// render loop passes through here. For [`Frame::STILL`] it is `tau`
     /// itself, bit for bit: (0 + 1·τ)/1 rounds to τ.
     pub fn time(&self, tau: f64) -> f64 {
-        (f64::from(self.number - 1) + self.shutter * tau) / f64::from(self.frames)
+        (f64::from(self.number.saturating_sub(1)) + self.shutter * tau) / f64::from(self.frames)
     }
 }
 
