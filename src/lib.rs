@@ -13,6 +13,7 @@
 pub mod deck;
 pub mod drt;
 pub mod output;
+pub mod film;
 pub mod paper;
 pub mod proc;
 pub mod psout;

@@ -16,6 +16,7 @@
 use rayon::prelude::*;
 
 use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
+use crate::film::Frame;
 use crate::paper::PaperChain;
 use crate::raster::{rgbtochars, Raster};
 use crate::trace::{raytrace, rest_poses, Deforming, Snapshot, TraceStats};
@@ -261,7 +262,15 @@ impl Render {
 /// time from [`TimeTable::time`] and `motionblur` poses every object that
 /// `Isblur` says moves; the others keep their rest pose at no cost.
 pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
-    let (colours, stats, primary) = render_rows(scene, opts, progress);
+    render_frame(scene, opts, Frame::STILL, progress)
+}
+
+/// [`render`] for one frame of a film (the port's extension,
+/// [`crate::film`]): every subpixel time τ the sampler gives becomes the
+/// film time [`Frame::time`] before `motionblur` and the key-frame chains
+/// see it. [`Frame::STILL`] is [`render`] itself.
+pub fn render_frame(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Render {
+    let (colours, stats, primary) = render_rows(scene, opts, frame, progress);
     let nonfinite = colours.iter().filter(|c| !c.is_finite()).count();
     let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
     let img = &scene.image;
@@ -280,11 +289,16 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
 /// The image as colours, before `rgbtochars` clamps and rounds them (row
 /// 0 at the top): for checks that must see a NaN or a colour above 1.
 pub fn render_colours(scene: &Scene, opts: &Options) -> Vec<Intensity> {
-    render_rows(scene, opts, &|| {}).0
+    render_rows(scene, opts, Frame::STILL, &|| {}).0
 }
 
 /// The scanline loop: the colour of every pixel, the counts, the primary rays.
-fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (Vec<Intensity>, TraceStats, u64) {
+fn render_rows(
+    scene: &Scene,
+    opts: &Options,
+    frame: Frame,
+    progress: &(dyn Fn() + Sync),
+) -> (Vec<Intensity>, TraceStats, u64) {
     let img = &scene.image;
     let m = img.masksize;
     let camera = Camera::new(scene, opts.fidelity);
@@ -355,7 +369,7 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
                     if timed {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
-                        let time = match opts.sampler {
+                        let tau = match opts.sampler {
                             TimeSampler::Table => times.time(scanline, scancol, k),
                             TimeSampler::Random => random_time(k),
                             TimeSampler::Stratified => {
@@ -364,6 +378,9 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> (
                                 stratified_time(row * img.width + c / m, j, row_strata[c / m][j], m * m)
                             }
                         };
+                        // The film's hook: τ within this frame's shutter to
+                        // film time (identity for a still).
+                        let time = frame.time(tau);
                         for mo in &moving {
                             poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
                         }

@@ -76,6 +76,16 @@ struct Cli {
     #[arg(short, long)]
     quiet: bool,
 
+    /// Render only frames A..B (or frame K) of a deck with a `film` record; the other
+    /// frames are not touched. A frame's bytes do not depend on which process renders it.
+    #[arg(long, value_name = "A..B|K")]
+    frames: Option<String>,
+
+    /// With a `film` record, also write the frames rendered as one animated PNG (APNG) to
+    /// FILE, each shown for 1/rate s.
+    #[arg(long, value_name = "FILE")]
+    apng: Option<PathBuf>,
+
     /// Write the listing's debug log (the Pascal `debugf`: a line per scanline, kfTIRcnt) to FILE.
     #[arg(long, value_name = "FILE")]
     debug: Option<PathBuf>,
@@ -202,18 +212,19 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(other_error)?;
-    let bar = if cli.quiet {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(Some(scene.image.height as u64), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-                .map_err(other_error)?
-                .progress_chars("=> "),
-        );
-        bar.set_message(format!("tracing {file_name}"));
-        bar
-    };
+    if let Some(film) = scene.film {
+        return run_film(cli, &scene, &opts, &pool, film, &file_name, &output);
+    }
+    if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
+        .iter()
+        .find_map(|&(given, flag)| given.then_some(flag))
+    {
+        return Err(input_error(format!(
+            "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
+        )));
+    }
+    let bar = progress_bar(cli.quiet, scene.image.height as u64)?;
+    bar.set_message(format!("tracing {file_name}"));
     let started = Instant::now();
     let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
     let elapsed = started.elapsed();
@@ -256,6 +267,133 @@ fn run(cli: &Cli) -> Result<(), Failure> {
 
 /// The folder the default outputs go to, created when they are used.
 const DEFAULT_FOLDER: &str = "raster";
+/// The progress bar over `rows` rows of pixels (hidden with `--quiet`).
+fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
+    if quiet {
+        return Ok(ProgressBar::hidden());
+    }
+    let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
+            .map_err(other_error)?
+            .progress_chars("=> "),
+    );
+    Ok(bar)
+}
+
+/// Renders the frames of a deck with a `film` record: one raster per
+/// frame, `STEM.0001.ras` …, each written (atomically) as soon as it is
+/// done, and with `--apng` one animated PNG of them at the end. Every flag
+/// is checked before the first frame, so a bad one writes nothing.
+fn run_film(
+    cli: &Cli,
+    scene: &raytrace::types::Scene,
+    opts: &Options,
+    pool: &rayon::ThreadPool,
+    film: raytrace::film::FilmRecord,
+    file_name: &str,
+    output: &Path,
+) -> Result<(), Failure> {
+    use raytrace::film::{frame_path, frame_stem, FrameRange};
+    let range = match &cli.frames {
+        Some(text) => FrameRange::parse(text, film.frames).map_err(input_error)?,
+        None => film.all(),
+    };
+    if output.as_os_str() == STDOUT || output.extension().is_some_and(|e| !e.eq_ignore_ascii_case("ras")) {
+        return Err(input_error(format!(
+            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras or -o STEM",
+            output.display()
+        )));
+    }
+    for (given, flag, instead) in [
+        (
+            cli.png.is_some(),
+            "--png",
+            "--apng FILE for an animated PNG of the frames",
+        ),
+        (
+            cli.debug.is_some(),
+            "--debug",
+            "a deck without 'film' for the listing's log of one frame",
+        ),
+    ] {
+        if given {
+            return Err(input_error(format!(
+                "{flag} writes one still, and {file_name} is a film: use {instead}"
+            )));
+        }
+    }
+    #[cfg(not(feature = "png"))]
+    if cli.apng.is_some() {
+        return Err(input_error(
+            "--apng: this build has no PNG export (the `png` feature is off)",
+        ));
+    }
+    let stem = frame_stem(output);
+    // The frames go beside `output`, whose folder `run` has checked; the
+    // APNG is reserved now, so a bad name fails before the first frame.
+    let apng_file = cli
+        .apng
+        .as_deref()
+        .map(|p| PendingFile::create(p).map_err(|e| other_error(format!("{}: {e}", p.display()))))
+        .transpose()?;
+
+    // One bar over every frame's rows; its message names the frame.
+    let bar = progress_bar(cli.quiet, scene.image.height as u64 * u64::from(range.len()))?;
+    let started = Instant::now();
+    let mut rays = 0;
+    let mut rasters = Vec::new();
+    for k in range.numbers() {
+        bar.set_message(format!("tracing {file_name} frame {k}/{}", film.frames));
+        let render = pool.install(|| raytrace::raytrace::render_frame(scene, opts, film.frame(k), &|| bar.inc(1)));
+        render
+            .check_finite()
+            .map_err(|e| other_error(format!("{file_name}: frame {k}: {e}")))?;
+        let path = frame_path(&stem, k, film.frames);
+        raytrace::raster::outputframe(&path, &render.raster)
+            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
+        rays += render.stats.rays;
+        if cli.apng.is_some() {
+            rasters.push(render.raster);
+        }
+    }
+    let elapsed = started.elapsed();
+    bar.finish_and_clear();
+    #[cfg(feature = "png")]
+    if let (Some(file), Some(apng)) = (apng_file, &cli.apng) {
+        let bytes = raytrace::film::encode_apng(&rasters, film.rate)
+            .map_err(|e| other_error(format!("{}: {e}", apng.display())))?;
+        file.commit(|w| w.write_all(&bytes).map_err(OutputError::from))
+            .map_err(|e| other_error(format!("{}: {e}", apng.display())))?;
+    }
+    #[cfg(not(feature = "png"))]
+    drop(apng_file);
+    if !cli.quiet {
+        let img = &scene.image;
+        eprintln!(
+            "raytrace: {} → {} … {}{} (frames {}..{} of {}, {}×{}, {}×{} subpixels, {} rays, {:.2} s, {:.2} s a frame)",
+            file_name,
+            frame_path(&stem, range.first, film.frames).display(),
+            frame_path(&stem, range.last, film.frames).display(),
+            cli.apng
+                .as_ref()
+                .map(|p| format!(" and {}", p.display()))
+                .unwrap_or_default(),
+            range.first,
+            range.last,
+            film.frames,
+            img.width,
+            img.height,
+            img.masksize,
+            img.masksize,
+            rays,
+            elapsed.as_secs_f64(),
+            elapsed.as_secs_f64() / f64::from(range.len())
+        );
+    }
+    Ok(())
+}
+
 
 /// Checks the output file names before anything is read or written, and
 /// gives the format of `-o`: a usage error (exit 2) when a name has an

@@ -138,6 +138,11 @@
 //!   error at the first repeated value); `Fidelity::Listing` accepts
 //!   repeats, as the printed table of Fig. 2.33 has them (erratum 1).
 //!
+//! # Film
+//! - `film FRAMES [shutter S] [rate FPS]` (the port's extension,
+//!   [`crate::film`]): FRAMES an integer 1..10000, S a number in (0, 1]
+//!   (default 0.5), FPS an integer 1..60 (default 12); at most once.
+//!
 //! # Errors
 //! [`DeckError`] reads `FILE:LINE:COL: RECORD 'NAME': MESSAGE`, or
 //! `FILE:LINE:COL: RECORD: MESSAGE` before the record's name is known.
@@ -153,6 +158,7 @@
 //! message is cut after 40 characters, its control characters escaped.
 //! A missing `view` or `image` is reported at the end of the deck.
 
+mod film;
 mod lex;
 mod objects;
 mod parse;
@@ -207,6 +213,7 @@ pub const RECORDS: &[&str] = &[
     "keyframe",
     "blur",
     "pattern",
+    "film",
 ];
 
 /// A deck error: where (file, 1-based line and column, the column counting
@@ -280,6 +287,7 @@ pub fn initialize(
         keyframes: Vec::new(),
         blur: None,
         pattern: None,
+        film: None,
     };
     loop {
         b.p.begin("deck");
@@ -351,6 +359,7 @@ struct Builder<'a> {
     keyframes: Vec<PendingKeyframe>,
     blur: Option<BlurRecord>,
     pattern: Option<PatternRecord>,
+    film: Option<crate::film::FilmRecord>,
 }
 
 impl Builder<'_> {
@@ -377,6 +386,7 @@ impl Builder<'_> {
             "keyframe" => self.keyframe(pos),
             "blur" => self.blur(pos),
             "pattern" => self.pattern(pos),
+            "film" => self.film(pos),
             _ => Err(self.p.error_at(
                 pos,
                 format!(
@@ -449,6 +459,7 @@ impl Builder<'_> {
             keyframes,
             blur: self.blur,
             pattern: self.pattern,
+            film: self.film,
         })
     }
 }

@@ -8,6 +8,7 @@ pub mod fonts;
 pub mod frames;
 pub mod fuzz;
 pub mod gallery;
+pub mod join;
 pub mod measure;
 pub mod stability;
 pub mod textures;
