@@ -210,7 +210,9 @@ fn erratum_13_the_extra_column() {
 }
 
 /// Erratum 14: for a 2:1 raster the thesis keeps pixels square, the
-/// listing stretches them vertically by 2.
+/// listing stretches them vertically: both axes span `screensize`, and
+/// (D5) a subpixel step is 1/(2h − 1) of it, h = `halfvirtualx` = N div 2,
+/// so the steps are screensize/31 across and screensize/15 down.
 #[test]
 fn erratum_14_pixel_aspect() {
     let mut s = scene();
@@ -220,7 +222,7 @@ fn erratum_14_pixel_aspect() {
         masksize: 1,
         aliasing: 0.0,
     };
-    for (fidelity, ratio) in [(Fidelity::Thesis, 1.0), (Fidelity::Listing, 2.0)] {
+    for (fidelity, ratio) in [(Fidelity::Thesis, 1.0), (Fidelity::Listing, 31.0 / 15.0)] {
         let cam = Camera::new(&s, fidelity);
         let a = cam.ray(10.0, 8.0, 0.0, 0.0).dir;
         let right = cam.ray(11.0, 8.0, 0.0, 0.0).dir;

@@ -202,7 +202,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         write_png(png, &render.raster)?;
     }
     if let Some(debug) = &cli.debug {
-        std::fs::write(debug, raytrace::raytrace::debug_log(&scene, &render))
+        std::fs::write(debug, raytrace::raytrace::debug_log(&scene, &render, opts.fidelity))
             .map_err(|e| other_error(format!("{}: {e}", debug.display())))?;
     }
     if !cli.quiet {

@@ -5,7 +5,9 @@ use super::{
     contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, PaperError,
     PaperMessage, PaperPair, Sdirection,
 };
-use crate::types::{Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
+use crate::types::{
+    Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
+};
 
 /// What a count of Burtnyk's rule counts (erratum 10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -270,6 +272,39 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
     }
 }
 
+/// `goahead`'s `tbox.xmax := tbox.xmax+2; tbox.xmin := tbox.xmin-2;`
+/// `tbox.ymax := …+2; tbox.ymin := …-2` (OCR lines 2439–2442), for all the
+/// key-frame pairs of `scene` at once (erratum 9). The listing widens the
+/// one box of the translation class, which every translation sweep uses
+/// (`spline`'s class boxes, `prepare_sweeps`), by 2 in x and y once per
+/// pair, whatever the pair's class: `Fidelity::Listing` widens the box of
+/// every translation sweep of the scene (later key shapes included) by
+/// 2·pairs. `Fidelity::Thesis` leaves each box its own (§3.3). Boxes only
+/// cull, so a wider box changes which rays are solved, not the hits.
+pub fn widen_tbox(scene: &mut Scene, fidelity: Fidelity) {
+    let pairs = scene.keyframes.iter().map(|k| k.rest.len()).sum::<usize>() as f64;
+    let by = match fidelity {
+        // Listing: 2 for every call of goahead.
+        Fidelity::Listing => 2.0 * pairs,
+        // Thesis: no widening.
+        Fidelity::Thesis => return,
+    };
+    let Scene { objects, keyframes, .. } = scene;
+    for obj in objects
+        .iter_mut()
+        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+    {
+        if let (PrimitiveClass::Translation, Shape::Sweep(sw)) = (obj.class, &mut obj.shape) {
+            if sw.segment > 0 && by > 0.0 {
+                sw.bbox.xmax += by;
+                sw.bbox.xmin -= by;
+                sw.bbox.ymax += by;
+                sw.bbox.ymin -= by;
+            }
+        }
+    }
+}
+
 /// `goahead(int; var obj1, obj2)` (unit `paper`, §3.2.3, §3.3, OCR lines
 /// 2413–2552): "to calculate the in-between figure from obj1 and obj2":
 /// everything key-frame pair `int` (from 1) needs before the scanline loop.
@@ -295,11 +330,14 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
 /// the expanded count is [`PaperPair::snu`].
 ///
 /// Erratum 9 (`goahead`'s part): the listing widens the class box `tbox`
-/// by 2 in x and y, whatever the pair's class. `Fidelity::Listing` gives
-/// [`PaperPair::bbox`] as the merged box of the two key shapes, widened
-/// so if the pair is a translation sweep; `Fidelity::Thesis` the union of
-/// the key shapes' boxes and of every segment patch's Bernstein control
-/// values ([`patch_range`]), which hold the patch for all s, t in [0, 1].
+/// by 2 in x and y, whatever the pair's class ([`widen_tbox`] does it on
+/// the scene), and the in-between object uses the box of its class.
+/// `Fidelity::Listing` gives [`PaperPair::bbox`] as FIRST's box, which in
+/// that fidelity is its class's box (`tbox`, `cbox`, `rbox`, as
+/// `prepare_sweeps` and [`widen_tbox`] leave it); `Fidelity::Thesis` the
+/// union of the key shapes' boxes and of every segment patch's Bernstein
+/// control values ([`patch_range`]), which hold the patch for all s, t in
+/// [0, 1].
 ///
 /// Errors: not two sweeps of one class; a shape of fewer than 2 segments;
 /// more than 60 segments after expanding; `u`, `v` not filled; a number
@@ -416,19 +454,9 @@ pub fn goahead(
     };
     let merged = contour_box(obj1.class, first, range(&pair.p1u), range(&pair.p1v));
     pair.bbox = match fidelity {
-        // Erratum 9, listing: tbox.xmax := tbox.xmax+2; tbox.xmin :=
-        // tbox.xmin-2; tbox.ymax := …+2; tbox.ymin := …-2 — the box of the
-        // translation class, whatever the pair's class.
-        Fidelity::Listing => {
-            let mut b = merged;
-            if obj1.class == PrimitiveClass::Translation {
-                b.xmax += 2.0;
-                b.xmin -= 2.0;
-                b.ymax += 2.0;
-                b.ymin -= 2.0;
-            }
-            b
-        }
+        // Erratum 9, listing: the box of the class, `tbox` widened by
+        // `tbox.xmax := tbox.xmax+2; …` once per pair (widen_tbox).
+        Fidelity::Listing => first.bbox,
         // Thesis (§3.3: the merged box, adjusted by the extrema of the
         // in-between curves): every patch's control net holds it for all t.
         Fidelity::Thesis => {
