@@ -283,8 +283,15 @@ fn a_hermite_patch_reproduces_its_corners_and_corner_tangents() {
     for (s, t) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
         assert!(patch_d(&h, s, t, true, true).abs() < 1e-12);
     }
-    // And the patch is not trivially flat inside.
-    assert!((patch(&h, 0.5, 0.5) - patch(&h, 0.0, 0.0)).abs() > 0.1);
+    // Inside, at (½, ½), with the Hermite basis (½, ½, ⅛, −⅛) on both
+    // sides and no twist: ¼ of the corners (3 − 0.4453125 + 3.5 + 1.5),
+    // plus 1/16 of the s-tangents (0.5 − 2.40625 + 0 + 0.2) and of the
+    // t-tangents (2 − 1.2 + 1 − 0.2): 2409/1280.
+    assert!(
+        (patch(&h, 0.5, 0.5) - 2409.0 / 1280.0).abs() < 1e-12,
+        "{}",
+        patch(&h, 0.5, 0.5)
+    );
 }
 
 // ------------------------------------------------- the key shapes at 0, 1

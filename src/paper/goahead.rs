@@ -544,11 +544,60 @@ mod tests {
         p2[1].max = 5.0;
         p2[1].min = -7.0;
         p1[2].max = 9.0;
+        p1[2].min = -9.0;
         merge(&mut p1, &mut p2, 3);
+        // Segment 1: p2's bounds are the wider (the `then` branches).
         assert_eq!((p1[1].max, p1[1].min, p2[1].max, p2[1].min), (5.0, -7.0, 5.0, -7.0));
+        // Segment 2: p1's are (the `else` branches copy them to p2).
         assert_eq!((p1[2].max, p2[2].max), (9.0, 9.0));
+        assert_eq!((p1[2].min, p2[2].min), (-9.0, -9.0));
         // A count past 60 is clamped.
         merge(&mut p1, &mut p2, 1000);
+    }
+
+    /// Erratum 8: `expanding` prints `***** error *****` when `more` leaves
+    /// the counts different. `more` always ends equal on shapes `spline`
+    /// filled; a shape with fewer coefficients than segments is where it
+    /// writes nothing, and the check is reached: listing goes on with the
+    /// message, thesis stops.
+    #[test]
+    fn expanding_error_when_the_counts_stay_different() {
+        let first = ObjectRecord {
+            name: "a".into(),
+            class: PrimitiveClass::Translation,
+            surface: 0,
+            transfm: crate::types::DMat4::IDENTITY,
+            inverse: crate::types::DMat4::IDENTITY,
+            sphereo: DVec3::ZERO,
+            angle: DVec3::ZERO,
+            radius: 1.0,
+            shape: Shape::Sweep(shape(3)),
+        };
+        for fidelity in [Fidelity::Listing, Fidelity::Thesis] {
+            let mut pair = PaperPair::empty(1, &first, &shape(3), Expander::Burtnyk, fidelity);
+            let mut short = shape(3);
+            short.u.pop();
+            let mut other = shape(5);
+            let got = expanding(&mut pair, &mut short, &mut other);
+            let message = PaperMessage::ExpandingError {
+                segment1: 3,
+                segment2: 5,
+            };
+            match fidelity {
+                Fidelity::Listing => {
+                    assert_eq!(got, Ok(()));
+                    assert_eq!(pair.messages, [message]);
+                    assert_eq!(message.to_string(), " ***** error ***** 3 5");
+                }
+                Fidelity::Thesis => {
+                    assert_eq!(got, Err(PaperError::Method { int: 1, message }));
+                }
+            }
+            // Shapes as spline fills them end equal: ` equal `.
+            let mut pair = PaperPair::empty(1, &first, &shape(3), Expander::Burtnyk, fidelity);
+            assert_eq!(expanding(&mut pair, &mut shape(3), &mut shape(5)), Ok(()));
+            assert_eq!(pair.messages, [PaperMessage::Equal]);
+        }
     }
 
     #[test]
