@@ -37,15 +37,18 @@ background 0 0 0
 surface s opaque  color 1 1 1  ka 1 kd 0 ks 0 kt 0
 ";
 
-/// Three pairs (translation, conic, rotation) and a translation sweep and
-/// a conic sweep of their own.
-const BOXES: &str = "
-sweep ta s translation bspline at 0 0 0 length 1
+/// A translation sweep, the unit square's corners as B-spline points.
+const TA: &str = "sweep ta s translation bspline at 0 0 0 length 1
  1 1
  -1 1
  -1 -1
  1 -1
 end
+";
+
+/// Three pairs (translation, conic, rotation) and a translation sweep and
+/// a conic sweep of their own.
+const BOXES: &str = "
 sweep tb s translation bspline at 1 0 0 length 1
  2 2
  -2 2
@@ -101,7 +104,7 @@ end
 /// `p1u[i].min − 2`.
 #[test]
 fn erratum_9_tbox_widened_by_2_for_every_pair() {
-    let deck = format!("{HEAD}{BOXES}");
+    let deck = format!("{HEAD}{TA}{BOXES}");
     let listing = read(&deck, Fidelity::Listing);
     // The class boxes before goahead: `spline`'s alone.
     let mut spline_only = raytrace::deck::initialize(&deck, "test.deck", common::decks(), Fidelity::Listing).unwrap();
@@ -180,13 +183,7 @@ fn erratum_9_tbox_widened_by_2_for_every_pair() {
 #[test]
 fn d15_do34_holds_the_listing_records() {
     let deck = format!(
-        "{HEAD}sweep ta s translation bspline at 0 0 0 length 1
- 1 1
- -1 1
- -1 -1
- 1 -1
-end
-sweep tb s translation bspline at 1 0 0 length 1
+        "{HEAD}{TA}sweep tb s translation bspline at 1 0 0 length 1
  2 2
  0 3
  -2 2
@@ -317,7 +314,7 @@ fn d5_where_a_subpixel_lies() {
 }
 
 /// The listing tests one `paper` flag for the whole scene and passes the
-/// motion-table index as the pair (DEVIATIONS, "the `paper` flag"); the
+/// motion-table index as the pair (DEVIATIONS D21); the
 /// port gives each moving object its own branch, in both fidelities: in a
 /// deck with a key-frame pair and a moving sphere, the sphere keeps
 /// erratum 3's motion (x + 6t) and the in-between its own pair's `diff`.
@@ -326,13 +323,7 @@ fn a_deck_mixing_both_kinds_of_moving_object() {
     let deck = format!(
         "{HEAD}sphere ball s at 0 0 2 radius 0.5
 motion ball to 1 0 2
-sweep ta s translation bspline at 0 0 0 length 1
- 1 1
- -1 1
- -1 -1
- 1 -1
-end
-sweep tb s translation bspline at 2 0 0 length 1
+{TA}sweep tb s translation bspline at 2 0 0 length 1
  1 1
  -1 1
  -1 -1
