@@ -96,24 +96,41 @@ pub const FIG_2_33: [[u32; 4]; 4] = [[7, 11, 3, 14], [4, 15, 13, 0], [10, 1, 8, 
 /// and 10 (a 9 at (4,2) would stand next to 8 and 10).
 pub fn fig_2_33(fidelity: Fidelity) -> [[u32; 4]; 4] {
     let mut t = FIG_2_33;
-    if fidelity == Fidelity::Thesis {
-        t[2][0] = 9;
+    match fidelity {
+        // Listing: the table as printed.
+        Fidelity::Listing => {}
+        // Thesis: 9 for the 10 of row 3, column 1.
+        Fidelity::Thesis => t[2][0] = 9,
     }
     t
 }
 
-/// The table for `masksize` 2 (not printed: the experiments of Ch. 5 used
-/// 2×2 supersampling): times on the diagonals apart, as Fig. 2.33 keeps
+/// The port's table for `masksize` 2 in `thesis` fidelity (DEVIATIONS D9):
+/// a permutation of 0..3, as the thesis's time (pattern + x̄)/M² needs one,
+/// with consecutive times on the diagonals apart, as Fig. 2.33 keeps
 /// consecutive times apart.
 pub const PATTERN_2: [[u32; 2]; 2] = [[0, 2], [3, 1]];
 
 /// The pattern table for a subpixel mask of `m`×`m` when the deck has no
-/// `pattern` record: 1×1 is `[0]`, 2×2 is [`PATTERN_2`], 4×4 is Fig. 2.33,
-/// and other sizes a fixed shuffle of 0..m²−1 (the port's).
+/// `pattern` record (DEVIATIONS D9).
+///
+/// `listing`: the one table the thesis prints is Fig. 2.33, and
+/// `motionblur` reads it at `row := (scancol mod masksize)+1`, `col :=
+/// (scanline mod masksize)+1` (OCR lines 2122–2124), so a mask of m ≤ 4
+/// reads its top-left m×m corner as printed: with 2×2 subpixels (the
+/// experiments of Ch. 5) 7, 11 over 4, 15, times 0.7, 1.1, 0.4, 1.5.
+/// `thesis`: 1×1 is `[0]`, 2×2 is [`PATTERN_2`] (a corner of Fig. 2.33 is
+/// no permutation of 0..3), 4×4 is Fig. 2.33 with erratum 1 fixed. Other
+/// sizes, in both, a fixed shuffle of 0..m²−1 (the port's: the listing's
+/// table has 16 entries).
 pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
-    match m {
-        2 => PATTERN_2.iter().map(|r| r.to_vec()).collect(),
-        4 => fig_2_33(fidelity).iter().map(|r| r.to_vec()).collect(),
+    match (fidelity, m) {
+        // Listing: the corner of the printed table the mask's indices reach.
+        (Fidelity::Listing, 1..=4) => FIG_2_33[..m].iter().map(|r| r[..m].to_vec()).collect(),
+        // Thesis: tables whose values are the strata 0..m²−1.
+        (Fidelity::Thesis, 1) => vec![vec![0]],
+        (Fidelity::Thesis, 2) => PATTERN_2.iter().map(|r| r.to_vec()).collect(),
+        (Fidelity::Thesis, 4) => fig_2_33(fidelity).iter().map(|r| r.to_vec()).collect(),
         _ => {
             let mut v: Vec<u32> = (0..(m * m) as u32).collect();
             let mut rng = MinimalStandard::new(7);
@@ -141,22 +158,53 @@ pub struct TimeTable {
 }
 
 impl TimeTable {
-    /// The table for `masksize`, the deck's `pattern` (which must be
-    /// masksize × masksize) and `blur` N.
+    /// The table for `masksize`, the deck's `pattern` and `blur` N.
+    ///
+    /// `motionblur` reads `pattern[row,col]` with row and col in
+    /// 1..masksize. A deck table smaller than the mask is refused in both
+    /// fidelities (the listing would read entries its table does not
+    /// have). A larger one: `listing` reads its top-left masksize×masksize
+    /// corner, as the listing's indices do; `thesis` refuses it, since the
+    /// corner is no permutation of the mask's strata 0..M²−1.
     pub fn new(
         masksize: usize,
         pattern: Option<&PatternRecord>,
         blur: u32,
         fidelity: Fidelity,
     ) -> Result<TimeTable, String> {
-        match pattern {
-            None => Ok(Self::with_default_pattern(masksize, blur, fidelity)),
-            Some(p) if p.m != masksize => Err(format!(
-                "the pattern table is {}×{} but the image's mask is {}×{}: the listing indexes it by scanline and scancol mod masksize",
-                p.m, p.m, masksize, masksize
-            )),
-            Some(p) => Ok(TimeTable { m: masksize, pattern: p.values.clone(), n: blur, clt: clt_table(blur), fidelity }),
+        let Some(p) = pattern else {
+            return Ok(Self::with_default_pattern(masksize, blur, fidelity));
+        };
+        let fits = match fidelity {
+            // Listing: any table the mask's indices stay inside.
+            Fidelity::Listing => p.m >= masksize,
+            // Thesis: one stratum a subpixel.
+            Fidelity::Thesis => p.m == masksize,
+        };
+        if !fits {
+            return Err(format!(
+                "the pattern table is {}×{} but the image's mask is {}×{}: the listing indexes it by scanline and scancol mod masksize{}",
+                p.m,
+                p.m,
+                masksize,
+                masksize,
+                if p.m > masksize { " (the listing fidelity reads its top-left corner)" } else { "" }
+            ));
         }
+        let m = masksize.max(1);
+        let corner = p
+            .values
+            .iter()
+            .take(m)
+            .map(|r| r.iter().take(m).copied().collect())
+            .collect();
+        Ok(TimeTable {
+            m,
+            pattern: corner,
+            n: blur,
+            clt: clt_table(blur),
+            fidelity,
+        })
     }
 
     /// The table for `masksize` with [`default_pattern`].

@@ -66,6 +66,7 @@ pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, Render
 pub fn prepare(scene: &mut Scene, opts: &Options) -> Result<(), RenderError> {
     time_table(scene, opts.fidelity)?;
     crate::shapes::sweep::prepare_sweeps(scene, opts.fidelity);
+    crate::paper::widen_tbox(scene, opts.fidelity);
     for (k, chain) in key_frame_chains(scene, opts.fidelity)? {
         let b = chain.bbox();
         let corner = DVec3::new(
@@ -146,6 +147,8 @@ pub struct Camera {
     /// height·masksize.
     virthighx: usize,
     virthighy: usize,
+    /// Where on the window subpixel k lies (DEVIATIONS D5).
+    fidelity: Fidelity,
 }
 
 impl Camera {
@@ -171,19 +174,33 @@ impl Camera {
             screen_h,
             virthighx: img.width * img.masksize,
             virthighy: img.height * img.masksize,
+            fidelity,
         }
     }
 
     /// The primary ray through subpixel (`scancol`, `scanline`), both
     /// 1-based as in the listing, scanline 1 at the top, moved by the jitter
-    /// (jx, jz) in subpixels. Reconstructed: the listing's `xpt`, `zpt`
-    /// measure from one corner of the window and `translookpt` is not
-    /// printed; here the window is centred on the line of sight and its
-    /// x runs to the viewer's right. The view frame's +x is the viewer's
-    /// left (it looks along −y with z up), hence the minus sign.
+    /// (jx, jz) in subpixels. The listing (OCR lines 3114–3117) puts it at
+    /// `xpt := (scancol+noise2[aindex]*aliasing)/(halfvirtualx*2.0-1.0)*
+    /// screensize/2`, and `zpt` likewise from `scanline`; `translookpt` is
+    /// not printed. DEVIATIONS D5 lists what the port keeps of that: in
+    /// both fidelities the window is `screensize` wide, centred on the line
+    /// of sight, x to the viewer's right and scanline 1 at the top (the
+    /// view frame's +x is the viewer's left, as it looks along −y with z
+    /// up, hence the minus sign). Where along it subpixel k lies:
+    /// `Fidelity::Listing` at k/(2h − 1) of the window, h =
+    /// `halfvirtualx` = N div 2 for N subpixels (column 0, erratum 13's
+    /// extra one, at the left edge); `Fidelity::Thesis` at the centre of
+    /// the k-th of N equal cells, (k − ½)/N.
     pub fn ray(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> Ray {
-        let right = ((scancol - 0.5 + jx) / self.virthighx as f64 - 0.5) * self.screen_w;
-        let up = (0.5 - (scanline - 0.5 + jz) / self.virthighy as f64) * self.screen_h;
+        let along = |k: f64, j: f64, n: usize| match self.fidelity {
+            // Listing: (scancol+jitter)/(halfvirtualx*2.0-1.0).
+            Fidelity::Listing => (k + j) / ((2 * (n / 2)) as f64 - 1.0).max(1.0),
+            // Thesis: the centre of cell k of n, moved by the jitter.
+            Fidelity::Thesis => (k - 0.5 + j) / n as f64,
+        };
+        let right = (along(scancol, jx, self.virthighx) - 0.5) * self.screen_w;
+        let up = (0.5 - along(scanline, jz, self.virthighy)) * self.screen_h;
         let xpt = -right;
         let ypt = -self.scrndistance;
         let zpt = up;
@@ -431,13 +448,23 @@ fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
     }
 }
 
-/// The lines the listing writes to `debugf` for a frame: one per scanline
-/// of the subpixel raster, `kfTIRcnt`, and the frame's end; and the count of
+/// The lines the listing writes to `debugf` for a frame: first what
+/// `goahead` writes for each key-frame pair ([`PaperChain`]'s pairs in
+/// order, `PaperPair::debug_lines`, with the expanders' messages, which the
+/// listing wrote to standard output), then one line per scanline of the
+/// subpixel raster, `kfTIRcnt`, and the frame's end; and the count of
 /// `roottesting`'s `**** impossible ****` (erratum 8), which the listing
 /// wrote to standard output.
-pub fn debug_log(scene: &Scene, render: &Render) -> String {
+pub fn debug_log(scene: &Scene, render: &Render, fidelity: Fidelity) -> String {
     use std::fmt::Write;
     let mut s = String::new();
+    for (_, chain) in key_frame_chains(scene, fidelity).unwrap_or_default() {
+        for pair in chain.pairs() {
+            for line in pair.debug_lines() {
+                let _ = writeln!(s, "{line}");
+            }
+        }
+    }
     for scanline in 1..=scene.image.height * scene.image.masksize {
         let _ = writeln!(s, " scanline={scanline:5}");
     }

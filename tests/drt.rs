@@ -191,27 +191,51 @@ fn boundvolume_projections() {
 }
 
 /// Erratum 16: the thesis's jitter is across the direction and of length
-/// r; the listing's is neither.
+/// r; the listing's is neither. Each of `jittering`'s three branches (a ≠ 0;
+/// a = 0, b ≠ 0; a = b = 0) against the listing's statements (OCR
+/// 2204–2238) done by hand in their order: the second and third branches
+/// read `a` (and `b`) after overwriting them.
 #[test]
 fn jittering_offsets() {
+    let (x0, y0, z0, r) = (1.0, 1.0, 1.0, 0.25);
     for dir in [[1.0, 2.0, 3.0], [0.0, 1.0, -2.0], [0.0, 0.0, 4.0]] {
         let d = DVec3::from_array(dir).normalize();
-        let centre = DVec3::new(1.0, 1.0, 1.0) + d * 5.0;
+        let centre = DVec3::new(x0, y0, z0) + d * 5.0;
         let (mut a, mut b, mut c) = (dir[0], dir[1], dir[2]);
-        jittering(1.0, 1.0, 1.0, 0.25, &mut a, &mut b, &mut c, Fidelity::Thesis);
+        jittering(x0, y0, z0, r, &mut a, &mut b, &mut c, Fidelity::Thesis);
         let off = DVec3::new(a, b, c) - centre;
         assert!(off.dot(d).abs() < 1e-12, "{dir:?}: across");
-        assert!((off.length() - 0.25).abs() < 1e-12, "{dir:?}: length");
+        assert!((off.length() - r).abs() < 1e-12, "{dir:?}: length");
+
+        // The listing, statement by statement, on the normalised direction.
+        let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+        let (na, nb, nc) = (dir[0] / len, dir[1] / len, dir[2] / len);
+        let (xi, yi, zi) = (x0 + na * 5.0, y0 + nb * 5.0, z0 + nc * 5.0);
+        let want = if na != 0.0 {
+            let t = (na * na / (2.0 * na * na + (nb + nc) * (nb + nc))).sqrt();
+            [xi - (nb + nc) * r / na, yi + r * t, zi + r * t]
+        } else if nb != 0.0 {
+            let t = (nb * nb / (2.0 * nb * nb + (na + nc) * (na + nc))).sqrt();
+            let a1 = xi + r * t;
+            [a1, yi - (a1 + nc) * r / nb, zi + r * t]
+        } else {
+            let t = (nc * nc / (2.0 * nc * nc + (nb + na) * (nb + na))).sqrt();
+            let (a1, b1) = (xi + r * t, yi + r * t);
+            [a1, b1, zi - (a1 + b1) * r / nc]
+        };
+        let (mut a, mut b, mut c) = (dir[0], dir[1], dir[2]);
+        jittering(x0, y0, z0, r, &mut a, &mut b, &mut c, Fidelity::Listing);
+        assert_eq!([a, b, c], want, "{dir:?}: the listing's arithmetic");
+        let off = DVec3::new(a, b, c) - centre;
+        assert!(
+            off.dot(d).abs() > 1e-3 || (off.length() - r).abs() > 1e-3,
+            "{dir:?}: the listing's offset is not the thesis's"
+        );
     }
-    let (mut a, mut b, mut c) = (1.0, 2.0, 3.0);
-    jittering(1.0, 1.0, 1.0, 0.25, &mut a, &mut b, &mut c, Fidelity::Listing);
-    let d = DVec3::new(1.0, 2.0, 3.0).normalize();
-    let off = DVec3::new(a, b, c) - (DVec3::ONE + d * 5.0);
-    assert!((off.length() - 0.25).abs() > 0.05);
 }
 
 /// `depthoffield` keeps the ray through the same point of the focal plane
-/// and moves the eye by at most `fradius`, in z only.
+/// and moves the eye by `fradius*noise[dindex]*2`, in z only.
 #[test]
 fn depthoffield_keeps_the_focal_point() {
     let noise = noise_table();
@@ -223,7 +247,8 @@ fn depthoffield_keeps_the_focal_point() {
         assert!((y1 - 4.0).abs() < 1e-12);
         assert!((x1 - (0.5 + 0.2 * 14.0)).abs() < 1e-12);
         assert!((z1 - (1.0 + 0.1 * 14.0)).abs() < 1e-12);
-        assert!((z0 - 1.0).abs() <= 0.3);
+        assert_eq!(z0, 1.0 + 0.3 * noise[dindex] * 2.0);
+        assert!(noise[dindex] != 0.0 && (z0 - 1.0).abs() <= 0.3);
     }
 }
 

@@ -2,6 +2,8 @@
 //! in-between contours, the poses and the boxes of key-frame pairs, in both
 //! fidelities (errata 4, 8, 9, 10, 18, 19).
 
+mod common;
+
 use raytrace::paper::*;
 use raytrace::proc::sweep::spline;
 use raytrace::shapes::sweep::intersect_sweep;
@@ -281,8 +283,15 @@ fn a_hermite_patch_reproduces_its_corners_and_corner_tangents() {
     for (s, t) in [(0.0, 0.0), (0.0, 1.0), (1.0, 0.0), (1.0, 1.0)] {
         assert!(patch_d(&h, s, t, true, true).abs() < 1e-12);
     }
-    // And the patch is not trivially flat inside.
-    assert!((patch(&h, 0.5, 0.5) - patch(&h, 0.0, 0.0)).abs() > 0.1);
+    // Inside, at (½, ½), with the Hermite basis (½, ½, ⅛, −⅛) on both
+    // sides and no twist: ¼ of the corners (3 − 0.4453125 + 3.5 + 1.5),
+    // plus 1/16 of the s-tangents (0.5 − 2.40625 + 0 + 0.2) and of the
+    // t-tangents (2 − 1.2 + 1 − 0.2): 2409/1280.
+    assert!(
+        (patch(&h, 0.5, 0.5) - 2409.0 / 1280.0).abs() < 1e-12,
+        "{}",
+        patch(&h, 0.5, 0.5)
+    );
 }
 
 // ------------------------------------------------- the key shapes at 0, 1
@@ -732,37 +741,61 @@ fn erratum_4_difference_in_both_fidelities() {
     }
 }
 
+/// A key shape at `at`, turned as a deck turns it: `rotate x ax` then
+/// `rotate z az` (R ← Rz·Rx, `angle` = (ax, 0, az)).
+fn key_turned(name: &str, at: [f64; 3], ax: f64, az: f64, shape: SweepShape) -> ObjectRecord {
+    let sphereo = DVec3::from_array(at);
+    let r = DMat4::from_rotation_z(az.to_radians()) * DMat4::from_rotation_x(ax.to_radians());
+    ObjectRecord {
+        transfm: DMat4::from_translation(sphereo) * r,
+        inverse: r.transpose() * DMat4::from_translation(-sphereo),
+        angle: DVec3::new(ax, 0.0, az),
+        ..key(name, PrimitiveClass::Translation, at, 0.0, shape)
+    }
+}
+
+/// Erratum 19 with a FIRST turned 90° about x (as fig5_10's star stands):
+/// the listing's `rotate(name,xaxis,0,0,0,angle.x)` on the restored
+/// `temp1` keeps FIRST's rest pose at every time, never a second x turn;
+/// the thesis turns by t·`diffangle` onto LAST.
 #[test]
 fn erratum_19_the_angle_over_the_shutter() {
-    let first = key(
-        "a",
-        PrimitiveClass::Translation,
-        [0.0, 0.0, 1.0],
-        0.0,
-        wobbly(6, 0.0, 0.0),
-    );
-    let last = key(
-        "b",
-        PrimitiveClass::Translation,
-        [2.0, 0.0, 1.0],
-        90.0,
-        wobbly(6, 1.0, 0.0),
-    );
+    let first = key_turned("a", [0.0, 0.0, 1.0], 90.0, 0.0, wobbly(6, 0.0, 0.0));
+    let last = key_turned("b", [2.0, 0.0, 1.0], 90.0, 90.0, wobbly(6, 1.0, 0.0));
     let thesis = goahead(1, &first, &last, Expander::Burtnyk, Fidelity::Thesis).unwrap();
     let listing = goahead(1, &first, &last, Expander::Burtnyk, Fidelity::Listing).unwrap();
     assert_eq!(thesis.diffangle, DVec3::new(0.0, 0.0, 90.0));
-    // Thesis: angle(t) = θ1 + (θ2 − θ1)t: at 1 LAST's pose, at ½ a turn of 45°.
+    // Erratum 4 in `diffangle` too: dif.y := po2.x - po1.y = 90 - 0, and
+    // dif.z := po2.x - po1.z = 90 - 0.
+    assert_eq!(listing.diffangle, DVec3::new(0.0, 90.0, 90.0));
+    // Thesis: angle(t) = θ1 + (θ2 − θ1)t: at 0 FIRST's pose, at 1 LAST's,
+    // at ½ the contour's x axis turned 45° about z.
+    assert!(thesis.pose(0.0).transfm.abs_diff_eq(first.transfm, 1e-12));
     assert!(thesis.pose(1.0).transfm.abs_diff_eq(last.transfm, 1e-12));
     assert!(thesis.pose(1.0).inverse.abs_diff_eq(last.inverse, 1e-12));
     let half = thesis.pose(0.5).transfm.transform_vector3(DVec3::X);
     let c = std::f64::consts::FRAC_1_SQRT_2;
     assert!(half.abs_diff_eq(DVec3::new(c, c, 0.0), 1e-12));
-    // Listing: rotate(name,xaxis,0,0,0,angle.x) only, FIRST's x angle (0):
-    // the object does not turn.
-    for t in [0.0, 0.5, 1.0] {
-        let dir = listing.pose(t).transfm.transform_vector3(DVec3::X);
-        assert!(dir.abs_diff_eq(DVec3::X, 1e-12));
+    // Listing: FIRST's rest rotation at every time, only the position moves
+    // (by `diff`): the sweep's axis (local z) points along −y, the contour's
+    // V (local y) up, as FIRST's; no second turn about x, no turn by the
+    // (erratum 4) `diffangle`.
+    for t in [0.0, 0.3, 0.5, 1.0] {
+        let p = listing.pose(t);
+        let rest = DMat3::from_mat4(first.transfm);
+        assert!(DMat3::from_mat4(p.transfm).abs_diff_eq(rest, 1e-12), "t {t}");
+        assert!(
+            p.transfm.transform_vector3(DVec3::Z).abs_diff_eq(-DVec3::Y, 1e-12),
+            "t {t}"
+        );
+        assert!(
+            p.transfm.transform_vector3(DVec3::Y).abs_diff_eq(DVec3::Z, 1e-12),
+            "t {t}"
+        );
+        assert_eq!(p.sphereo, first.sphereo + listing.diff * t);
+        assert!((p.transfm * p.inverse).abs_diff_eq(DMat4::IDENTITY, 1e-12));
     }
+    assert!(listing.pose(0.0).transfm.abs_diff_eq(first.transfm, 1e-12));
 }
 
 // ----------------------------------------------------------------- boxes
@@ -782,11 +815,32 @@ fn box_pairs(fidelity: Fidelity, speed: f64) -> Vec<(String, PaperPair)> {
         for e in [Expander::Burtnyk, Expander::Arclength] {
             let first = key("a", class, [0.0, 0.0, 0.0], 0.0, a.clone());
             let last = key("b", class, [speed, 2.0, -0.6 * speed], 0.0, b.clone());
-            let pair = goahead(1, &first, &last, e, fidelity).unwrap();
+            let pair = prepared_pair(first, last, e, fidelity);
             v.push((format!("{class:?} {e:?} speed {speed}"), pair));
         }
     }
     v
+}
+
+/// The pair as the renderer sets it up: FIRST and LAST in a scene through
+/// `prepare`, so that the key shapes' boxes are what the fidelity makes
+/// them (listing: the class's box, `tbox` widened by 2 for the one pair).
+fn prepared_pair(first: ObjectRecord, last: ObjectRecord, expander: Expander, fidelity: Fidelity) -> PaperPair {
+    let mut scene = common::scene();
+    scene.objects.push(first);
+    scene.keyframes.push(KeyframeRecord {
+        pos: Pos::default(),
+        first: 0,
+        rest: vec![last],
+        expander,
+    });
+    let opts = Options {
+        fidelity,
+        ..Options::default()
+    };
+    raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
+    let chain = PaperChain::from_keyframe(&scene, &scene.keyframes[0], fidelity).unwrap();
+    chain.pairs()[0].clone()
 }
 
 /// Samples of the in-between contour at 64 times: (t, segment, u, v).
@@ -838,7 +892,8 @@ fn erratum_9_every_inbetween_lies_in_the_box_at_64_times() {
 
 #[test]
 fn erratum_9_listing_widening_of_2_holds_when_slow_and_fails_when_fast() {
-    // Slow (LAST 1 away): the merged box widened by 2 holds every sample.
+    // Slow (LAST 1 away): the class box (`tbox` widened by 2) holds every
+    // sample.
     for (name, pair) in box_pairs(Fidelity::Listing, 1.0) {
         let mut out = pair.scratch();
         samples(&pair, &mut out, |t, i, u, v| {

@@ -374,8 +374,9 @@ fn laguerre_finds_the_three_roots() {
 }
 
 /// A constructed sextic with six roots in [0, 1]: laguerre's six fixed
-/// starts (0.163, 0.327, …, 0.98) find five of them (not 0.05: two starts
-/// end on 0.2); the robust solver all six.
+/// starts (0.163, 0.327, …, 0.98) find five of them (not 0.05: the first
+/// start ends on 0.2, and the starts 0.653 and 0.817 both end on 0.65);
+/// the robust solver all six.
 #[test]
 fn sextic_with_known_roots() {
     let want = [0.05, 0.2, 0.35, 0.5, 0.65, 0.95];

@@ -241,7 +241,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
     }
     if let (Some(file), Some(path)) = (debug_file, &cli.debug) {
-        let log = raytrace::raytrace::debug_log(&scene, &render);
+        let log = raytrace::raytrace::debug_log(&scene, &render, opts.fidelity);
         file.commit(|w| w.write_all(log.as_bytes()).map_err(OutputError::from))
             .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
     }

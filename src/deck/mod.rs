@@ -136,7 +136,11 @@
 //!   1..16, then M rows of M integers in 0..M²−1, then `end`; at most once.
 //!   In `Fidelity::Thesis` the values must be a permutation of 0..M²−1 (an
 //!   error at the first repeated value); `Fidelity::Listing` accepts
-//!   repeats, as the printed table of Fig. 2.33 has them (erratum 1).
+//!   repeats, as the printed table of Fig. 2.33 has them (erratum 1). M
+//!   is checked against `image`'s mask when the scene is prepared
+//!   (`drt::TimeTable::new`): equal in `Fidelity::Thesis`; at least the
+//!   mask in `Fidelity::Listing`, which reads the top-left corner
+//!   (DEVIATIONS D9).
 //!
 //! # Film
 //! - `film FRAMES [shutter S] [rate FPS]` (the port's extension,

@@ -5,7 +5,9 @@ use super::{
     contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, PaperError,
     PaperMessage, PaperPair, Sdirection,
 };
-use crate::types::{Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
+use crate::types::{
+    Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
+};
 
 /// What a count of Burtnyk's rule counts (erratum 10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -270,6 +272,39 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
     }
 }
 
+/// `goahead`'s `tbox.xmax := tbox.xmax+2; tbox.xmin := tbox.xmin-2;`
+/// `tbox.ymax := …+2; tbox.ymin := …-2` (OCR lines 2439–2442), for all the
+/// key-frame pairs of `scene` at once (erratum 9). The listing widens the
+/// one box of the translation class, which every translation sweep uses
+/// (`spline`'s class boxes, `prepare_sweeps`), by 2 in x and y once per
+/// pair, whatever the pair's class: `Fidelity::Listing` widens the box of
+/// every translation sweep of the scene (later key shapes included) by
+/// 2·pairs. `Fidelity::Thesis` leaves each box its own (§3.3). Boxes only
+/// cull, so a wider box changes which rays are solved, not the hits.
+pub fn widen_tbox(scene: &mut Scene, fidelity: Fidelity) {
+    let pairs = scene.keyframes.iter().map(|k| k.rest.len()).sum::<usize>() as f64;
+    let by = match fidelity {
+        // Listing: 2 for every call of goahead.
+        Fidelity::Listing => 2.0 * pairs,
+        // Thesis: no widening.
+        Fidelity::Thesis => return,
+    };
+    let Scene { objects, keyframes, .. } = scene;
+    for obj in objects
+        .iter_mut()
+        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+    {
+        if let (PrimitiveClass::Translation, Shape::Sweep(sw)) = (obj.class, &mut obj.shape) {
+            if sw.segment > 0 && by > 0.0 {
+                sw.bbox.xmax += by;
+                sw.bbox.xmin -= by;
+                sw.bbox.ymax += by;
+                sw.bbox.ymin -= by;
+            }
+        }
+    }
+}
+
 /// `goahead(int; var obj1, obj2)` (unit `paper`, §3.2.3, §3.3, OCR lines
 /// 2413–2552): "to calculate the in-between figure from obj1 and obj2":
 /// everything key-frame pair `int` (from 1) needs before the scanline loop.
@@ -295,11 +330,14 @@ fn corners(p: &Sdirection, i: usize, next: usize, fidelity: Fidelity) -> (Coeff,
 /// the expanded count is [`PaperPair::snu`].
 ///
 /// Erratum 9 (`goahead`'s part): the listing widens the class box `tbox`
-/// by 2 in x and y, whatever the pair's class. `Fidelity::Listing` gives
-/// [`PaperPair::bbox`] as the merged box of the two key shapes, widened
-/// so if the pair is a translation sweep; `Fidelity::Thesis` the union of
-/// the key shapes' boxes and of every segment patch's Bernstein control
-/// values ([`patch_range`]), which hold the patch for all s, t in [0, 1].
+/// by 2 in x and y, whatever the pair's class ([`widen_tbox`] does it on
+/// the scene), and the in-between object uses the box of its class.
+/// `Fidelity::Listing` gives [`PaperPair::bbox`] as FIRST's box, which in
+/// that fidelity is its class's box (`tbox`, `cbox`, `rbox`, as
+/// `prepare_sweeps` and [`widen_tbox`] leave it); `Fidelity::Thesis` the
+/// union of the key shapes' boxes and of every segment patch's Bernstein
+/// control values ([`patch_range`]), which hold the patch for all s, t in
+/// [0, 1].
 ///
 /// Errors: not two sweeps of one class; a shape of fewer than 2 segments;
 /// more than 60 segments after expanding; `u`, `v` not filled; a number
@@ -416,19 +454,9 @@ pub fn goahead(
     };
     let merged = contour_box(obj1.class, first, range(&pair.p1u), range(&pair.p1v));
     pair.bbox = match fidelity {
-        // Erratum 9, listing: tbox.xmax := tbox.xmax+2; tbox.xmin :=
-        // tbox.xmin-2; tbox.ymax := …+2; tbox.ymin := …-2 — the box of the
-        // translation class, whatever the pair's class.
-        Fidelity::Listing => {
-            let mut b = merged;
-            if obj1.class == PrimitiveClass::Translation {
-                b.xmax += 2.0;
-                b.xmin -= 2.0;
-                b.ymax += 2.0;
-                b.ymin -= 2.0;
-            }
-            b
-        }
+        // Erratum 9, listing: the box of the class, `tbox` widened by
+        // `tbox.xmax := tbox.xmax+2; …` once per pair (widen_tbox).
+        Fidelity::Listing => first.bbox,
         // Thesis (§3.3: the merged box, adjusted by the extrema of the
         // in-between curves): every patch's control net holds it for all t.
         Fidelity::Thesis => {
@@ -516,11 +544,60 @@ mod tests {
         p2[1].max = 5.0;
         p2[1].min = -7.0;
         p1[2].max = 9.0;
+        p1[2].min = -9.0;
         merge(&mut p1, &mut p2, 3);
+        // Segment 1: p2's bounds are the wider (the `then` branches).
         assert_eq!((p1[1].max, p1[1].min, p2[1].max, p2[1].min), (5.0, -7.0, 5.0, -7.0));
+        // Segment 2: p1's are (the `else` branches copy them to p2).
         assert_eq!((p1[2].max, p2[2].max), (9.0, 9.0));
+        assert_eq!((p1[2].min, p2[2].min), (-9.0, -9.0));
         // A count past 60 is clamped.
         merge(&mut p1, &mut p2, 1000);
+    }
+
+    /// Erratum 8: `expanding` prints `***** error *****` when `more` leaves
+    /// the counts different. `more` always ends equal on shapes `spline`
+    /// filled; a shape with fewer coefficients than segments is where it
+    /// writes nothing, and the check is reached: listing goes on with the
+    /// message, thesis stops.
+    #[test]
+    fn expanding_error_when_the_counts_stay_different() {
+        let first = ObjectRecord {
+            name: "a".into(),
+            class: PrimitiveClass::Translation,
+            surface: 0,
+            transfm: crate::types::DMat4::IDENTITY,
+            inverse: crate::types::DMat4::IDENTITY,
+            sphereo: DVec3::ZERO,
+            angle: DVec3::ZERO,
+            radius: 1.0,
+            shape: Shape::Sweep(shape(3)),
+        };
+        for fidelity in [Fidelity::Listing, Fidelity::Thesis] {
+            let mut pair = PaperPair::empty(1, &first, &shape(3), Expander::Burtnyk, fidelity);
+            let mut short = shape(3);
+            short.u.pop();
+            let mut other = shape(5);
+            let got = expanding(&mut pair, &mut short, &mut other);
+            let message = PaperMessage::ExpandingError {
+                segment1: 3,
+                segment2: 5,
+            };
+            match fidelity {
+                Fidelity::Listing => {
+                    assert_eq!(got, Ok(()));
+                    assert_eq!(pair.messages, [message]);
+                    assert_eq!(message.to_string(), " ***** error ***** 3 5");
+                }
+                Fidelity::Thesis => {
+                    assert_eq!(got, Err(PaperError::Method { int: 1, message }));
+                }
+            }
+            // Shapes as spline fills them end equal: ` equal `.
+            let mut pair = PaperPair::empty(1, &first, &shape(3), Expander::Burtnyk, fidelity);
+            assert_eq!(expanding(&mut pair, &mut shape(3), &mut shape(5)), Ok(()));
+            assert_eq!(pair.messages, [PaperMessage::Equal]);
+        }
     }
 
     #[test]

@@ -321,20 +321,28 @@ pub fn saving1(n: usize, u: &Sdirection, v: &Sdirection, uu: &mut Sdirection, vv
 /// key shapes after expanding, with their merged bounds.
 ///
 /// The expanded key shapes have pieces of segments (`first`, `last` inside
-/// [0, 1]); the port's sweep intersection takes every segment on [0, 1],
-/// so each is written as the same curve on [0, 1] ([`reparam`]). `obj` as
-/// in [`Hermite`]; the box is `goahead`'s in `Fidelity::Listing`, from the
-/// segments' bounds in `Fidelity::Thesis` (erratum 9).
+/// [0, 1]). `Fidelity::Listing` copies each record as it stands, as the
+/// listing does; `Fidelity::Thesis` writes each piece as the same curve on
+/// [0, 1] ([`reparam`], DEVIATIONS D15), the form the port's sweep
+/// intersection takes (`PaperChain::inbetween` hands it the listing's
+/// pieces the same way). `obj` as in [`Hermite`]; the box is `goahead`'s
+/// in `Fidelity::Listing`, from the segments' bounds in `Fidelity::Thesis`
+/// (erratum 9).
 pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
     let snu = prepare(int, obj);
     for i in 1..=snu {
-        if time == 0.0 {
-            obj.u[i - 1] = reparam(&int.p3u[i]);
-            obj.v[i - 1] = reparam(&int.p3v[i]);
+        let (u, v) = if time == 0.0 {
+            (&int.p3u[i], &int.p3v[i])
         } else {
-            obj.u[i - 1] = reparam(&int.p4u[i]);
-            obj.v[i - 1] = reparam(&int.p4v[i]);
-        }
+            (&int.p4u[i], &int.p4v[i])
+        };
+        (obj.u[i - 1], obj.v[i - 1]) = match int.fidelity {
+            // Listing: u[i] := p3u[int][i] (or p4u), a, b, c, d, first,
+            // last as stored.
+            Fidelity::Listing => (*u, *v),
+            // D15: the same curve on [0, 1].
+            Fidelity::Thesis => (reparam(u), reparam(v)),
+        };
     }
     obj.bbox = match int.fidelity {
         Fidelity::Listing => int.bbox,

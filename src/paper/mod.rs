@@ -64,7 +64,7 @@ mod goahead;
 mod hermite;
 
 pub use arclength::{expanding2, more2, plus};
-pub use goahead::{burtnyk, difference, expanding, goahead, merge, more, saving, Outline};
+pub use goahead::{burtnyk, difference, expanding, goahead, merge, more, saving, widen_tbox, Outline};
 pub use hermite::{
     coor, coor1, coor2, delete, do34, getdistance, getmatrix, getpath, inbetween, initM, multiply, patch, saving1,
     Hermite, Rvalue, Rvalue1, MH, MH_T,
@@ -261,9 +261,10 @@ pub struct PaperPair {
     /// it (`orientt`, `curve`, `length`, `scale`, `points`).
     pub first_shape: SweepShape,
     /// The local box of the in-between object over the shutter (§3.3,
-    /// erratum 9): in `Fidelity::Listing` the merged box of the two key
-    /// shapes widened by 2 in x and y as `goahead` widens `tbox`; in
-    /// `Fidelity::Thesis` a box that holds the contour at every t in [0, 1].
+    /// erratum 9): in `Fidelity::Listing` the box of its class as the
+    /// listing shares it (FIRST's box: `tbox` widened by 2 per pair, or
+    /// `cbox`, `rbox`); in `Fidelity::Thesis` a box that holds the contour
+    /// at every t in [0, 1].
     pub bbox: BoundingBox,
 }
 
@@ -326,17 +327,46 @@ impl PaperPair {
             .any(|m| !matches!(m, PaperMessage::Equal | PaperMessage::More2Equal))
     }
 
+    /// The lines the listing writes while `goahead` sets this pair up, in
+    /// its order: `expanding` or `expanding2` (to `debugf`, OCR lines 2283,
+    /// 2990) when the counts differed, the expanders' messages (erratum 8;
+    /// the listing wrote them to standard output), and `path : a b c d`
+    /// of every segment start's path in U (`debugf`, OCR lines 2520–2522,
+    /// `a:3:3`: three decimals). For the `--debug` log.
+    pub fn debug_lines(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        // Each expander ends with a message (`equal`, `o.k : equal` or the
+        // error), so there are messages exactly when one ran.
+        if !self.messages.is_empty() {
+            lines.push(
+                match self.expander {
+                    Expander::Burtnyk => "expanding",
+                    Expander::Arclength => "expanding2",
+                }
+                .to_string(),
+            );
+        }
+        lines.extend(self.messages.iter().map(|m| m.to_string()));
+        for i in 1..=self.snu {
+            let p = &self.pathx[i];
+            lines.push(format!("path : {:.3} {:.3} {:.3} {:.3}", p.a, p.b, p.c, p.d));
+        }
+        lines
+    }
+
     /// The pose of the in-between object at `time`: the `paper = 1` branch
     /// of `motionblur` (unit `drt`, OCR lines 2139–2159):
     /// `sphereo := temp1.sphereo + time*diff[int]` (FIRST's position plus
     /// `time` times `diff`, erratum 4 in `diff`), then the turn.
     ///
-    /// Erratum 19 (the port's reading): the listing
-    /// calls `rotate(name,xaxis,0,0,0,angle.x)`, FIRST's own x angle at any
-    /// time, with the y and z turns by `diffangle` commented out, so
-    /// `diffangle` is computed and never read. `Fidelity::Listing` composes
-    /// that turn on FIRST's rest pose, as `drt::motionblur` reads the same
-    /// `rotate` call (DEVIATIONS D8). `Fidelity::Thesis` follows §3.2.2,
+    /// Erratum 19: the listing restores `transfm` from `temp1` (FIRST's
+    /// rest pose, its x angle included) and calls
+    /// `rotate(name,xaxis,0,0,0,angle.x)` with FIRST's own x angle; the y
+    /// and z turns by `diffangle` are commented out, so `diffangle` is
+    /// computed and never read. The port reads that call as re-imposing the
+    /// angle the restored pose already holds (DEVIATIONS, erratum 19, gives
+    /// the listing's evidence): `Fidelity::Listing` keeps FIRST's rest
+    /// rotation at every time. `Fidelity::Thesis` follows §3.2.2,
     /// angle(t) = θ₁ + (θ₂ − θ₁)·t: the turn t·`diffangle` about x, then
     /// y, then z through the object's origin, composed on FIRST's rest
     /// pose (D8's convention), so that at t = 1 the object stands where
@@ -345,9 +375,10 @@ impl PaperPair {
     pub fn pose(&self, time: f64) -> Pose {
         let sphereo = self.first_pose.sphereo + self.diff * time;
         let turn = match self.fidelity {
-            // Listing: rotate(name,xaxis,0,0,0,angle.x); the y and z lines
-            // `angle.y+diffangle[int].y*time` are commented out.
-            Fidelity::Listing => crate::drt::turn_xyz(DVec3::new(self.first_angle.x, 0.0, 0.0)),
+            // Listing: rotate(name,xaxis,0,0,0,angle.x) on the restored
+            // temp1, which holds angle.x already: no further turn. The y
+            // and z lines `angle.y+diffangle[int].y*time` are commented out.
+            Fidelity::Listing => crate::types::DMat3::IDENTITY,
             // Thesis: the turn θ(t) − θ₁ = t·(θ₂ − θ₁) about x, y, z.
             Fidelity::Thesis => crate::drt::turn_xyz(self.diffangle * time),
         };
@@ -433,10 +464,17 @@ impl PaperChain {
     }
 
     /// The in-between contour at shutter time `time`, into `obj`
-    /// ([`inbetween`]).
+    /// ([`inbetween`]), every segment on [0, 1] as the port's sweep
+    /// intersection takes it: the listing's `do34` leaves pieces of cut
+    /// segments on their `first` … `last`, and [`reparam`] writes each as
+    /// the same curve on [0, 1] (DEVIATIONS D15; exact for a segment on
+    /// [0, 1] already).
     pub fn inbetween(&self, time: f64, obj: &mut SweepShape) {
         let (pair, local) = self.locate(time);
         inbetween(pair, local, obj);
+        for c in obj.u.iter_mut().chain(obj.v.iter_mut()) {
+            *c = reparam(c);
+        }
     }
 
     /// Scratch big enough for every pair ([`PaperPair::scratch`]).

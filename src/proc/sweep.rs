@@ -529,6 +529,30 @@ mod tests {
         }
     }
 
+    /// Erratum 7, where the listing's ±∞ step shows: f′ = 0 exactly at the
+    /// first two starts, H < 0 at the first (the ±∞ step) and H ≥ 0 at the
+    /// second (no step: x2 is read stale). The listing's stale x2 is ±∞, so
+    /// the second start is abandoned and the root comes from the third;
+    /// had the first start kept its x2 (the thesis's arm), the second
+    /// would go on from there and store the root as its own iterate, which
+    /// differs in the last digits.
+    #[test]
+    fn laguerre_erratum_7_the_infinite_step_abandons_the_next_start() {
+        let t1 = 0.98 / 3.0;
+        let a = [-0.505, 1.2805333333333333, -2.94, 2.0, 0.0, 0.0, 0.0];
+        for x in [t1, t1 + t1] {
+            assert_eq!(laguerre_values(3, &a, x).1, 0.0, "f′({x})");
+        }
+        let h = |x: f64| {
+            let (f1, f2, f3) = laguerre_values(3, &a, x);
+            2.0 * (2.0 * f2 * f2 - 3.0 * f1 * f3)
+        };
+        assert!(h(t1) < 0.0 && h(t1 + t1) >= 0.0);
+        let mut root = [Root::default(); LAGUERRE_ROOTS];
+        assert_eq!(laguerre(3, &a, 2.0, 0.0, &mut root, Fidelity::Listing), 1);
+        assert_eq!(root[0].a, 1.0960220387673703);
+    }
+
     #[test]
     fn sorting_orders_and_finds_tmax() {
         for fid in [Fidelity::Listing, Fidelity::Thesis] {
