@@ -46,6 +46,7 @@ mod revolve;
 pub use contour::{point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
+use super::Near;
 use crate::proc::robust::real_roots;
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
@@ -246,6 +247,9 @@ pub(super) fn box_size(b: &BoundingBox) -> f64 {
 ///   a ray perpendicular to the axis (constant height): V(s) = z, a cubic,
 ///   then the ray's two crossings of the circle of radius U(s).
 ///
+/// The ray is taken [`Near`] the object's box first, so the polynomials'
+/// coefficients are of the object's size whatever the eye's distance.
+///
 /// Each root gives its hit from the better conditioned equation, is
 /// polished, and is rejected unless the hit lies on the surface (within
 /// 1e-9 of the object's size); so a spurious root of either solver (the
@@ -287,13 +291,20 @@ pub fn intersect_sweep(
         }
         _ => return None,
     };
+    // Every polynomial below is formed from the ray near the object.
+    let near = if boxed {
+        Near::of(ray, tmin, 0.5 * (lo + hi), 0.5 * (hi - lo).length())
+    } else {
+        Near::of(ray, tmin, DVec3::ZERO, 2.0 * size)
+    };
+    let (ray, tmin) = (&near.ray, near.tmin);
     if boxed && !ray_meets_box(ray, tmin, lo, hi) {
         return None;
     }
-    match class {
+    near.back(match class {
         PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts),
         _ => extrusion(u, v, sweep, class == PrimitiveClass::Conic, size, ray, tmin, opts),
-    }
+    })
 }
 
 /// The nearest hit so far.
