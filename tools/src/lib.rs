@@ -7,5 +7,7 @@ pub mod decks;
 pub mod fonts;
 pub mod frames;
 pub mod measure;
+pub mod pov;
 pub mod stability;
 pub mod textures;
+pub mod vs_povray;
