@@ -142,6 +142,38 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     out
 }
 
+/// Binomial coefficients C(k, j) for k, j ≤ 6.
+const BINOMIAL: [[f64; 7]; 7] = [
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+    [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
+    [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
+    [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
+];
+
+/// `BERNSTEIN[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
+/// weights of degree n, divided once here instead of per segment and ray
+/// (the same quotients, so the same results).
+const BERNSTEIN: [[[f64; 7]; 7]; 7] = {
+    let mut r = [[[0.0; 7]; 7]; 7];
+    let mut n = 0;
+    while n < 7 {
+        let mut k = 0;
+        while k <= n {
+            let mut j = 0;
+            while j <= k {
+                r[n][k][j] = BINOMIAL[k][j] / BINOMIAL[n][j];
+                j += 1;
+            }
+            k += 1;
+        }
+        n += 1;
+    }
+    r
+};
+
 /// Can the degree-`n` polynomial `a` (ascending coefficients) vanish in
 /// [lo, hi]? Not when its Bernstein coefficients on that interval are all
 /// of one strict sign: the polynomial lies in their convex hull. A test
@@ -149,16 +181,6 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
 /// line passes near without crossing; where it answers "no" there is no
 /// root for a solver to find, so no image changes (DEVIATIONS D18).
 pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
-    // Binomial coefficients C(k, j) for k, j ≤ 6.
-    const C: [[f64; 7]; 7] = [
-        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-        [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
-        [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
-        [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
-        [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
-        [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
-    ];
     let n = n.min(6);
     // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
     let mut c = [0.0; 7];
@@ -179,9 +201,9 @@ pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
         return true; // zero, or not finite: let the solver decide
     }
     let (mut pos, mut neg) = (false, false);
-    for (k, ck) in C.iter().enumerate().take(n + 1) {
+    for (k, wk) in BERNSTEIN[n].iter().enumerate().take(n + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
-        let b: f64 = (0..=k).map(|j| ck[j] / C[n][j] * c[j]).sum();
+        let b: f64 = (0..=k).map(|j| wk[j] * c[j]).sum();
         if b > tiny {
             pos = true;
         } else if b < -tiny {

@@ -49,8 +49,9 @@ pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t:
 }
 
 /// The rotation sweep's outward normal at the hit point p of contour
-/// point s: (V′ e_r − U′ e_z), turned by the contour's orientation.
-pub(super) fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, sign: f64) -> DVec3 {
+/// point s: (V′ e_r − U′ e_z), for a counter-clockwise contour (the
+/// caller turns it by the orientation, once for the hit it keeps).
+pub(super) fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64) -> DVec3 {
     let (tu, tv) = tangent(u, v, s, size);
     let r = norm2(p.x, p.y);
     let (ex, ey) = if r > 1e-12 * size {
@@ -58,7 +59,7 @@ pub(super) fn revolve_normal(u: &Coeff, v: &Coeff, s: f64, p: DVec3, size: f64, 
     } else {
         (1.0, 0.0)
     };
-    DVec3::new(tv * ex, tv * ey, -tu) * sign
+    DVec3::new(tv * ex, tv * ey, -tu)
 }
 
 /// The rotation sweep's polynomial of segment (u, v) for `ray` (see
@@ -101,7 +102,6 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
     let a = d.x * d.x + d.y * d.y;
     let b = 2.0 * (o.x * d.x + o.y * d.y);
     let c = o.x * o.x + o.y * o.y;
-    let sign = orientation(u, v);
     let pad = 1e-9 * size;
     let along = a.sqrt() <= PARALLEL_TOL * dn;
     let across = d.z.abs() <= PARALLEL_TOL * dn;
@@ -112,7 +112,7 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
         }
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
         if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin) {
-            let normal = revolve_normal(cu, cv, s, ray.at(t), size, sign);
+            let normal = revolve_normal(cu, cv, s, ray.at(t), size);
             *best = Some(Best { t, normal });
         }
     };
@@ -210,7 +210,8 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
         }
     }
     let bst = best?;
-    let normal = bst.normal.try_normalize()?;
+    // The contour's orientation turns the normal out: once, for the hit kept.
+    let normal = (bst.normal * orientation(u, v)).try_normalize()?;
     Some(LocalHit {
         t: bst.t,
         point: ray.at(bst.t),
