@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod chart;
+pub mod deck_misses;
 pub mod decks;
 pub mod fonts;
 pub mod frames;

@@ -145,7 +145,7 @@ fn texture(s: &SurfaceRecord) -> String {
         let _ = write!(out, " interior {{ ior {} }}", num(s.index));
     }
     if s.paint.is_some() || s.texture.is_some() {
-        out.push_str(" // the paint or texture is not exported");
+        out.push_str(" /* the paint or texture is not exported */");
     }
     out
 }
