@@ -719,14 +719,7 @@ fn vase_points() -> Vec<[f64; 2]> {
 /// A random ray from a sphere of radius 8 about the box centre, aimed at a
 /// random point of the box.
 fn random_ray(rng: &mut Rng, sw: &SweepShape, class: PrimitiveClass) -> Ray {
-    let b = &sw.bbox;
-    let (lo, hi) = match class {
-        PrimitiveClass::Rotation => {
-            let r = b.xmax.abs().max(b.xmin.abs());
-            (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
-        }
-        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
-    };
+    let (lo, hi) = common::sweep_box(class, sw);
     let centre = (lo + hi) * 0.5;
     let origin = centre + rng.unit() * 8.0;
     let target = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));

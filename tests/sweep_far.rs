@@ -30,14 +30,7 @@ fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
 /// The centre and half-diagonal of the sweep's box (a rotation sweep's
 /// spans ± its largest radius).
 fn bounds(class: PrimitiveClass, sw: &SweepShape) -> (DVec3, f64) {
-    let b = &sw.bbox;
-    let (lo, hi) = match class {
-        PrimitiveClass::Rotation => {
-            let r = b.xmax.abs().max(b.xmin.abs());
-            (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
-        }
-        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
-    };
+    let (lo, hi) = common::sweep_box(class, sw);
     ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
 }
 

@@ -106,3 +106,16 @@ pub fn load_deck(name: &str, fidelity: Fidelity) -> Scene {
     raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
     scene
 }
+
+/// A prepared sweep's box as the intersection uses it: a rotation sweep's
+/// spans ± its largest radius in x and y.
+pub fn sweep_box(class: PrimitiveClass, sw: &SweepShape) -> (DVec3, DVec3) {
+    let b = &sw.bbox;
+    match class {
+        PrimitiveClass::Rotation => {
+            let r = b.xmax.abs().max(b.xmin.abs());
+            (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
+        }
+        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
+    }
+}

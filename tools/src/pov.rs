@@ -359,34 +359,32 @@ mod tests {
 
     #[test]
     fn sweep_kinds_become_prisms_and_lathes() {
-        let square = vec![
+        // A triangle of three straight Bezier sides.
+        let triangle = vec![
             [0.0, 0.0],
             [1.0, 0.0],
             [2.0, 0.0],
             [3.0, 0.0],
-            [3.0, 1.0],
-            [3.0, 2.0],
-            [3.0, 3.0],
-            [2.0, 3.0],
-            [1.0, 3.0],
+            [2.0, 1.0],
+            [1.0, 2.0],
             [0.0, 3.0],
             [0.0, 2.0],
             [0.0, 1.0],
         ];
-        let sw = sweep(CurveKind::Bezier, square);
+        let sw = sweep(CurveKind::Bezier, triangle);
         let t = sweep_sdl(PrimitiveClass::Translation, &sw).unwrap();
         assert!(
-            t.starts_with("prism { linear_sweep bezier_spline 0, 2.0, 16, <0.0, 0.0>, <1.0, 0.0>"),
+            t.starts_with("prism { linear_sweep bezier_spline 0, 2.0, 12, <0.0, 0.0>, <1.0, 0.0>"),
             "{t}"
         );
         // The last segment closes on the first point.
         assert!(t.ends_with("<0.0, 1.0>, <0.0, 0.0>"), "{t}");
         // Conic, scale 0.5 over length 2: c = 2/(0.5 − 1) = −4.
         let c = sweep_sdl(PrimitiveClass::Conic, &sw).unwrap();
-        assert!(c.starts_with("prism { conic_sweep bezier_spline 1, 0.5, 16, "), "{c}");
+        assert!(c.starts_with("prism { conic_sweep bezier_spline 1, 0.5, 12, "), "{c}");
         assert!(c.ends_with("scale <1, -4.0, 1> translate <0, 4.0, 0>"), "{c}");
         let r = sweep_sdl(PrimitiveClass::Rotation, &sw).unwrap();
-        assert!(r.starts_with("lathe { bezier_spline 16, <0.0, 0.0>"), "{r}");
+        assert!(r.starts_with("lathe { bezier_spline 12, <0.0, 0.0>"), "{r}");
         assert!(sweep_sdl(PrimitiveClass::Rotation, &sweep(CurveKind::Bezier, vec![[0.0, 1.0]])).is_none());
     }
 
