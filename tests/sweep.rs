@@ -720,14 +720,7 @@ fn vase_points() -> Vec<[f64; 2]> {
 /// A random ray from a sphere of radius 8 about the box centre, aimed at a
 /// random point of the box.
 fn random_ray(rng: &mut Rng, sw: &SweepShape, class: PrimitiveClass) -> Ray {
-    let b = &sw.bbox;
-    let (lo, hi) = match class {
-        PrimitiveClass::Rotation => {
-            let r = b.xmax.abs().max(b.xmin.abs());
-            (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
-        }
-        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
-    };
+    let (lo, hi) = common::sweep_box(class, sw);
     let centre = (lo + hi) * 0.5;
     let origin = centre + rng.unit() * 8.0;
     let target = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
@@ -1298,7 +1291,7 @@ fn rays_through_joints() {
 
 /// Erratum 9: the listing keeps one box per class (`tbox`, `cbox`, `rbox`),
 /// so every translation sweep gets the union; the thesis gives each object
-/// its own box. Hits are the same either way.
+/// its own box. Hits are the same either way, to rounding.
 #[test]
 fn erratum_9_one_box_per_class() {
     let small = raw(CurveKind::Bspline, circle_points(0.5), 1.0, 1.0);
@@ -1367,7 +1360,15 @@ fn erratum_9_one_box_per_class() {
             let ray = random_ray(&mut rng, &thesis[k].1, class);
             let a = intersect_sweep(class, &thesis[k].1, &ray, 1e-9, &ROBUST);
             let b = intersect_sweep(class, &listing[k].1, &ray, 1e-9, &ROBUST);
-            assert_eq!(a, b);
+            // The box also decides where the ray is re-based (DEVIATIONS
+            // D28), so the hits agree to rounding.
+            match (a, b) {
+                (Some(a), Some(b)) => {
+                    assert!((a.t - b.t).abs() <= 1e-12 * a.t.abs().max(1.0), "{a:?} {b:?}");
+                    assert!((a.point - b.point).length() <= 1e-12 * 8.0 && (a.normal - b.normal).length() <= 1e-9);
+                }
+                (a, b) => assert_eq!(a.is_some(), b.is_some()),
+            }
         }
     }
 }

@@ -9,15 +9,72 @@
 //! Every function returns the nearest hit with parameter greater than
 //! `tmin`, entering or leaving, with the unit OUTWARD normal; the shader
 //! decides which side the ray came from.
+//!
+//! Every function works on the ray [`Near`] the object: a ray that starts
+//! outside the object's bounds is re-based at its closest approach to
+//! their centre, and the distance is added back to the hit. So no
+//! coefficient of a quadratic, cubic or sextic carries the eye's distance
+//! (squared, in the constant terms), and an object seen from 10⁶ units
+//! away is intersected as exactly as from 10 (the port's extension; the
+//! thesis's eye is never far, DEVIATIONS D20).
 
 pub mod sweep;
 
 use crate::types::{DVec3, LocalHit, ObjectRecord, Options, Pose, Ray, Shape};
 
+/// A ray taken near an object: the same line from another origin,
+/// `ray.origin = original.at(shift)`, and `tmin` measured from there.
+#[derive(Clone, Copy, Debug)]
+pub struct Near {
+    pub ray: Ray,
+    pub tmin: f64,
+    pub shift: f64,
+}
+
+impl Near {
+    /// `ray` re-based at its closest approach to `centre` when it starts
+    /// outside the sphere of `radius` about `centre` and runs toward it;
+    /// unchanged (shift 0) when it starts inside, so a ray leaving a
+    /// surface keeps its own bits. The closest approach is a well-
+    /// conditioned product (no difference of squares), and from it every
+    /// point of the object is within `radius` plus the ray's offset.
+    pub fn of(ray: &Ray, tmin: f64, centre: DVec3, radius: f64) -> Near {
+        let oc = ray.origin - centre;
+        let shift = -oc.dot(ray.dir) / ray.dir.length_squared();
+        if oc.length_squared() <= radius * radius || !(shift > 0.0 && shift.is_finite()) {
+            return Near {
+                ray: *ray,
+                tmin,
+                shift: 0.0,
+            };
+        }
+        Near {
+            ray: Ray::new(ray.at(shift), ray.dir),
+            tmin: tmin - shift,
+            shift,
+        }
+    }
+
+    /// A hit on the re-based ray as a hit on the original: the distance
+    /// added back (the point is the same).
+    pub fn back(&self, hit: Option<LocalHit>) -> Option<LocalHit> {
+        hit.map(|h| LocalHit {
+            t: h.t + self.shift,
+            ..h
+        })
+    }
+}
+
 /// A sphere of `radius` about the local origin.
 ///
-/// Reconstructed: |o + t d|² = r², a quadratic in t.
+/// Reconstructed: |o + t d|² = r², a quadratic in t (on the ray [`Near`]
+/// the sphere).
 pub fn intersect_sphere(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let near = Near::of(ray, tmin, DVec3::ZERO, radius);
+    near.back(sphere_hit(radius, &near.ray, near.tmin))
+}
+
+fn sphere_hit(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let a = ray.dir.length_squared();
     let half_b = ray.origin.dot(ray.dir);
     let c = ray.origin.length_squared() - radius * radius;
@@ -98,6 +155,8 @@ fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f
 /// Reconstructed: the slab test, as a convex clip of six planes.
 pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let h = lengths * 0.5;
+    let near = Near::of(ray, tmin, DVec3::ZERO, h.length());
+    let (ray, tmin) = (&near.ray, near.tmin);
     let planes = [
         (DVec3::X, h.x),
         (DVec3::NEG_X, h.x),
@@ -106,7 +165,7 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
         (DVec3::Z, h.z),
         (DVec3::NEG_Z, h.z),
     ];
-    intersect_convex(ray, tmin, planes.into_iter())
+    near.back(intersect_convex(ray, tmin, planes.into_iter()))
 }
 
 /// A right prism over the convex, counter-clockwise polygon `vertex` in the
@@ -115,6 +174,9 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
 /// Reconstructed: a convex clip of the side planes and the two caps.
 pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let n = vertex.len();
+    let reach = vertex.iter().fold(0.0f64, |m, &[x, y]| m.max(x.hypot(y)));
+    let near = Near::of(ray, tmin, DVec3::ZERO, reach.hypot(height));
+    let (ray, tmin) = (&near.ray, near.tmin);
     let sides = (0..n).map(move |i| {
         let [x0, y0] = vertex[i];
         let [x1, y1] = vertex[(i + 1) % n];
@@ -123,7 +185,7 @@ pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -
         (normal, normal.x * x0 + normal.y * y0)
     });
     let caps = [(DVec3::Z, height), (DVec3::NEG_Z, 0.0)];
-    intersect_convex(ray, tmin, sides.chain(caps))
+    near.back(intersect_convex(ray, tmin, sides.chain(caps)))
 }
 
 /// A cylinder of radius `cylradius` about local z from `bottom` to `top`,
@@ -132,6 +194,12 @@ pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -
 /// Reconstructed: x² + y² = r² for the side, the planes z = bottom, z = top
 /// within the radius for the caps.
 pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
+    let centre = DVec3::new(0.0, 0.0, 0.5 * (bottom + top));
+    let near = Near::of(ray, tmin, centre, cylradius.hypot(0.5 * (top - bottom)));
+    near.back(cylinder_hit(cylradius, bottom, top, &near.ray, near.tmin))
+}
+
+fn cylinder_hit(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
     let mut best: Option<LocalHit> = None;
     let mut consider = |t: f64, normal: DVec3| {

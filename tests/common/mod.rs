@@ -161,3 +161,16 @@ pub fn file_names(dir: &std::path::Path) -> Vec<String> {
     names.sort();
     names
 }
+
+/// A prepared sweep's box as the intersection uses it: a rotation sweep's
+/// spans ± its largest radius in x and y.
+pub fn sweep_box(class: PrimitiveClass, sw: &SweepShape) -> (DVec3, DVec3) {
+    let b = &sw.bbox;
+    match class {
+        PrimitiveClass::Rotation => {
+            let r = b.xmax.abs().max(b.xmin.abs());
+            (DVec3::new(-r, -r, b.zmin), DVec3::new(r, r, b.zmax))
+        }
+        _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
+    }
+}

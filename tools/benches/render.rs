@@ -5,7 +5,11 @@
 //! - `resolution/W×H`: fig5_9 at 128², 256², 512² and 1024×864, 2×2
 //!   (pixels a second: flat means time linear in pixels);
 //! - `segments/N`: a translation sweep of a B-spline circle of N = 4, 8,
-//!   15, 30, 60 points at 256×256, 2×2.
+//!   15, 30, 60 points at 256×256, 2×2;
+//! - `solver/DEGREE/SOLVER`: one solve of a cubic and of a sextic with
+//!   separated roots in [0, 1], by `laguerre` and by the robust solver;
+//! - `sweep/KIND/SOLVER`: one `intersect_sweep` call a ray, on the sweep of
+//!   fig5_6, fig5_7 and fig5_8 with rays aimed into its box.
 //!
 //! Sample counts are modest (10 samples, 3 s) so that the whole run takes a
 //! few minutes on two cores. Renders use every core (rayon's global pool).
@@ -16,8 +20,11 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
+use raytrace::proc::robust::{poly_from_roots, real_roots};
+use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use raytrace::raytrace::{prepare, render};
-use raytrace::types::{Fidelity, Options, Scene, Solver};
+use raytrace::shapes::sweep::intersect_sweep;
+use raytrace::types::{DVec3, Fidelity, Options, Ray, Scene, Shape, Solver};
 use tools::decks::{circle_sweep_deck, load_source, prepared, CHAPTER5, SWEEP_KINDS};
 
 fn modest<M: criterion::measurement::Measurement>(g: &mut BenchmarkGroup<'_, M>) {
@@ -101,5 +108,65 @@ fn segments(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, chapter5, rays, resolution, segments);
+const SOLVERS: [(Solver, &str); 2] = [(Solver::Laguerre, "laguerre"), (Solver::Robust, "robust")];
+
+fn solver(c: &mut Criterion) {
+    let mut g = c.benchmark_group("solver");
+    modest(&mut g);
+    let cubic = poly_from_roots(&[0.15, 0.5, 0.85], 1.0);
+    let sextic = poly_from_roots(&[0.1, 0.25, 0.4, 0.55, 0.7, 0.9], 1.0);
+    for (n, p) in [(3, cubic), (6, sextic)] {
+        g.bench_function(format!("degree{n}/laguerre"), |b| {
+            b.iter(|| {
+                let mut root = [Root::default(); LAGUERRE_ROOTS];
+                laguerre(n, black_box(&p), 1.0, 0.0, &mut root, Fidelity::Thesis)
+            })
+        });
+        g.bench_function(format!("degree{n}/robust"), |b| {
+            b.iter(|| real_roots(n, black_box(&p), 0.0, 1.0).count)
+        });
+    }
+    g.finish();
+}
+
+fn sweep(c: &mut Criterion) {
+    let mut g = c.benchmark_group("sweep");
+    modest(&mut g);
+    for (&name, kind) in SWEEP_KINDS.iter().zip(["translation", "conic", "rotation"]) {
+        let s = scene(name, &Options::default(), None);
+        let Some(obj) = s.objects.iter().find(|o| matches!(o.shape, Shape::Sweep(_))) else {
+            continue;
+        };
+        let Shape::Sweep(sw) = &obj.shape else { continue };
+        // 64 rays from 8 units off the box's centre, aimed across the box.
+        let b = &sw.bbox;
+        let (lo, hi) = (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax));
+        let centre = (lo + hi) * 0.5;
+        let rays: Vec<Ray> = (0..64)
+            .map(|k| {
+                let a = k as f64 * 0.7;
+                let origin = centre + DVec3::new(8.0 * a.cos(), 8.0 * a.sin(), 2.0 * (k as f64 * 0.3).sin());
+                let target = lo + (hi - lo) * DVec3::new((k % 8) as f64 / 7.0, 0.5, (k / 8) as f64 / 7.0);
+                Ray::new(origin, (target - origin).normalize())
+            })
+            .collect();
+        g.throughput(Throughput::Elements(rays.len() as u64));
+        for (solver, sname) in SOLVERS {
+            let opts = Options {
+                solver,
+                ..Options::default()
+            };
+            g.bench_function(format!("{kind}/{sname}"), |bch| {
+                bch.iter(|| {
+                    rays.iter()
+                        .filter(|r| intersect_sweep(obj.class, sw, black_box(r), 1e-9, &opts).is_some())
+                        .count()
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, chapter5, rays, resolution, segments, solver, sweep);
 criterion_main!(benches);

@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod chart;
+pub mod deck_misses;
 pub mod decks;
 pub mod fonts;
 pub mod frames;
@@ -10,5 +11,7 @@ pub mod fuzz;
 pub mod gallery;
 pub mod join;
 pub mod measure;
+pub mod pov;
 pub mod stability;
 pub mod textures;
+pub mod vs_povray;

@@ -2,9 +2,10 @@
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `stability` writes the root solvers' stability report. Timings
-//! are measured and printed, never asserted in tests; `join` makes a
-//! film's animated PNG from its frame rasters.
+//! chart; `stability` writes the root solvers' stability report; `pov`
+//! exports a deck to POV-Ray and `vs-povray` compares the two renderers.
+//! Timings are measured and printed, never asserted in tests; `join` makes
+//! a film's animated PNG from its frame rasters.
 
 use std::path::PathBuf;
 
@@ -116,6 +117,35 @@ enum Command {
         #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u64).range(1..))]
         every: u64,
     },
+    /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives
+    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe).
+    Pov {
+        /// The deck (a path, or a shipped deck's name such as fig5_8).
+        deck: String,
+        /// The SDL file to write.
+        #[arg(short, long)]
+        out: PathBuf,
+        /// Follow the listings instead of the thesis (the window's height).
+        #[arg(long)]
+        listing: bool,
+    },
+    /// Render decks with ours and with POV-Ray (the Debian package `povray`),
+    /// one thread each, interleaved, at equal samples: CPU ratio and
+    /// silhouette agreement.
+    VsPovray {
+        /// The decks (paths or shipped names).
+        #[arg(default_values_t = ["fig5_6".to_string(), "fig5_7".to_string(), "fig5_8".to_string()])]
+        decks: Vec<String>,
+        /// Width and height in pixels.
+        #[arg(long, default_value_t = 256)]
+        size: usize,
+        /// M×M samples a pixel on both sides.
+        #[arg(long, default_value_t = 4)]
+        mask: usize,
+        /// Timed rounds (the medians are printed).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+    },
     /// Write the stability report of the root solvers on hard cases.
     Stability {
         /// The report to write.
@@ -205,6 +235,28 @@ fn main() -> Result<(), String> {
             strip,
             every,
         } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
+        Command::Pov { deck, out, listing } => {
+            let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
+            let scene = tools::decks::load(&deck, fidelity)?;
+            std::fs::write(&out, tools::pov::scene_sdl(&scene, fidelity))
+                .map_err(|e| format!("{}: {e}", out.display()))?;
+            println!("wrote {}", out.display());
+            Ok(())
+        }
+        Command::VsPovray {
+            decks,
+            size,
+            mask,
+            runs,
+        } => {
+            let set = tools::vs_povray::Settings {
+                size: size.clamp(8, 4096),
+                mask: mask.clamp(1, 16),
+                runs: runs.max(1),
+            };
+            let decks: Vec<PathBuf> = decks.iter().map(PathBuf::from).collect();
+            tools::vs_povray::run(&decks, &set)
+        }
     }
 }
 

@@ -1,0 +1,163 @@
+//! The contour's own geometry: its tangent, orientation and signed area,
+//! and the cap test [`point_in_contour`].
+
+use super::{asc, may_have_root, norm2};
+use crate::proc::robust::real_roots;
+use crate::types::Coeff;
+
+/// The contour's curve direction at s of segment (u, v): the derivative;
+/// where it vanishes (a cusp from repeated control points), the limit
+/// direction from the second or third derivative.
+pub(super) fn tangent(u: &Coeff, v: &Coeff, s: f64, size: f64) -> (f64, f64) {
+    let tiny = 1e-9 * size;
+    let t1 = (u.slope(s), v.slope(s));
+    if norm2(t1.0, t1.1) > tiny {
+        return t1;
+    }
+    // x′(s) ≈ x″(s0)(s − s0): forward from the start, backward at the end.
+    let sign = if s > 0.5 { -1.0 } else { 1.0 };
+    let t2 = (sign * u.curvature(s), sign * v.curvature(s));
+    if norm2(t2.0, t2.1) > tiny {
+        return t2;
+    }
+    (u.a, v.a)
+}
+
+/// The contour's signed area, ½∮(U dV − V dU): positive when it runs
+/// counter-clockwise in the (U, V) plane, where (V′, −U′) points out.
+pub fn signed_area(u: &[Coeff], v: &[Coeff]) -> f64 {
+    let mut sum = 0.0;
+    for (cu, cv) in u.iter().zip(v) {
+        let (pu, pv) = (asc(cu), asc(cv));
+        for j in 0..4 {
+            for k in 1..4 {
+                let w = k as f64 / (j + k) as f64;
+                sum += (pu[j] * pv[k] - pv[j] * pu[k]) * w;
+            }
+        }
+    }
+    0.5 * sum
+}
+
+/// +1 or −1: which way (V′, −U′) must turn to point out of the contour.
+pub(super) fn orientation(u: &[Coeff], v: &[Coeff]) -> f64 {
+    if signed_area(u, v) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
+/// Is (x, y) inside the contour? Even–odd rule along the ray from (x, y)
+/// toward +U: the sign of V(s) − y is followed round the whole contour
+/// (at each joint, at the roots of V(s) = y inside each segment, and
+/// between), and each change of sign right of x counts a crossing. A root
+/// where V only touches y changes nothing, and a crossing through a joint
+/// counts once, since each joint's sign is computed once.
+///
+/// Reconstructed (the thesis prints no cap test). Its cubics are solved by
+/// the port's [`real_roots`] whatever `Options::solver` says: one missed
+/// crossing turns a whole cap inside out along a line.
+pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
+    let n = u.len().min(v.len());
+    let mut inside = false;
+    let above = |g: f64| g >= 0.0;
+    for i in 0..n {
+        let (cu, cv) = (&u[i], &v[i]);
+        if cu.max < x {
+            continue; // every change on this segment is left of x
+        }
+        if y < cv.min || y > cv.max {
+            continue; // V stays on one side of y (the convex hull): no change of sign
+        }
+        let next = (i + 1) % n;
+        let g0 = v[i].d - y;
+        let g1 = v[next].d - y;
+        let mut p = [0.0; 7];
+        p[..4].copy_from_slice(&asc(cv));
+        p[0] -= y;
+        if !may_have_root(3, &p, 0.0, 1.0) {
+            continue; // V − y keeps one strict sign over the segment (D18)
+        }
+        let r = real_roots(3, &p, 0.0, 1.0);
+        // The sign sequence: joint, (midpoint, root)*, midpoint, joint.
+        let mut prev_sign = above(g0);
+        let mut prev_at = Some(cu.d);
+        let mut prev_s = 0.0;
+        let roots = if r.identically_zero { &[][..] } else { r.roots() };
+        let mut flip = |sign: bool, at: Option<f64>, s_mid: f64, prev_sign: &mut bool, prev_at: &mut Option<f64>| {
+            if sign != *prev_sign {
+                let loc = at.or(*prev_at).unwrap_or_else(|| cu.value(s_mid));
+                if loc > x {
+                    inside = !inside;
+                }
+            }
+            *prev_sign = sign;
+            *prev_at = at;
+        };
+        for &s in roots.iter().filter(|&&s| s > 0.0 && s < 1.0) {
+            let mid = 0.5 * (prev_s + s);
+            flip(above(cv.value(mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+            flip(true, Some(cu.value(s)), s, &mut prev_sign, &mut prev_at);
+            prev_s = s;
+        }
+        let mid = 0.5 * (prev_s + 1.0);
+        flip(above(cv.value(mid) - y), None, mid, &mut prev_sign, &mut prev_at);
+        flip(above(g1), Some(u[next].d), 1.0, &mut prev_sign, &mut prev_at);
+    }
+    inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::sweep::prepare::{fill_segments, own_box};
+    use crate::types::{BoundingBox, CurveKind, PrimitiveClass, SweepShape};
+
+    fn square(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
+        let mut sw = SweepShape {
+            orientt: crate::types::Axis::Z,
+            curve,
+            points: points.to_vec(),
+            segment: 0,
+            u: vec![],
+            v: vec![],
+            length: 2.0,
+            scale: 1.0,
+            bbox: BoundingBox::default(),
+        };
+        let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
+        sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);
+        sw
+    }
+
+    #[test]
+    fn point_in_contour_square_bezier() {
+        // A square with straight Bezier sides, counter-clockwise.
+        let pts = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 1.0],
+            [3.0, 2.0],
+            [3.0, 3.0],
+            [2.0, 3.0],
+            [1.0, 3.0],
+            [0.0, 3.0],
+            [0.0, 2.0],
+            [0.0, 1.0],
+        ];
+        let sw = square(&pts, CurveKind::Bezier);
+        assert!(signed_area(&sw.u, &sw.v) > 0.0);
+        assert!((signed_area(&sw.u, &sw.v) - 9.0).abs() < 1e-12);
+        assert!(point_in_contour(&sw.u, &sw.v, 1.5, 1.5));
+        assert!(!point_in_contour(&sw.u, &sw.v, 4.0, 1.5));
+        assert!(!point_in_contour(&sw.u, &sw.v, -1.0, 1.5));
+        // Through the corner's height (a joint) and along an edge.
+        assert!(point_in_contour(&sw.u, &sw.v, 1.5, 0.0 + 1e-12));
+        assert!(!point_in_contour(&sw.u, &sw.v, -1.0, 0.0));
+        assert!(!point_in_contour(&sw.u, &sw.v, -1.0, 3.0));
+        assert!(!point_in_contour(&sw.u, &sw.v, 1.5, 3.5));
+    }
+}

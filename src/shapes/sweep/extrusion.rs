@@ -1,0 +1,165 @@
+//! Translation and conic sweeps: one cubic a segment from the ray's
+//! central projection into the contour's plane, and the end caps.
+
+use super::contour::{orientation, point_in_contour, tangent};
+use super::{asc, closer, negligible, norm2, polish, solve, Best, PARALLEL_TOL, RESIDUAL_TOL};
+use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
+
+/// Translation and conic sweeps.
+///
+/// The conic contour at height z is k(z)·(U, V), k(z) = 1 + κz,
+/// κ = (scale − 1)/length. Along the ray o + t d, k is linear in t:
+/// k(t) = k0 + k1 t with k0 = 1 + κ o_z, k1 = κ d_z. The ray meets the
+/// surface where o_x + t d_x = k(t) U(s) and o_y + t d_y = k(t) V(s).
+/// Dividing by k — the central projection from the apex, where k = 0 —
+/// maps the ray onto a straight line of the contour's plane, so t can be
+/// eliminated: each equation is linear in t,
+///   t (d_x − k1 U) = k0 U − o_x,   t (d_y − k1 V) = k0 V − o_y,
+/// and their cross-multiplied difference cancels every product U V:
+///   α U(s) + β V(s) + γ = 0,
+///   α = k0 d_y − k1 o_y,  β = k1 o_x − k0 d_x,  γ = o_y d_x − o_x d_y,
+/// a cubic in s. With κ = 0 it is the translation sweep's line
+/// d_y (U − o_x) − d_x (V − o_y) = 0. t then comes from the two linear
+/// equations by least squares.
+///
+/// α = β = 0 (then γ = 0 too) when the line degenerates to a point: the
+/// ray runs through the apex (for translation, parallel to the axis).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn extrusion(
+    u: &[Coeff],
+    v: &[Coeff],
+    sw: &SweepShape,
+    conic: bool,
+    size: f64,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+) -> Option<LocalHit> {
+    let len = sw.length;
+    if !(len > 0.0 && len.is_finite()) || (conic && !sw.scale.is_finite()) {
+        return None;
+    }
+    let (o, d) = (ray.origin, ray.dir);
+    let dn = d.length();
+    let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
+    let k0 = 1.0 + kappa * o.z;
+    let k1 = kappa * d.z;
+    let apex_z = if kappa != 0.0 { Some(-1.0 / kappa) } else { None };
+    let apex_in = apex_z.is_some_and(|z| (0.0..=len).contains(&z));
+    let hit = |t: f64, normal: DVec3| LocalHit {
+        t,
+        point: o + d * t,
+        normal,
+    };
+
+    // A ray in the plane of the apex: the contour is a point there.
+    if conic && d.z.abs() <= PARALLEL_TOL * dn && k0.abs() <= PARALLEL_TOL {
+        let z = apex_z?;
+        if !apex_in {
+            return None;
+        }
+        let apex = DVec3::new(0.0, 0.0, z);
+        let t = (apex - o).dot(d) / (dn * dn);
+        let miss = (o + d * t - apex).length();
+        return (miss <= RESIDUAL_TOL * size && t > tmin).then(|| hit(t, DVec3::Z));
+    }
+
+    let alpha = k0 * d.y - k1 * o.y;
+    let beta = k1 * o.x - k0 * d.x;
+    let gamma = o.y * d.x - o.x * d.y;
+    let nrm = norm2(alpha, beta);
+    let oxy = norm2(o.x, o.y);
+
+    // The ray's projection is a point: only the caps (and an apex).
+    if nrm <= PARALLEL_TOL * (k0.abs() * dn + k1.abs() * oxy) {
+        if d.z == 0.0 {
+            return None;
+        }
+        let t0 = -o.z / d.z;
+        let (px, py) = (o.x + t0 * d.x, o.y + t0 * d.y);
+        let inside = point_in_contour(u, v, px, py);
+        let mut best: Option<Best> = None;
+        for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
+            let t = (zc - o.z) / d.z;
+            let at_apex = conic && sw.scale == 0.0 && zc == len;
+            if (inside || at_apex) && closer(&best, t, tmin) {
+                best = Some(Best {
+                    t,
+                    normal: DVec3::new(0.0, 0.0, nz),
+                });
+            }
+        }
+        return best.map(|b| hit(b.t, b.normal));
+    }
+
+    let mut best: Option<Best> = None;
+    let mut side = false;
+    let ztol = 1e-12 * size;
+    let fscale = nrm * size + gamma.abs();
+    for i in 0..u.len() {
+        let (cu, cv) = (&u[i], &v[i]);
+        // The segment's box against the line α X + β Y + γ = 0.
+        let gmin = gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
+        let gmax = gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
+        let gpad = 1e-12 * fscale;
+        if gmin > gpad || gmax < -gpad {
+            continue;
+        }
+        let (pu, pv) = (asc(cu), asc(cv));
+        let mut f = [0.0; 7];
+        for k in 0..4 {
+            f[k] = alpha * pu[k] + beta * pv[k];
+        }
+        f[0] += gamma;
+        if negligible(&f, fscale) {
+            continue; // a straight segment along the ray's projection: grazing
+        }
+        let found = solve(3, &f, opts);
+        for &s0 in &found.s[..found.count] {
+            let s = polish(&f, s0);
+            let (uu, vv) = (cu.value(s), cv.value(s));
+            let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
+            let den = ex * ex + ey * ey;
+            if den.is_nan() || den <= 1e-24 * dn * dn {
+                continue; // the ray runs along the generator through this point
+            }
+            let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
+            let p = o + d * t;
+            let k = 1.0 + kappa * p.z;
+            let residual = norm2(p.x - k * uu, p.y - k * vv);
+            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
+                let (tu, tv) = tangent(cu, cv, s, size);
+                let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
+                best = Some(Best { t, normal });
+                side = true;
+            }
+        }
+    }
+
+    // The caps, where the ray's point lies inside the (scaled) contour.
+    if d.z != 0.0 {
+        for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
+            let k = 1.0 + kappa * zc;
+            if k == 0.0 {
+                continue; // the cap is the apex: a ray through it took the path above
+            }
+            let t = (zc - o.z) / d.z;
+            if !closer(&best, t, tmin) {
+                continue;
+            }
+            let p = o + d * t;
+            if point_in_contour(u, v, p.x / k, p.y / k) {
+                best = Some(Best {
+                    t,
+                    normal: DVec3::new(0.0, 0.0, nz),
+                });
+                side = false;
+            }
+        }
+    }
+
+    let b = best?;
+    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
+    let normal = normal.try_normalize()?;
+    Some(hit(b.t, normal))
+}

@@ -1,0 +1,341 @@
+//! The sweep objects of §2.3: a closed contour of cubic segments (uniform
+//! cubic B-spline or composite cubic Bezier, §2.2) swept by translation,
+//! by a conic sweep (translation while the contour scales linearly) or by
+//! rotation, and the ray's intersection with them.
+//!
+//! Reconstructed: the thesis prints the procedures this driver calls
+//! (`spline`, `laguerre`, `outrectp`, unit `proc`) but not the driver. It
+//! follows van Wijk 1984 ("Ray tracing objects defined by sweeping planar
+//! cubic splines", ACM TOG 3(3)) and the thesis's §2.3, §2.5 and §3.3:
+//! per-object and per-segment bounding tests (`outrectp` for rotation),
+//! one polynomial in the curve parameter s per segment (degree 3 for
+//! translation and conic sweeps, 6 for rotation), its roots by
+//! [`laguerre`] or the port's [`real_roots`] (`Options::solver`), the hits
+//! from the roots, and the end caps of translation and conic sweeps.
+//!
+//! The caps: van Wijk decides whether a cap point is inside the contour by
+//! the parity of the side roots before the cap's ray parameter, which is
+//! what `roottesting` (make the count even) and `sorting` (the position of
+//! `tmax`) are for. With `laguerre`, which misses roots (docs/
+//! laguerre_misses.md), a wrong parity turns a strip of the cap's plane
+//! outside the contour solid: a hit that is not on the object. The port
+//! asks [`point_in_contour`] instead, so every hit it reports lies on the
+//! surface whatever the solver; a root `laguerre` misses leaves a hole,
+//! never a false surface. `roottesting` and `sorting` are ported and
+//! tested as printed, and not called here.
+//!
+//! Local frame: the sweep axis is local z. Translation and conic sweeps
+//! put the contour (x = U, y = V) in the plane z = 0 and sweep it to
+//! z = `length`, the conic one scaled by k(z) = 1 + (scale − 1) z/length.
+//! A rotation sweep revolves the contour (U the radius, V the height)
+//! about local z.
+//!
+//! Everything per ray is allocation-free (fixed arrays).
+//!
+//! The files: this one the driver ([`intersect_sweep`]) and what the
+//! kinds share (the solvers' call, the Bernstein pre-test, the tolerances);
+//! `extrusion` translation and conic sweeps; `revolve` rotation sweeps;
+//! `contour` the contour's own geometry (the cap test, orientation,
+//! tangents); `prepare` the coefficients and boxes from the control points.
+
+mod contour;
+mod extrusion;
+mod prepare;
+mod revolve;
+
+pub use contour::{point_in_contour, signed_area};
+pub use prepare::{prepare_sweeps, segment_points};
+
+use super::Near;
+use crate::proc::robust::real_roots;
+use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
+use crate::types::{
+    BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
+};
+use extrusion::extrusion;
+use revolve::revolve;
+
+/// Roots are kept in [−this, 1 + this], so that a ray through a joint is
+/// not lost to rounding on both sides of it (it may be found twice: the
+/// nearest hit is the same).
+pub(super) const JOINT_SLACK: f64 = 1e-9;
+
+/// A root whose hit point is farther than this (relative to the object's
+/// size) from the surface is rejected.
+pub(super) const RESIDUAL_TOL: f64 = 1e-9;
+
+/// A ray component below this fraction of the ray's length counts as 0
+/// (the special cases: parallel or perpendicular to an axis).
+pub(super) const PARALLEL_TOL: f64 = 1e-12;
+
+/// x(s) = ((a s + b) s + c) s + d.
+/// √(a² + b²). `f64::hypot` guards against overflow at a cost that shows in
+/// the profile of every sweep render; scene coordinates are far from the
+/// range where a² could overflow.
+pub(super) fn norm2(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
+}
+
+/// Ascending coefficients [d, c, b, a].
+pub(super) fn asc(c: &Coeff) -> [f64; 4] {
+    [c.d, c.c, c.b, c.a]
+}
+
+/// p(x) and p′(x) of a polynomial of degree ≤ 6 (ascending coefficients).
+pub(super) fn horner(p: &[f64; 7], x: f64) -> (f64, f64) {
+    let (mut f, mut df) = (p[6], 0.0);
+    for k in (0..6).rev() {
+        df = df * x + f;
+        f = f * x + p[k];
+    }
+    (f, df)
+}
+
+/// Newton steps on p from s, kept only while |p| falls.
+pub(super) fn polish(p: &[f64; 7], mut s: f64) -> f64 {
+    let (mut f, mut df) = horner(p, s);
+    for _ in 0..4 {
+        if f == 0.0 || df == 0.0 {
+            break;
+        }
+        let next = s - f / df;
+        let (nf, ndf) = horner(p, next);
+        if nf.is_nan() || nf.abs() >= f.abs() {
+            break;
+        }
+        (s, f, df) = (next, nf, ndf);
+    }
+    s
+}
+
+/// The roots in [−JOINT_SLACK, 1 + JOINT_SLACK] of one segment's
+/// polynomial.
+pub(super) struct Found {
+    pub(super) count: usize,
+    pub(super) s: [f64; 6],
+}
+
+/// The segment's polynomial of degree `n` solved by the chosen method.
+pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
+    let mut out = Found { count: 0, s: [0.0; 6] };
+    let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
+    if !may_have_root(n, a, lo, hi) {
+        return out;
+    }
+    match opts.solver {
+        Solver::Laguerre => {
+            let mut root = [Root::default(); LAGUERRE_ROOTS];
+            let total = laguerre(n, a, hi, lo, &mut root, opts.fidelity);
+            for r in &root[..total.min(6)] {
+                out.s[out.count] = r.a;
+                out.count += 1;
+            }
+        }
+        Solver::Robust => {
+            let r = real_roots(n, a, lo, hi);
+            for &s in r.roots() {
+                out.s[out.count] = s;
+                out.count += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Binomial coefficients C(k, j) for k, j ≤ 6.
+const BINOMIAL: [[f64; 7]; 7] = [
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+    [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
+    [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
+    [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
+];
+
+/// `BERNSTEIN[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
+/// weights of degree n, divided once here instead of per segment and ray
+/// (the same quotients, so the same results).
+const BERNSTEIN: [[[f64; 7]; 7]; 7] = {
+    let mut r = [[[0.0; 7]; 7]; 7];
+    let mut n = 0;
+    while n < 7 {
+        let mut k = 0;
+        while k <= n {
+            let mut j = 0;
+            while j <= k {
+                r[n][k][j] = BINOMIAL[k][j] / BINOMIAL[n][j];
+                j += 1;
+            }
+            k += 1;
+        }
+        n += 1;
+    }
+    r
+};
+
+/// Can the degree-`n` polynomial `a` (ascending coefficients) vanish in
+/// [lo, hi]? Not when its Bernstein coefficients on that interval are all
+/// of one strict sign: the polynomial lies in their convex hull. A test
+/// before either solver that spares the solve for most segments a ray's
+/// line passes near without crossing; where it answers "no" there is no
+/// root for a solver to find, so no image changes (DEVIATIONS D18).
+pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
+    let n = n.min(6);
+    // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
+    let mut c = [0.0; 7];
+    c[..=n].copy_from_slice(&a[..=n]);
+    for i in 0..n {
+        for j in (i..n).rev() {
+            c[j] += lo * c[j + 1];
+        }
+    }
+    let w = hi - lo;
+    let mut wk = 1.0;
+    for ck in c.iter_mut().take(n + 1) {
+        *ck *= wk;
+        wk *= w;
+    }
+    let tiny = 1e-12 * c[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if tiny.is_nan() || tiny <= 0.0 || tiny.is_infinite() {
+        return true; // zero, or not finite: let the solver decide
+    }
+    let (mut pos, mut neg) = (false, false);
+    for (k, wk) in BERNSTEIN[n].iter().enumerate().take(n + 1) {
+        // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
+        let b: f64 = (0..=k).map(|j| wk[j] * c[j]).sum();
+        if b > tiny {
+            pos = true;
+        } else if b < -tiny {
+            neg = true;
+        } else {
+            return true;
+        }
+        if pos && neg {
+            return true;
+        }
+    }
+    false
+}
+
+/// Is every coefficient negligible beside `scale`? (A segment that lies
+/// on the ray's projected line, or a polynomial that vanishes everywhere.)
+pub(super) fn negligible(p: &[f64; 7], scale: f64) -> bool {
+    p.iter().all(|c| c.abs() <= 1e-13 * scale)
+}
+
+/// Does the ray meet the box [lo, hi] at some t > tmin?
+pub(super) fn ray_meets_box(ray: &Ray, tmin: f64, lo: DVec3, hi: DVec3) -> bool {
+    let (mut t0, mut t1) = (tmin, f64::INFINITY);
+    for k in 0..3 {
+        let (o, d) = (ray.origin[k], ray.dir[k]);
+        if d == 0.0 {
+            if o < lo[k] || o > hi[k] {
+                return false;
+            }
+        } else {
+            let (a, b) = ((lo[k] - o) / d, (hi[k] - o) / d);
+            let (a, b) = if a < b { (a, b) } else { (b, a) };
+            t0 = t0.max(a);
+            t1 = t1.min(b);
+        }
+    }
+    t0 <= t1
+}
+
+/// The largest coordinate of the box: the object's size for relative
+/// tolerances.
+pub(super) fn box_size(b: &BoundingBox) -> f64 {
+    [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// The intersection of a ray with a sweep object: the nearest hit with
+/// t > `tmin`, with its unit outward normal, in the object's local frame.
+///
+/// Reconstructed from van Wijk 1984 and the thesis's §2.3, §2.5, §3.3 (see
+/// the module doc). The sweep's `u`, `v` and `bbox` must be filled
+/// ([`prepare_sweeps`], or the key-frame code for in-between shapes), and
+/// each `u[i]`, `v[i]` must bound its segment with `min`, `max`.
+///
+/// Special cases, each on its own path:
+/// - translation, a ray parallel to the axis: its projection is a point,
+///   inside the contour or not; only the caps can be hit;
+/// - conic, a ray through the apex: the same, with the point the ray's
+///   central projection from the apex; a ray in the plane of the apex
+///   (where the contour shrinks to a point) can only touch the apex;
+/// - rotation, a ray along the axis (constant radius): U(s) = r, a cubic;
+///   a ray perpendicular to the axis (constant height): V(s) = z, a cubic,
+///   then the ray's two crossings of the circle of radius U(s).
+///
+/// The ray is taken [`Near`] the object's box first, so the polynomials'
+/// coefficients are of the object's size whatever the eye's distance.
+///
+/// Each root gives its hit from the better conditioned equation, is
+/// polished, and is rejected unless the hit lies on the surface (within
+/// 1e-9 of the object's size); so a spurious root of either solver (the
+/// listing's `laguerre` can return one, erratum 7) never becomes a hit.
+pub fn intersect_sweep(
+    class: PrimitiveClass,
+    sweep: &SweepShape,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+) -> Option<LocalHit> {
+    let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
+    if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
+        return None;
+    }
+    let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
+    let mut size = box_size(&sweep.bbox);
+    if !(size > 0.0 && size.is_finite()) {
+        size = u
+            .iter()
+            .chain(v)
+            .fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
+        size = size.max(sweep.length.abs());
+    }
+    if !(size > 0.0 && size.is_finite()) {
+        return None;
+    }
+    let b = &sweep.bbox;
+    let pad = 1e-9 * size;
+    let boxed = b.xmin < b.xmax && b.zmin < b.zmax;
+    let (lo, hi) = match class {
+        PrimitiveClass::Translation | PrimitiveClass::Conic => (
+            DVec3::new(b.xmin, b.ymin, b.zmin) - pad,
+            DVec3::new(b.xmax, b.ymax, b.zmax) + pad,
+        ),
+        PrimitiveClass::Rotation => {
+            let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
+            (DVec3::new(-r, -r, b.zmin) - pad, DVec3::new(r, r, b.zmax) + pad)
+        }
+        _ => return None,
+    };
+    // Every polynomial below is formed from the ray near the object.
+    let near = if boxed {
+        Near::of(ray, tmin, 0.5 * (lo + hi), 0.5 * (hi - lo).length())
+    } else {
+        Near::of(ray, tmin, DVec3::ZERO, 2.0 * size)
+    };
+    let (ray, tmin) = (&near.ray, near.tmin);
+    if boxed && !ray_meets_box(ray, tmin, lo, hi) {
+        return None;
+    }
+    near.back(match class {
+        PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts),
+        _ => extrusion(u, v, sweep, class == PrimitiveClass::Conic, size, ray, tmin, opts),
+    })
+}
+
+/// The nearest hit so far.
+#[derive(Clone, Copy)]
+pub(super) struct Best {
+    pub(super) t: f64,
+    pub(super) normal: DVec3,
+}
+
+pub(super) fn closer(best: &Option<Best>, t: f64, tmin: f64) -> bool {
+    t > tmin && best.is_none_or(|b| t < b.t)
+}

@@ -1,0 +1,411 @@
+//! `tools pov DECK -o SCENE.pov`: a deck's scene as POV-Ray 3.7 SDL, to
+//! render the same geometry with the renderer a user would otherwise pick
+//! (POV-Ray's `prism` and `lathe` are van Wijk's sweeps too). Not the
+//! thesis's: a cross-check of the port.
+//!
+//! What is exported: the view as an explicit camera (location, direction,
+//! right, up: no `look_at`, so the window is exactly the deck's), the
+//! background, the lights, each surface's colour and Whitted constants as
+//! a pigment and finish, and every object at rest. Our world is
+//! right-handed with z up, POV-Ray's left-handed with y up: every point
+//! and vector (x, y, z) becomes <x, z, y>, which is the same picture (the
+//! swap turns one handedness into the other). Object frames are written as
+//! `matrix` of the swapped `transfm`, and in the local frame the sweep
+//! axis (local z) is POV's local y, along which `prism` and `lathe` sweep:
+//! - translation: `prism { linear_sweep bezier_spline 0, length, … }`;
+//! - conic: `prism { conic_sweep bezier_spline 1, scale, … }`, whose
+//!   section at height y is the contour scaled by y, then scaled and moved
+//!   along y so that height 1 is z = 0 and height `scale` is z = `length`;
+//! - rotation: `lathe { bezier_spline … }` of the (radius U, height V)
+//!   contour.
+//!
+//! A uniform cubic B-spline contour is converted to Bezier segments
+//! exactly (each segment's four Bezier points from its four B-spline
+//! points). Not exported, and said so in the file: motion and key frames
+//! (the scene stands as at rest, a key-frame object as its first shape),
+//! paints and textures (the surface's plain colour).
+
+use std::fmt::Write as _;
+
+use raytrace::raytrace::{getangle, translookpt};
+use raytrace::shapes::sweep::segment_points;
+use raytrace::types::{
+    CurveKind, DMat4, DVec3, Fidelity, PrimitiveClass, Scene, Shape, SurfaceAttribute, SurfaceRecord, SweepShape,
+    MAXSEGMENTS,
+};
+
+/// A point or vector of our world as POV-Ray's: (x, y, z) → <x, z, y>.
+pub fn pov_vec(v: DVec3) -> String {
+    format!("<{}, {}, {}>", num(v.x), num(v.z), num(v.y))
+}
+
+/// A number as SDL reads it back exactly (Rust's shortest round-trip
+/// form), with a finite fallback of 0.
+fn num(x: f64) -> String {
+    if x.is_finite() {
+        format!("{x:?}")
+    } else {
+        "0".into()
+    }
+}
+
+/// The camera of our renderer's window as POV-Ray vectors: location,
+/// direction (the eye to the window's centre), right (the window's width,
+/// left to right) and up (its height, bottom to top), so that POV-Ray's
+/// ray through a pixel centre is ours.
+pub fn camera(scene: &Scene, fidelity: Fidelity) -> [DVec3; 4] {
+    let view = &scene.view;
+    let (sinz, cosz, sinx, cosx) = getangle(view);
+    // As `Camera::new`: the main program negates both sines.
+    let axis = |x: f64, y: f64, z: f64| translookpt(x, y, z, -sinz, cosz, -sinx, cosx, DVec3::ZERO);
+    let img = &scene.image;
+    let screen_w = view.screensize;
+    let screen_h = match fidelity {
+        Fidelity::Listing => screen_w,
+        Fidelity::Thesis => screen_w * img.height as f64 / img.width.max(1) as f64,
+    };
+    [
+        view.eyept,
+        axis(0.0, -1.0, 0.0) * view.scrndistance,
+        // The view frame's −x is the viewer's right.
+        axis(-1.0, 0.0, 0.0) * screen_w,
+        axis(0.0, 0.0, 1.0) * screen_h,
+    ]
+}
+
+/// The Bezier control points of each segment of a sweep's contour: as
+/// they are for a Bezier contour; for a uniform cubic B-spline, the exact
+/// conversion of each segment (B-spline points P0…P3):
+/// (P0 + 4P1 + P2)/6, (2P1 + P2)/3, (P1 + 2P2)/3, (P1 + 4P2 + P3)/6.
+pub fn bezier_segments(sw: &SweepShape) -> Vec<[[f64; 2]; 4]> {
+    let n = sw.points.len();
+    let segments = match sw.curve {
+        CurveKind::Bspline => n,
+        CurveKind::Bezier => n / 3,
+    }
+    .min(MAXSEGMENTS);
+    (0..segments)
+        .map(|i| {
+            let p = segment_points(sw.curve, &sw.points, i);
+            match sw.curve {
+                CurveKind::Bezier => p,
+                CurveKind::Bspline => {
+                    let mix = |w: [f64; 4]| -> [f64; 2] {
+                        std::array::from_fn(|k| (0..4).map(|j| w[j] * p[j][k]).sum::<f64>())
+                    };
+                    [
+                        mix([1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0, 0.0]),
+                        mix([0.0, 2.0 / 3.0, 1.0 / 3.0, 0.0]),
+                        mix([0.0, 1.0 / 3.0, 2.0 / 3.0, 0.0]),
+                        mix([0.0, 1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0]),
+                    ]
+                }
+            }
+        })
+        .collect()
+}
+
+/// The `matrix` of an object frame: POV-Ray's rows are the images of its
+/// axes and the translation, each swapped; POV's local y is our local z.
+fn pov_matrix(m: &DMat4) -> String {
+    let body = [m.x_axis, m.z_axis, m.y_axis, m.w_axis]
+        .map(|v| pov_vec(v.truncate()))
+        .iter()
+        .map(|s| s.trim_start_matches('<').trim_end_matches('>').to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    format!("matrix <{body}>")
+}
+
+/// The pigment, finish and interior of a surface.
+fn texture(s: &SurfaceRecord) -> String {
+    let c = s.color;
+    let mut out = String::new();
+    let filter = match s.surface {
+        SurfaceAttribute::Transparent | SurfaceAttribute::Crystal => s.kt.clamp(0.0, 1.0),
+        _ => 0.0,
+    };
+    let _ = write!(
+        out,
+        "pigment {{ rgbf <{}, {}, {}, {}> }} finish {{ ambient rgb <{}, {}, {}> diffuse {}",
+        num(c.x),
+        num(c.y),
+        num(c.z),
+        num(filter),
+        num(s.ka * s.iobject.x),
+        num(s.ka * s.iobject.y),
+        num(s.ka * s.iobject.z),
+        num(s.kd)
+    );
+    if s.surface == SurfaceAttribute::Mirrored {
+        let _ = write!(out, " reflection {}", num(s.ks * s.prcntrfl));
+    }
+    out.push_str(" }");
+    if filter > 0.0 {
+        let _ = write!(out, " interior {{ ior {} }}", num(s.index));
+    }
+    if s.paint.is_some() || s.texture.is_some() {
+        out.push_str(" /* the paint or texture is not exported */");
+    }
+    out
+}
+
+/// A 2-D spline point list, four points a Bezier segment.
+fn spline_points(segs: &[[[f64; 2]; 4]]) -> String {
+    segs.iter()
+        .flat_map(|s| s.iter())
+        .map(|p| format!("<{}, {}>", num(p[0]), num(p[1])))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// One sweep object's SDL (without its texture and matrix), or `None`
+/// when it has no segment.
+pub fn sweep_sdl(class: PrimitiveClass, sw: &SweepShape) -> Option<String> {
+    let segs = bezier_segments(sw);
+    if segs.is_empty() {
+        return None;
+    }
+    let pts = spline_points(&segs);
+    let count = 4 * segs.len();
+    Some(match class {
+        PrimitiveClass::Rotation => format!("lathe {{ bezier_spline {count}, {pts}"),
+        PrimitiveClass::Conic if sw.scale != 1.0 && sw.scale.is_finite() => {
+            // Height y of the cone is the section scaled by y: height 1 at
+            // z = 0, `scale` at z = length; c = length/(scale − 1).
+            let c = sw.length / (sw.scale - 1.0);
+            format!(
+                "prism {{ conic_sweep bezier_spline 1, {}, {count}, {pts} scale <1, {}, 1> translate <0, {}, 0>",
+                num(sw.scale),
+                num(c),
+                num(-c)
+            )
+        }
+        _ => format!(
+            "prism {{ linear_sweep bezier_spline 0, {}, {count}, {pts}",
+            num(sw.length)
+        ),
+    })
+}
+
+/// The SDL of one object (without texture and matrix).
+fn shape_sdl(class: PrimitiveClass, shape: &Shape, radius: f64) -> Option<String> {
+    Some(match shape {
+        Shape::Sphere => format!("sphere {{ <0, 0, 0>, {}", num(radius)),
+        Shape::Block { lengths } => {
+            let h = *lengths * 0.5;
+            format!("box {{ {}, {}", pov_vec(-h), pov_vec(h))
+        }
+        Shape::Cylinder {
+            cylradius, top, bottom, ..
+        } => format!(
+            "cylinder {{ <0, {}, 0>, <0, {}, 0>, {}",
+            num(*bottom),
+            num(*top),
+            num(*cylradius)
+        ),
+        Shape::Prism { height, vertex, .. } => {
+            let mut pts: Vec<String> = vertex
+                .iter()
+                .map(|p| format!("<{}, {}>", num(p[0]), num(p[1])))
+                .collect();
+            let first = pts.first()?.clone();
+            pts.push(first);
+            format!(
+                "prism {{ linear_sweep linear_spline 0, {}, {}, {}",
+                num(*height),
+                pts.len(),
+                pts.join(", ")
+            )
+        }
+        Shape::Sweep(sw) => sweep_sdl(class, sw)?,
+    })
+}
+
+/// The whole scene as POV-Ray 3.7 SDL (see the module doc).
+pub fn scene_sdl(scene: &Scene, fidelity: Fidelity) -> String {
+    let mut out = String::new();
+    let [location, direction, right, up] = camera(scene, fidelity);
+    let _ = writeln!(
+        out,
+        "// Exported by `tools pov` from a TR-88-036 deck: (x, y, z) -> <x, z, y>."
+    );
+    if !scene.motions.is_empty() || !scene.keyframes.is_empty() {
+        let _ = writeln!(
+            out,
+            "// Motion and key frames are not exported: the scene as at rest, key-frame objects as their first shape."
+        );
+    }
+    let _ = writeln!(out, "#version 3.7;");
+    let _ = writeln!(
+        out,
+        "global_settings {{ assumed_gamma 1.0 ambient_light rgb <1, 1, 1> max_trace_level 6 }}"
+    );
+    let b = scene.backgrnd;
+    let _ = writeln!(out, "background {{ rgb <{}, {}, {}> }}", num(b.x), num(b.y), num(b.z));
+    let _ = writeln!(
+        out,
+        "camera {{ perspective location {} direction {} right {} up {} }}",
+        pov_vec(location),
+        pov_vec(direction),
+        pov_vec(right),
+        pov_vec(up)
+    );
+    for l in &scene.lights {
+        let c = l.color;
+        let _ = writeln!(
+            out,
+            "light_source {{ {} color rgb <{}, {}, {}> }} // {}",
+            pov_vec(l.position),
+            num(c.x),
+            num(c.y),
+            num(c.z),
+            l.name
+        );
+    }
+    for obj in &scene.objects {
+        let Some(shape) = shape_sdl(obj.class, &obj.shape, obj.radius) else {
+            let _ = writeln!(out, "// {}: no segment, not exported", obj.name);
+            continue;
+        };
+        let tex = scene.surfaces.get(obj.surface).map(texture).unwrap_or_default();
+        let _ = writeln!(out, "{shape} {tex} {} }} // {}", pov_matrix(&obj.transfm), obj.name);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use raytrace::proc::sweep::spline;
+    use raytrace::types::{BoundingBox, Coeff};
+
+    fn sweep(curve: CurveKind, points: Vec<[f64; 2]>) -> SweepShape {
+        SweepShape {
+            orientt: raytrace::types::Axis::Z,
+            curve,
+            points,
+            segment: 0,
+            u: vec![],
+            v: vec![],
+            length: 2.0,
+            scale: 0.5,
+            bbox: BoundingBox::default(),
+        }
+    }
+
+    fn bezier_at(p: &[[f64; 2]; 4], s: f64, k: usize) -> f64 {
+        let r = 1.0 - s;
+        r * r * r * p[0][k] + 3.0 * r * r * s * p[1][k] + 3.0 * r * s * s * p[2][k] + s * s * s * p[3][k]
+    }
+
+    /// Each Bezier segment of a B-spline contour is the B-spline's own
+    /// segment (`spline`'s coefficients) at every parameter, and the
+    /// segments join up into a closed contour.
+    #[test]
+    fn bspline_to_bezier_is_exact() {
+        let pts = vec![[1.0, 0.0], [0.3, 0.9], [-1.2, 0.4], [-0.7, -1.1], [0.8, -0.6]];
+        let sw = sweep(CurveKind::Bspline, pts.clone());
+        let segs = bezier_segments(&sw);
+        assert_eq!(segs.len(), 5);
+        for (i, seg) in segs.iter().enumerate() {
+            let p = segment_points(CurveKind::Bspline, &pts, i);
+            for k in [0, 1] {
+                let mut c = Coeff::default();
+                let mut b = BoundingBox::EMPTY;
+                spline(
+                    CurveKind::Bspline,
+                    p[0][k],
+                    p[1][k],
+                    p[2][k],
+                    p[3][k],
+                    &mut c,
+                    PrimitiveClass::Translation,
+                    1,
+                    &mut b,
+                );
+                for s in [0.0, 0.2, 0.5, 0.77, 1.0] {
+                    assert!((bezier_at(seg, s, k) - c.value(s)).abs() < 1e-14, "segment {i}, s {s}");
+                }
+            }
+            let next = &segs[(i + 1) % segs.len()];
+            assert!((seg[3][0] - next[0][0]).abs() < 1e-15 && (seg[3][1] - next[0][1]).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn axes_are_swapped() {
+        assert_eq!(pov_vec(DVec3::new(1.0, 2.0, 3.0)), "<1.0, 3.0, 2.0>");
+        // A translation by (1, 2, 3): POV's matrix rows x, y(our z), z(our y), move.
+        let m = DMat4::from_translation(DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(
+            pov_matrix(&m),
+            "matrix <1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 3.0, 2.0>"
+        );
+        // A turn taking our x to our y: POV's x goes to POV's z.
+        let turn = DMat4::from_rotation_z(std::f64::consts::FRAC_PI_2);
+        let text = pov_matrix(&turn);
+        let v: Vec<f64> = text
+            .trim_start_matches("matrix <")
+            .trim_end_matches('>')
+            .split(", ")
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let row = |i: usize| DVec3::new(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+        assert!((row(0) - DVec3::new(0.0, 0.0, 1.0)).length() < 1e-15);
+        assert!((row(1) - DVec3::new(0.0, 1.0, 0.0)).length() < 1e-15);
+        assert!((row(2) - DVec3::new(-1.0, 0.0, 0.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn sweep_kinds_become_prisms_and_lathes() {
+        // A triangle of three straight Bezier sides.
+        let triangle = vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [3.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 3.0],
+            [0.0, 2.0],
+            [0.0, 1.0],
+        ];
+        let sw = sweep(CurveKind::Bezier, triangle);
+        let t = sweep_sdl(PrimitiveClass::Translation, &sw).unwrap();
+        assert!(
+            t.starts_with("prism { linear_sweep bezier_spline 0, 2.0, 12, <0.0, 0.0>, <1.0, 0.0>"),
+            "{t}"
+        );
+        // The last segment closes on the first point.
+        assert!(t.ends_with("<0.0, 1.0>, <0.0, 0.0>"), "{t}");
+        // Conic, scale 0.5 over length 2: c = 2/(0.5 − 1) = −4.
+        let c = sweep_sdl(PrimitiveClass::Conic, &sw).unwrap();
+        assert!(c.starts_with("prism { conic_sweep bezier_spline 1, 0.5, 12, "), "{c}");
+        assert!(c.ends_with("scale <1, -4.0, 1> translate <0, 4.0, 0>"), "{c}");
+        let r = sweep_sdl(PrimitiveClass::Rotation, &sw).unwrap();
+        assert!(r.starts_with("lathe { bezier_spline 12, <0.0, 0.0>"), "{r}");
+        assert!(sweep_sdl(PrimitiveClass::Rotation, &sweep(CurveKind::Bezier, vec![[0.0, 1.0]])).is_none());
+    }
+
+    /// The camera's vectors: location the eye, direction to the window's
+    /// centre at `scrndistance`, right to the viewer's right, up upward.
+    #[test]
+    fn camera_frames_the_window() {
+        let mut scene = raytrace::deck::initialize(
+            "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\nimage 200 100 mask 1\n",
+            "t.deck",
+            std::path::Path::new("."),
+            Fidelity::Thesis,
+        )
+        .unwrap();
+        scene.lights.clear();
+        let [l, d, r, u] = camera(&scene, Fidelity::Thesis);
+        assert_eq!(l, DVec3::new(0.0, -10.0, 0.0));
+        assert!((d - DVec3::new(0.0, 5.0, 0.0)).length() < 1e-12);
+        assert!((r - DVec3::new(4.0, 0.0, 0.0)).length() < 1e-12, "{r}");
+        assert!((u - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-12, "{u}");
+        let text = scene_sdl(&scene, Fidelity::Thesis);
+        assert!(text.contains("camera { perspective location <0.0, 0.0, -10.0> direction <0.0, 0.0, 5.0> right <4.0, 0.0, 0.0> up <0.0, 2.0, 0.0> }"), "{text}");
+    }
+}

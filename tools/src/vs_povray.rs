@@ -1,0 +1,299 @@
+//! `tools vs-povray DECK…`: our renderer against POV-Ray 3.7 on the same
+//! geometry (the scene [`crate::pov`] exports). For each deck: CPU time of
+//! both, one thread each, at equal samples (our `mask` M against POV's
+//! `+A0.0 +AM1 +RM -J`, M×M rays a pixel), the renders interleaved and the
+//! medians taken; then the silhouettes of the sweep objects at one sample
+//! a pixel (each sweep alone, white on black, no light), compared pixel by
+//! pixel. Not the thesis's: a cross-check of the port. Linux only (CPU
+//! times from /proc/self/stat).
+//!
+//! POV-Ray is the Debian package `povray`; without it the tool says so and
+//! stops. Nothing here is asserted in tests.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use raytrace::raytrace::{prepare, render};
+use raytrace::types::{DVec3, Options, Scene, Shape, Solver, SurfaceAttribute};
+
+use crate::decks::{deck_path, load, resize};
+use crate::pov::scene_sdl;
+
+/// The settings of one comparison.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Width and height in pixels.
+    pub size: usize,
+    /// M: M×M samples a pixel on both sides.
+    pub mask: usize,
+    /// Timed rounds (each renders ours with each solver, then POV-Ray's).
+    pub runs: usize,
+}
+
+/// Fails with a clear message when `povray` cannot be run.
+pub fn check_povray() -> Result<(), String> {
+    match Command::new("povray")
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+    {
+        Ok(_) => Ok(()),
+        Err(e) => Err(format!(
+            "povray could not be run ({e}): install POV-Ray 3.7, the Debian package `povray` (apt-get install povray)"
+        )),
+    }
+}
+
+/// CPU seconds used so far: (this process, its waited-for children), from
+/// /proc/self/stat (utime + stime, cutime + cstime).
+fn cpu_seconds() -> Result<(f64, f64), String> {
+    let stat = std::fs::read_to_string("/proc/self/stat").map_err(|e| format!("/proc/self/stat: {e}"))?;
+    // The fields after the command name, which is in parentheses.
+    let rest = stat.rsplit_once(')').map(|(_, r)| r).unwrap_or("");
+    let f: Vec<f64> = rest.split_whitespace().map(|x| x.parse().unwrap_or(0.0)).collect();
+    // rest[0] is field 3 (state): utime is field 14, cstime field 17.
+    if f.len() < 15 {
+        return Err("/proc/self/stat: too few fields".into());
+    }
+    let tick = clock_ticks();
+    Ok(((f[11] + f[12]) / tick, (f[13] + f[14]) / tick))
+}
+
+/// Clock ticks a second (`getconf CLK_TCK`, 100 if that fails).
+fn clock_ticks() -> f64 {
+    Command::new("getconf")
+        .arg("CLK_TCK")
+        .output()
+        .ok()
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .and_then(|s| s.trim().parse().ok())
+        .unwrap_or(100.0)
+}
+
+/// Renders `pov` with POV-Ray on one thread at `size`², `mask`² samples a
+/// pixel (1: no anti-aliasing), into `out` (PPM); returns its CPU seconds.
+fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<f64, String> {
+    let mut cmd = Command::new("povray");
+    cmd.arg(format!("+I{}", pov.display()))
+        .arg(format!("+O{}", out.display()))
+        .args(["+FP", "-D", "-V", "+WT1", "-GA"])
+        .arg(format!("+W{size}"))
+        .arg(format!("+H{size}"));
+    if mask > 1 {
+        cmd.args(["+A0.0", "+AM1", "-J"]).arg(format!("+R{mask}"));
+    } else {
+        cmd.arg("-A");
+    }
+    let before = cpu_seconds()?.1;
+    let o = cmd.output().map_err(|e| format!("povray: {e}"))?;
+    if !o.status.success() {
+        return Err(format!(
+            "povray failed on {}: {}",
+            pov.display(),
+            String::from_utf8_lossy(&o.stderr).lines().last().unwrap_or("")
+        ));
+    }
+    Ok(cpu_seconds()?.1 - before)
+}
+
+/// Our render of `scene` on a one-thread pool; returns its CPU seconds
+/// and the raster's pixels.
+fn ours(pool: &rayon::ThreadPool, scene: &Scene, opts: &Options) -> Result<(f64, Vec<[u8; 3]>), String> {
+    let before = cpu_seconds()?.0;
+    let r = pool.install(|| render(scene, opts, &|| {}));
+    Ok((cpu_seconds()?.0 - before, r.raster.pixels))
+}
+
+/// The pixels of a binary PPM (P6, 8 or 16 bits a channel).
+pub fn read_ppm(bytes: &[u8]) -> Result<(usize, usize, Vec<[u8; 3]>), String> {
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 && i < bytes.len() {
+        while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if i < bytes.len() && bytes[i] == b'#' {
+            while i < bytes.len() && bytes[i] != b'\n' {
+                i += 1;
+            }
+            continue;
+        }
+        let start = i;
+        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..i]).to_string());
+    }
+    i += 1; // the one whitespace after maxval
+    if fields.len() < 4 || fields[0] != "P6" {
+        return Err("not a binary PPM (P6)".into());
+    }
+    let num = |s: &str| s.parse::<usize>().map_err(|_| format!("PPM header: {s}"));
+    let (w, h, max) = (num(&fields[1])?, num(&fields[2])?, num(&fields[3])?);
+    let wide = max > 255;
+    let per = if wide { 6 } else { 3 };
+    let data = bytes.get(i..).unwrap_or(&[]);
+    if data.len() < w * h * per || max == 0 {
+        return Err("PPM: short pixel data".into());
+    }
+    let px = data
+        .chunks_exact(per)
+        .take(w * h)
+        .map(|c| {
+            if wide {
+                std::array::from_fn(|k| ((u16::from_be_bytes([c[2 * k], c[2 * k + 1]]) as usize * 255) / max) as u8)
+            } else {
+                [c[0], c[1], c[2]]
+            }
+        })
+        .collect();
+    Ok((w, h, px))
+}
+
+/// The scene's sweep objects alone, white (ambient 1) on black, no light:
+/// a render of it is the sweeps' silhouette.
+fn silhouette_scene(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    let keep: Vec<usize> = (0..s.objects.len())
+        .filter(|&i| matches!(s.objects[i].shape, Shape::Sweep(_)))
+        .collect();
+    s.object_pos = keep.iter().map(|&i| s.object_pos[i]).collect();
+    s.objects = keep.iter().map(|&i| s.objects[i].clone()).collect();
+    s.motions.clear();
+    s.keyframes.clear();
+    s.lights.clear();
+    s.backgrnd = DVec3::ZERO;
+    for surf in &mut s.surfaces {
+        surf.color = DVec3::ONE;
+        surf.iobject = DVec3::ONE;
+        (surf.ka, surf.kd, surf.ks, surf.kt) = (1.0, 0.0, 0.0, 0.0);
+        surf.surface = SurfaceAttribute::Opaque;
+        surf.paint = None;
+        surf.texture = None;
+    }
+    s
+}
+
+fn lit(p: &[u8; 3]) -> bool {
+    p.iter().map(|&c| c as u32).sum::<u32>() > 3 * 128
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// One deck's comparison, printed as a table row.
+fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> Result<(), String> {
+    let solvers = [Solver::Laguerre, Solver::Robust];
+    let opts = |solver| Options {
+        solver,
+        ..Options::default()
+    };
+    let mut base = load(deck, Options::default().fidelity)?;
+    resize(&mut base, set.size, set.size, set.mask);
+    let stem = deck_path(deck)
+        .file_stem()
+        .map(|s| s.to_string_lossy().to_string())
+        .unwrap_or_else(|| "deck".into());
+    let pov = dir.join(format!("{stem}.pov"));
+    std::fs::write(&pov, scene_sdl(&base, Options::default().fidelity))
+        .map_err(|e| format!("{}: {e}", pov.display()))?;
+    let ppm = dir.join(format!("{stem}.ppm"));
+    let mut scenes = Vec::new();
+    for s in solvers {
+        let mut sc = base.clone();
+        prepare(&mut sc, &opts(s)).map_err(|e| e.to_string())?;
+        scenes.push(sc);
+    }
+    let mut ours_t = vec![Vec::new(); solvers.len()];
+    let mut pov_t = Vec::new();
+    for _ in 0..set.runs {
+        for (k, s) in solvers.iter().enumerate() {
+            ours_t[k].push(ours(pool, &scenes[k], &opts(*s))?.0);
+        }
+        pov_t.push(povray(&pov, &ppm, set.size, set.mask)?);
+    }
+    let pov_m = median(pov_t);
+    let ours_m: Vec<f64> = ours_t.into_iter().map(median).collect();
+
+    // Silhouettes at one sample a pixel.
+    let mut sil = silhouette_scene(&base);
+    resize(&mut sil, set.size, set.size, 1);
+    let sil_pov = dir.join(format!("{stem}_silhouette.pov"));
+    std::fs::write(&sil_pov, scene_sdl(&sil, Options::default().fidelity))
+        .map_err(|e| format!("{}: {e}", sil_pov.display()))?;
+    povray(&sil_pov, &ppm, set.size, 1)?;
+    let bytes = std::fs::read(&ppm).map_err(|e| format!("{}: {e}", ppm.display()))?;
+    let (w, h, theirs) = read_ppm(&bytes)?;
+    if (w, h) != (set.size, set.size) {
+        return Err(format!("povray wrote {w}×{h}, not {}²", set.size));
+    }
+    let mut agree = Vec::new();
+    for s in solvers {
+        let mut sc = sil.clone();
+        prepare(&mut sc, &opts(s)).map_err(|e| e.to_string())?;
+        let (_, mine) = ours(pool, &sc, &opts(s))?;
+        let union = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) || lit(b)).count();
+        let differ = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) != lit(b)).count();
+        agree.push((differ, union));
+    }
+    let pct = |(d, u): (usize, usize)| 100.0 * (u - d) as f64 / u.max(1) as f64;
+    println!(
+        "| {stem} | {:.3} | {:.3} | {:.3} | {:.2} | {:.2} | {} of {} ({:.2} %) | {} of {} ({:.2} %) |",
+        ours_m[0],
+        ours_m[1],
+        pov_m,
+        ours_m[0] / pov_m,
+        ours_m[1] / pov_m,
+        agree[0].0,
+        agree[0].1,
+        pct(agree[0]),
+        agree[1].0,
+        agree[1].1,
+        pct(agree[1]),
+    );
+    Ok(())
+}
+
+/// Compares every deck (see the module doc) and prints a Markdown table.
+pub fn run(decks: &[PathBuf], set: &Settings) -> Result<(), String> {
+    check_povray()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let dir = std::env::temp_dir().join(format!("tools-vs-povray-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    println!(
+        "{}², {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
+        set.size,
+        set.mask * set.mask,
+        set.runs
+    );
+    println!("| deck | ours laguerre | ours robust | POV-Ray | laguerre/POV | robust/POV | silhouette, laguerre | silhouette, robust |");
+    println!("|---|---|---|---|---|---|---|---|");
+    let result = decks
+        .iter()
+        .try_for_each(|d| compare(&d.display().to_string(), set, &pool, &dir));
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ppm_eight_and_sixteen_bits() {
+        let mut b = b"P6\n# c\n2 1\n255\n".to_vec();
+        b.extend_from_slice(&[1, 2, 3, 250, 251, 252]);
+        assert_eq!(read_ppm(&b).unwrap(), (2, 1, vec![[1, 2, 3], [250, 251, 252]]));
+        let mut w = b"P6 1 1 65535\n".to_vec();
+        w.extend_from_slice(&[0xff, 0xff, 0x80, 0x00, 0, 0]);
+        assert_eq!(read_ppm(&w).unwrap(), (1, 1, vec![[255, 127, 0]]));
+        assert!(read_ppm(b"P3 1 1 255\n1 2 3").is_err());
+        assert!(read_ppm(b"P6 2 2 255\n\x01\x02").is_err());
+    }
+}
