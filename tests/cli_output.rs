@@ -296,7 +296,7 @@ sphere ball red at 0 0 0 radius 1
 fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
     let deck = dir.join("big.deck");
     std::fs::write(&deck, BIG).unwrap();
-    let child = raytrace_command()
+    let mut child = raytrace_command()
         .args(["-q", "--threads", "1"])
         .arg(&deck)
         .arg("-o")
@@ -312,6 +312,10 @@ fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
     ));
     let started = Instant::now();
     while !temp.exists() {
+        if let Some(status) = child.try_wait().unwrap() {
+            let out = child.wait_with_output().unwrap();
+            panic!("raytrace ended ({status}) before its temporary file: {}", stderr(&out));
+        }
         assert!(
             started.elapsed() < Duration::from_secs(120),
             "no temporary file {}",
