@@ -434,6 +434,16 @@ mod tests {
         }
     }
 
+    /// The two halves of the solvers' picture are drawn with each solver:
+    /// on the edge-on goblet `laguerre` leaves bands the robust solver fills.
+    #[test]
+    fn the_solvers_picture_is_drawn_with_each_solver() {
+        let deck = checkout().join("legacy_pascal/decks/stress_edge_on.deck");
+        let laguerre = render_deck(&deck, Solver::Laguerre).unwrap();
+        let robust = render_deck(&deck, Solver::Robust).unwrap();
+        assert!(pixels_differing(&laguerre, &robust) > 100);
+    }
+
     #[test]
     fn side_by_side_puts_a_white_gap_between() {
         let a = Raster {
