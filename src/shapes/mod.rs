@@ -33,15 +33,16 @@ pub struct Near {
 
 impl Near {
     /// `ray` re-based at its closest approach to `centre` when it starts
-    /// outside the sphere of `radius` about `centre` and runs toward it;
+    /// outside the sphere of radius √`radius2` about `centre` and runs
+    /// toward it (the square, so that no root is taken per ray);
     /// unchanged (shift 0) when it starts inside, so a ray leaving a
     /// surface keeps its own bits. The closest approach is a well-
     /// conditioned product (no difference of squares), and from it every
     /// point of the object is within `radius` plus the ray's offset.
-    pub fn of(ray: &Ray, tmin: f64, centre: DVec3, radius: f64) -> Near {
+    pub fn of(ray: &Ray, tmin: f64, centre: DVec3, radius2: f64) -> Near {
         let oc = ray.origin - centre;
         let shift = -oc.dot(ray.dir) / ray.dir.length_squared();
-        if oc.length_squared() <= radius * radius || !(shift > 0.0 && shift.is_finite()) {
+        if oc.length_squared() <= radius2 || !(shift > 0.0 && shift.is_finite()) {
             return Near {
                 ray: *ray,
                 tmin,
@@ -70,7 +71,7 @@ impl Near {
 /// Reconstructed: |o + t d|² = r², a quadratic in t (on the ray [`Near`]
 /// the sphere).
 pub fn intersect_sphere(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
-    let near = Near::of(ray, tmin, DVec3::ZERO, radius);
+    let near = Near::of(ray, tmin, DVec3::ZERO, radius * radius);
     near.back(sphere_hit(radius, &near.ray, near.tmin))
 }
 
@@ -155,7 +156,7 @@ fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f
 /// Reconstructed: the slab test, as a convex clip of six planes.
 pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let h = lengths * 0.5;
-    let near = Near::of(ray, tmin, DVec3::ZERO, h.length());
+    let near = Near::of(ray, tmin, DVec3::ZERO, h.length_squared());
     let (ray, tmin) = (&near.ray, near.tmin);
     let planes = [
         (DVec3::X, h.x),
@@ -174,8 +175,8 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
 /// Reconstructed: a convex clip of the side planes and the two caps.
 pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let n = vertex.len();
-    let reach = vertex.iter().fold(0.0f64, |m, &[x, y]| m.max(x.hypot(y)));
-    let near = Near::of(ray, tmin, DVec3::ZERO, reach.hypot(height));
+    let reach2 = vertex.iter().fold(0.0f64, |m, &[x, y]| m.max(x * x + y * y));
+    let near = Near::of(ray, tmin, DVec3::ZERO, reach2 + height * height);
     let (ray, tmin) = (&near.ray, near.tmin);
     let sides = (0..n).map(move |i| {
         let [x0, y0] = vertex[i];
@@ -195,7 +196,8 @@ pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -
 /// within the radius for the caps.
 pub fn intersect_cylinder(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let centre = DVec3::new(0.0, 0.0, 0.5 * (bottom + top));
-    let near = Near::of(ray, tmin, centre, cylradius.hypot(0.5 * (top - bottom)));
+    let half = 0.5 * (top - bottom);
+    let near = Near::of(ray, tmin, centre, cylradius * cylradius + half * half);
     near.back(cylinder_hit(cylradius, bottom, top, &near.ray, near.tmin))
 }
 

@@ -315,9 +315,9 @@ pub fn intersect_sweep(
     };
     // Every polynomial below is formed from the ray near the object.
     let near = if boxed {
-        Near::of(ray, tmin, 0.5 * (lo + hi), 0.5 * (hi - lo).length())
+        Near::of(ray, tmin, 0.5 * (lo + hi), 0.25 * (hi - lo).length_squared())
     } else {
-        Near::of(ray, tmin, DVec3::ZERO, 2.0 * size)
+        Near::of(ray, tmin, DVec3::ZERO, 4.0 * size * size)
     };
     let (ray, tmin) = (&near.ray, near.tmin);
     if boxed && !ray_meets_box(ray, tmin, lo, hi) {

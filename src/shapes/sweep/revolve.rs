@@ -251,7 +251,7 @@ mod tests {
         let scale = reference.iter().fold(0.0f64, |m, c| m.max(c.abs()));
         let gap = |p: &[f64; 7]| p.iter().zip(&reference).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / scale;
         for dist in [1e4, 1e5, 1e6] {
-            let near = Near::of(&at(dist), 1e-9, DVec3::new(0.0, 0.0, 1.28), 2.0);
+            let near = Near::of(&at(dist), 1e-9, DVec3::new(0.0, 0.0, 1.28), 4.0);
             assert!(near.shift > dist - 3.0, "re-based near the object");
             let g = gap(&sextic(&cu, &cv, &near.ray));
             assert!(g < 1e-9, "{dist}: {g:e}");
