@@ -9,6 +9,7 @@
 //! reconstructed base program ([`trace`], [`shapes`], [`deck`], [`raster`])
 //! and the PS 390 display emulation [`psout`].
 
+pub mod adaptive;
 pub mod deck;
 pub mod drt;
 pub mod paper;

@@ -62,7 +62,7 @@ enum Command {
         /// Follow the listings instead of the thesis.
         #[arg(long)]
         listing: bool,
-        /// How subpixel times are chosen: table (the thesis's), random, stratified.
+        /// How subpixel times are chosen: table (the thesis's), random, stratified, adaptive.
         #[arg(long, default_value = "table")]
         sampler: String,
         /// Render at this mask (M×M subpixels a pixel) instead of the deck's.
@@ -128,13 +128,19 @@ fn main() -> Result<(), String> {
                 "table" => TimeSampler::Table,
                 "random" => TimeSampler::Random,
                 "stratified" => TimeSampler::Stratified,
-                other => return Err(format!("--sampler {other}: expected table, random or stratified")),
+                "adaptive" => TimeSampler::Adaptive,
+                other => {
+                    return Err(format!(
+                        "--sampler {other}: expected table, random, stratified or adaptive"
+                    ))
+                }
             };
             let opts = Options {
                 fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
                 sampler,
             };
+            raytrace::adaptive::check(&opts)?;
             let size = size.map(|s| (s[0].clamp(1, 8192), s[1].clamp(1, 8192)));
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
