@@ -6,6 +6,7 @@ pub mod chart;
 pub mod decks;
 pub mod fonts;
 pub mod frames;
+pub mod heatmap;
 pub mod measure;
 pub mod stability;
 pub mod textures;

@@ -1,7 +1,7 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
 //! `frames` draws a key-frame deck's filmstrip; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `stability` writes the root solvers' stability report. Timings
+//! chart; `heatmap` shows where the adaptive sampler spends its rays; `stability` writes the root solvers' stability report. Timings
 //! are measured and printed, never asserted in tests.
 
 use std::path::PathBuf;
@@ -85,6 +85,21 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// Where `--sampler adaptive` spends its rays: the image beside a heat map
+    /// of the rays each pixel got, one PNG.
+    Heatmap {
+        /// The deck (a shipped deck's name, e.g. fig5_10, or a path).
+        deck: PathBuf,
+        /// The PNG to write.
+        #[arg(long, default_value = "docs/img/adaptive_heatmap.png")]
+        out: PathBuf,
+        /// Width and height of the image, in pixels.
+        #[arg(long, default_value_t = 256)]
+        size: usize,
+        /// The budget: mask² rays a pixel on average.
+        #[arg(long, default_value_t = 4)]
+        mask: usize,
+    },
     /// Write the stability report of the root solvers on hard cases.
     Stability {
         /// The report to write.
@@ -145,6 +160,9 @@ fn main() -> Result<(), String> {
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Heatmap { deck, out, size, mask } => {
+            tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
+        }
         Command::Stability { out } => tools::stability::run(&out),
     }
 }
