@@ -12,6 +12,7 @@
 pub mod adaptive;
 pub mod deck;
 pub mod drt;
+pub mod film;
 pub mod paper;
 pub mod proc;
 pub mod psout;

@@ -22,6 +22,8 @@ use std::path::{Path, PathBuf};
 
 use crate::raster::Raster;
 
+pub mod player;
+
 /// The PS 390 screen width in pixels (Ch. 4 (一)).
 pub const SCREEN_WIDTH: usize = 1024;
 /// The PS 390 screen height in pixels (Ch. 4 (一)).
@@ -92,25 +94,20 @@ pub struct Placement {
 ///
 /// `pan` is the view's offset in screen pixels: (+x, +y) shows more of the
 /// raster's right and bottom, i.e. moves the raster left and up. It applies
-/// only when the raster is zoomed or clipped, and is clamped per axis: a
-/// raster wider (taller) than the screen always covers the screen along that
-/// axis; a smaller one stays entirely on screen. So a raster can never be
-/// dragged off the screen.
+/// only along an axis where the (zoomed) raster is larger than the screen,
+/// and is clamped there so the raster always covers the screen along that
+/// axis: a raster can never be dragged off the screen, and one that fits
+/// stays centred (there is nothing hidden to pan to).
 pub fn placement(width: usize, height: usize, zoom: Option<u32>, pan: (i64, i64)) -> Placement {
     let zoom = zoom.unwrap_or_else(|| default_zoom(width, height)).clamp(1, MAX_ZOOM);
     let (sw, sh) = (width as i64 * zoom as i64, height as i64 * zoom as i64);
     let (screen_w, screen_h) = (SCREEN_WIDTH as i64, SCREEN_HEIGHT as i64);
     let centre_left = (screen_w - sw).div_euclid(2);
     let centre_top = (screen_h - sh).div_euclid(2);
-    let pannable = zoom > 1 || sw > screen_w || sh > screen_h;
-    let pan = if pannable {
-        (
-            clamp_pan(pan.0, centre_left, sw, screen_w),
-            clamp_pan(pan.1, centre_top, sh, screen_h),
-        )
-    } else {
-        (0, 0)
-    };
+    let pan = (
+        clamp_pan(pan.0, centre_left, sw, screen_w),
+        clamp_pan(pan.1, centre_top, sh, screen_h),
+    );
     Placement {
         zoom,
         left: centre_left - pan.0,
@@ -119,17 +116,15 @@ pub fn placement(width: usize, height: usize, zoom: Option<u32>, pan: (i64, i64)
     }
 }
 
-/// The pan along one axis, clamped so that the raster's edge `centre - p`
-/// stays in [screen − size, 0] (raster larger than the screen) or
-/// [0, screen − size] (smaller); `centre` lies in that range, so the clamp
-/// bounds are ordered.
+/// The pan along one axis: 0 when the raster fits the screen along it,
+/// else clamped so that the raster's edge `centre - p` stays in
+/// [screen − size, 0]; `centre` lies in that range, so the clamp bounds
+/// are ordered.
 fn clamp_pan(p: i64, centre: i64, size: i64, screen: i64) -> i64 {
-    let (lo, hi) = if size >= screen {
-        (screen - size, 0)
-    } else {
-        (0, screen - size)
-    };
-    p.clamp(centre - hi, centre - lo)
+    if size <= screen {
+        return 0;
+    }
+    p.clamp(centre, centre - (screen - size))
 }
 
 /// The PS 390 screen showing `raster`: black, the raster centred, enlarged

@@ -527,7 +527,7 @@ pub fn write_png(path: &Path, raster: &Raster) -> Result<(), RasterError> {
 /// Writes through `write` into a new temporary file in the directory of
 /// `path`, syncs it and renames it to `path`. On any error the temporary
 /// file is removed and `path` is untouched.
-fn write_atomically(
+pub(crate) fn write_atomically(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<&File>) -> Result<(), RasterError>,
 ) -> Result<(), RasterError> {

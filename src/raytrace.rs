@@ -17,6 +17,7 @@ use rayon::prelude::*;
 
 use crate::adaptive;
 use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
+use crate::film::Frame;
 use crate::paper::PaperChain;
 use crate::raster::{rgbtochars, Raster};
 use crate::trace::{raytrace, rest_poses, Deforming, Snapshot, TraceStats};
@@ -239,12 +240,20 @@ pub struct Render {
 /// time from [`TimeTable::time`] and `motionblur` poses every object that
 /// `Isblur` says moves; the others keep their rest pose at no cost.
 pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Render {
+    render_frame(scene, opts, Frame::STILL, progress)
+}
+
+/// [`render`] for one frame of a film (the port's extension,
+/// [`crate::film`]): every subpixel time τ the sampler gives becomes the
+/// film time [`Frame::time`] before `motionblur` and the key-frame chains
+/// see it. [`Frame::STILL`] is [`render`] itself.
+pub fn render_frame(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Render {
     let Traced {
         colours,
         stats,
         primary,
         ..
-    } = render_rows(scene, opts, progress);
+    } = render_rows(scene, opts, frame, progress);
     let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
     let img = &scene.image;
     Render {
@@ -261,14 +270,14 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
 /// The image as colours, before `rgbtochars` clamps and rounds them (row
 /// 0 at the top): for checks that must see a NaN or a colour above 1.
 pub fn render_colours(scene: &Scene, opts: &Options) -> Vec<Intensity> {
-    render_rows(scene, opts, &|| {}).colours
+    render_rows(scene, opts, Frame::STILL, &|| {}).colours
 }
 
 /// The image as colours and the primary rays each pixel got (`masksize`²
 /// for the table and the samplers like it, the need of the pixel for
 /// `--sampler adaptive`): for the adaptive sampler's heat map.
 pub fn render_counted(scene: &Scene, opts: &Options) -> (Vec<Intensity>, Vec<u32>) {
-    let traced = render_rows(scene, opts, &|| {});
+    let traced = render_rows(scene, opts, Frame::STILL, &|| {});
     (traced.colours, traced.counts)
 }
 
@@ -289,10 +298,13 @@ struct Shared<'a> {
     moving: Vec<&'a crate::types::MotionRecord>,
     chains: Vec<(usize, PaperChain)>,
     timed: bool,
+    /// The film frame the sampler's times τ fall in ([`Frame::STILL`]
+    /// outside a film).
+    frame: Frame,
 }
 
 impl<'a> Shared<'a> {
-    fn new(scene: &'a Scene, opts: &'a Options) -> Self {
+    fn new(scene: &'a Scene, opts: &'a Options, frame: Frame) -> Self {
         let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
         let moving: Vec<&crate::types::MotionRecord> = scene
             .motions
@@ -313,6 +325,7 @@ impl<'a> Shared<'a> {
             moving,
             chains,
             timed,
+            frame,
         }
     }
 }
@@ -340,14 +353,15 @@ impl<'s> Tracer<'s> {
         }
     }
 
-    /// `raytrace` of the primary ray `aray` with the scene at `time()`
-    /// (asked only when something moves): `motionblur` poses every moving
+    /// `raytrace` of the primary ray `aray` with the scene at the film time
+    /// of the sampler's `tau()` (asked only when something moves; the
+    /// film's hook [`Frame::time`], the identity for a still): `motionblur` poses every moving
     /// object; its `paper = 1` branch moves the in-between object's pose by
     /// `diff`, and the contour (`do34` at time 0 or 1, else `Hermite`) is
     /// made when a ray first needs it.
-    fn trace(&mut self, shared: &Shared, aray: &Ray, time: impl FnOnce() -> f64) -> Intensity {
+    fn trace(&mut self, shared: &Shared, aray: &Ray, tau: impl FnOnce() -> f64) -> Intensity {
         if shared.timed {
-            let time = time();
+            let time = shared.frame.time(tau());
             for mo in &shared.moving {
                 self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
             }
@@ -367,9 +381,9 @@ impl<'s> Tracer<'s> {
 }
 
 /// The scanline loop: the colour of every pixel, the counts, the primary rays.
-fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Traced {
+fn render_rows(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Traced {
     let camera = Camera::new(scene, opts.fidelity);
-    let shared = Shared::new(scene, opts);
+    let shared = Shared::new(scene, opts, frame);
     if opts.sampler == TimeSampler::Adaptive {
         return render_adaptive(&shared, &camera, progress);
     }
@@ -418,7 +432,7 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> T
                 for scancol in first_col..=camera.virthighx {
                     let (jx, jz) = jitter(scanline, scancol);
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
-                    let time = || {
+                    let tau = || {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
                         match opts.sampler {
                             TimeSampler::Table => times.time(scanline, scancol, k),
@@ -432,7 +446,7 @@ fn render_rows(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> T
                             TimeSampler::Adaptive => 0.5,
                         }
                     };
-                    let acolor = tracer.trace(&shared, &aray, time);
+                    let acolor = tracer.trace(&shared, &aray, tau);
                     if scancol >= 1 {
                         virtual_rows[sub * img.width + (scancol - 1) / m] += acolor;
                     }

@@ -600,6 +600,9 @@ pub struct Scene {
     pub keyframes: Vec<KeyframeRecord>,
     pub blur: Option<BlurRecord>,
     pub pattern: Option<PatternRecord>,
+    /// The `film` record (the port's extension, [`crate::film`]); `None`
+    /// renders one still, as the thesis does.
+    pub film: Option<crate::film::FilmRecord>,
 }
 
 impl Scene {

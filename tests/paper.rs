@@ -967,6 +967,7 @@ fn a_chain_of_three_key_shapes() {
         keyframes: vec![],
         blur: None,
         pattern: None,
+        film: None,
     };
     assert_eq!(
         PaperChain::from_keyframe(&scene, &rec, Fidelity::Thesis).unwrap(),

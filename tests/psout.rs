@@ -132,7 +132,7 @@ fn a_raster_larger_than_the_screen_is_centred_and_clipped() {
 }
 
 #[test]
-fn pan_moves_a_clipped_or_zoomed_raster_and_is_clamped_to_the_screen() {
+fn pan_moves_only_a_raster_larger_than_the_screen_and_is_clamped_to_it() {
     let raster = coord_raster(2000, 1000);
     let fb = compose(&raster, None, (100, 20));
     assert_eq!(fb.pixel(0, 0), pack_rgb(coord_colour(588, 88)));
@@ -147,16 +147,20 @@ fn pan_moves_a_clipped_or_zoomed_raster_and_is_clamped_to_the_screen() {
     let p = placement(2000, 1000, None, (i64::MIN, i64::MAX));
     assert_eq!((p.left, p.top), (0, -136));
 
-    // A zoomed raster that fits moves, but stays entirely on screen.
+    // A raster that fits does not pan, zoomed or not: there is nothing
+    // hidden to pan to (issue 14, item 7).
     let small = coord_raster(256, 256);
-    let p = placement(256, 256, None, (1000, 1000));
-    assert_eq!((p.zoom, p.left, p.top, p.pan), (3, 0, 0, (128, 48)));
-    let p = placement(256, 256, None, (-1000, -1000));
-    assert_eq!((p.left, p.top), (256, 96));
-    assert_screen(&compose(&small, None, (-1000, -1000)), &small, 256, 96, 3);
-    // At zoom 1 a raster that fits does not pan.
+    for pan in [(1000, 1000), (-1000, -1000), (32, 0)] {
+        let p = placement(256, 256, None, pan);
+        assert_eq!((p.zoom, p.left, p.top, p.pan), (3, 128, 48, (0, 0)));
+        assert_screen(&compose(&small, None, pan), &small, 128, 48, 3);
+    }
     let p = placement(256, 256, Some(1), (50, 50));
     assert_eq!((p.left, p.top, p.pan), (384, 304, (0, 0)));
+    // Along the axis it overflows a raster pans, along the other it does not.
+    let p = placement(700, 10, Some(2), (1000, 1000));
+    assert_eq!(p.pan, (188, 0));
+    assert_eq!((p.left, p.top), (-376, 422));
 
     // Whatever the pan, some of the raster is on screen.
     for (w, h, z) in [(2000, 1000, None), (10, 10, Some(3)), (700, 10, Some(2))] {

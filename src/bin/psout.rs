@@ -1,6 +1,8 @@
-//! `psout FILE`: shows a raster file as the thesis's PS 390 display did
-//! (1024×864), in a window; `--screenshot OUT.png` writes the screen to a
-//! PNG instead. See docs/psout.md and the `raytrace::psout` module.
+//! `psout FILE…`: shows a raster file as the thesis's PS 390 display did
+//! (1024×864), in a window, or plays several (a film's frames) in order;
+//! `--screenshot OUT.png` writes the screen to a PNG instead. See
+//! docs/psout.md, docs/film.md and the `raytrace::psout` module; the keys
+//! are `raytrace::psout::player`'s.
 //!
 //! Exit codes: 0 done; 1 no window could be opened (or a screenshot could
 //! not be written); 2 the raster file (or the command line) is bad.
@@ -11,12 +13,13 @@ use std::process::ExitCode;
 use clap::Parser;
 #[cfg(any(feature = "png", feature = "window"))]
 use raytrace::psout;
-use raytrace::psout::Lut;
+use raytrace::psout::{player, Lut};
 use raytrace::raster::{self, Raster};
 
-/// Show a Sun raster file on an emulated PS 390 display (1024×864).
+/// Show a Sun raster file on an emulated PS 390 display (1024×864); several
+/// files (a film's frames, `STEM.*.ras`) are played in order as a film.
 #[derive(Parser, Debug)]
-#[command(name = "psout", version)]
+#[command(name = "psout", version, after_help = player::KEYS_HELP)]
 struct Args {
     /// Integer zoom by pixel replication [default: the largest of 1–3 at
     /// which the raster fits the screen].
@@ -29,8 +32,16 @@ struct Args {
     /// Write the 1024×864 screen to OUT.png and exit, without a window.
     #[arg(long, value_name = "OUT.png")]
     screenshot: Option<PathBuf>,
-    /// The raster file to show.
-    file: PathBuf,
+    /// A film: the frame (1-based) to write with --screenshot, or to start
+    /// the window paused at [default: play from the first].
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..))]
+    frame: Option<u32>,
+    /// A film: frames a second (the deck's `film … rate FPS`).
+    #[arg(long, value_name = "FPS", default_value_t = 12, value_parser = clap::value_parser!(u32).range(1..=60))]
+    rate: u32,
+    /// The raster file to show, or the frames of a film in order.
+    #[arg(required = true, value_name = "FILE")]
+    files: Vec<PathBuf>,
 }
 
 /// Why psout stops: an exit code and the message for stderr.
@@ -52,10 +63,31 @@ fn main() -> ExitCode {
 
 fn run(args: &Args) -> Result<(), Failure> {
     let lut = args.lut.map(usize::from);
-    let raster = load(&args.file, lut).map_err(|message| Failure { code: 2, message })?;
+    let bad = |message: String| Failure { code: 2, message };
+    let frames = if args.files.len() == 1 {
+        vec![load(&args.files[0], lut).map_err(bad)?]
+    } else {
+        let frames = raytrace::film::read_sequence(&args.files).map_err(|e| bad(e.to_string()))?;
+        match lut {
+            Some(n) => frames.iter().map(|r| Lut::median_cut(&r.pixels, n).apply(r)).collect(),
+            None => frames,
+        }
+    };
+    let start = match args.frame {
+        Some(k) if k as usize > frames.len() => {
+            return Err(bad(format!(
+                "--frame {k}: there are {} frame{} (1..{})",
+                frames.len(),
+                if frames.len() == 1 { "" } else { "s" },
+                frames.len()
+            )))
+        }
+        Some(k) => Some(k as usize - 1),
+        None => None,
+    };
     match &args.screenshot {
-        Some(out) => screenshot(out, &raster, args.zoom),
-        None => show(args, raster),
+        Some(out) => screenshot(out, &frames[start.unwrap_or(0)], args.zoom),
+        None => show(args, frames, start),
     }
 }
 
@@ -99,73 +131,112 @@ fn no_display(reason: &str) -> Failure {
 }
 
 #[cfg(not(feature = "window"))]
-fn show(_args: &Args, _raster: Raster) -> Result<(), Failure> {
+fn show(_args: &Args, _frames: Vec<Raster>, _start: Option<usize>) -> Result<(), Failure> {
     Err(no_display("this psout was built without the `window` feature"))
 }
 
-/// How far an arrow key pans, in screen pixels.
+/// Key events from minifb into the player's queue.
 #[cfg(feature = "window")]
-const PAN_STEP: i64 = 32;
+struct KeyEvents(std::rc::Rc<std::cell::RefCell<player::KeyQueue<minifb::Key>>>);
 
 #[cfg(feature = "window")]
-fn show(args: &Args, raster: Raster) -> Result<(), Failure> {
-    use minifb::{Key, KeyRepeat, Window, WindowOptions};
+impl minifb::InputCallback for KeyEvents {
+    fn add_char(&mut self, _uni_char: u32) {}
+
+    fn set_key_state(&mut self, key: minifb::Key, state: bool) {
+        self.0.borrow_mut().event(key, state);
+    }
+}
+
+/// The player's key for a minifb key.
+#[cfg(feature = "window")]
+fn player_key(key: minifb::Key) -> Option<player::Key> {
+    use minifb::Key as K;
+    use player::Key as P;
+    Some(match key {
+        K::Escape | K::Q => P::Quit,
+        K::Space => P::Pause,
+        K::Left => P::Left,
+        K::Right => P::Right,
+        K::Up => P::Up,
+        K::Down => P::Down,
+        K::Home => P::Home,
+        K::End => P::End,
+        // `+` shares its key with `=` on most layouts.
+        K::Equal | K::NumPadPlus => P::ZoomIn,
+        K::Minus | K::NumPadMinus => P::ZoomOut,
+        K::N => P::Next,
+        K::P => P::Previous,
+        K::S => P::Save,
+        _ => return None,
+    })
+}
+
+#[cfg(feature = "window")]
+fn show(args: &Args, mut frames: Vec<Raster>, start: Option<usize>) -> Result<(), Failure> {
+    use minifb::{Window, WindowOptions};
+    use player::Effect;
     use psout::{SCREEN_HEIGHT, SCREEN_WIDTH};
+    use std::time::Instant;
 
     // `DISPLAY=` (empty) is as good as unset.
     if std::env::var_os("DISPLAY").is_none_or(|d| d.is_empty()) {
         return Err(no_display("DISPLAY is not set"));
     }
     let lut = args.lut.map(usize::from);
-    let mut path = args.file.clone();
-    let mut raster = raster;
-    let mut zoom = args
-        .zoom
-        .unwrap_or_else(|| psout::default_zoom(raster.width, raster.height));
-    let mut pan = (0, 0);
-    let title = |path: &Path, r: &Raster, zoom| psout::title(path, r.width, r.height, zoom, lut);
+    let film = frames.len() > 1;
+    let mut paths = args.files.clone();
+    let (w, h) = (frames[0].width, frames[0].height);
+    let mut play = player::Player::new(frames.len(), w, h, args.zoom, args.rate);
+    if let Some(k) = start {
+        play.show_paused(k);
+    }
+    let path_of = |paths: &[PathBuf], play: &player::Player| paths[if film { play.current() } else { 0 }].clone();
 
     let mut window = Window::new(
-        &title(&path, &raster, zoom),
+        &play.title(&path_of(&paths, &play), lut),
         SCREEN_WIDTH,
         SCREEN_HEIGHT,
         WindowOptions::default(),
     )
     .map_err(|e| no_display(&window_error(e)))?;
-    window.set_target_fps(30);
-    let mut screen = psout::compose(&raster, Some(zoom), pan);
+    window.set_target_fps(60);
+    let queue = std::rc::Rc::new(std::cell::RefCell::new(player::KeyQueue::default()));
+    window.set_input_callback(Box::new(KeyEvents(queue.clone())));
+    let draw = |frames: &[Raster], play: &player::Player| {
+        psout::compose(
+            &frames[if film { play.current() } else { 0 }],
+            Some(play.zoom()),
+            play.pan(),
+        )
+    };
+    let mut screen = draw(&frames, &play);
+    let mut last_tick = Instant::now();
 
-    while window.is_open() && !window.is_key_down(Key::Escape) && !window.is_key_down(Key::Q) {
+    'window: while window.is_open() {
         let mut changed = false;
-        for key in window.get_keys_pressed(KeyRepeat::Yes) {
-            match key {
-                // `+` shares its key with `=` on most layouts.
-                Key::Equal | Key::NumPadPlus => zoom = (zoom + 1).min(psout::MAX_ZOOM),
-                Key::Minus | Key::NumPadMinus => zoom = zoom.saturating_sub(1).max(1),
-                Key::Left => pan.0 -= PAN_STEP,
-                Key::Right => pan.0 += PAN_STEP,
-                Key::Up => pan.1 -= PAN_STEP,
-                Key::Down => pan.1 += PAN_STEP,
-                Key::N | Key::P => match step(&path, key == Key::N, lut) {
-                    Some((next, r)) => {
-                        zoom = args.zoom.unwrap_or_else(|| psout::default_zoom(r.width, r.height));
-                        pan = (0, 0);
-                        path = next;
-                        raster = r;
+        for key in queue.borrow_mut().take().into_iter().filter_map(player_key) {
+            match play.press(key) {
+                Effect::Quit => break 'window,
+                Effect::Save => save(&path_of(&paths, &play), &screen),
+                Effect::Redraw => changed = true,
+                Effect::Neighbour(forward) => {
+                    if let Some((next, r)) = step(&paths[0], forward, lut) {
+                        play.replaced(r.width, r.height);
+                        paths = vec![next];
+                        frames = vec![r];
+                        changed = true;
                     }
-                    None => continue,
-                },
-                Key::S => save(&path, &screen),
-                _ => continue,
+                }
+                Effect::Nothing => {}
             }
-            changed = true;
         }
+        let now = Instant::now();
+        changed |= play.tick(now - last_tick);
+        last_tick = now;
         if changed {
-            // Keep the clamped pan, so arrows pressed at an edge do not
-            // pile up an offset that later keys must undo.
-            pan = psout::placement(raster.width, raster.height, Some(zoom), pan).pan;
-            screen = psout::compose(&raster, Some(zoom), pan);
-            window.set_title(&title(&path, &raster, zoom));
+            screen = draw(&frames, &play);
+            window.set_title(&play.title(&path_of(&paths, &play), lut));
         }
         window
             .update_with_buffer(&screen.pixels, SCREEN_WIDTH, SCREEN_HEIGHT)

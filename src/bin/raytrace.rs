@@ -80,6 +80,16 @@ struct Cli {
     #[arg(short, long)]
     quiet: bool,
 
+    /// Render only frames A..B (or frame K) of a deck with a `film` record; the other
+    /// frames are not touched. A frame's bytes do not depend on which process renders it.
+    #[arg(long, value_name = "A..B|K")]
+    frames: Option<String>,
+
+    /// With a `film` record, also write the frames rendered as one animated PNG (APNG) to
+    /// FILE, each shown for 1/rate s.
+    #[arg(long, value_name = "FILE")]
+    apng: Option<PathBuf>,
+
     /// Write the listing's debug log (the Pascal `debugf`: a line per scanline, kfTIRcnt) to FILE.
     #[arg(long, value_name = "FILE")]
     debug: Option<PathBuf>,
@@ -212,6 +222,17 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(other_error)?;
+    if let Some(film) = scene.film {
+        return run_film(cli, &scene, &opts, &pool, film, &file_name, &output);
+    }
+    if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
+        .iter()
+        .find_map(|&(given, flag)| given.then_some(flag))
+    {
+        return Err(input_error(format!(
+            "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
+        )));
+    }
     let bar = if cli.quiet {
         ProgressBar::hidden()
     } else {
@@ -245,12 +266,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     }
     if !cli.quiet {
         let img = &scene.image;
-        let sampling = match opts.sampler {
-            TimeSampler::Adaptive => format!("{} rays a pixel on average, adaptive", img.masksize * img.masksize),
-            _ => format!("{}×{} subpixels", img.masksize, img.masksize),
-        };
         eprintln!(
-            "raytrace: {} → {}{} ({}×{}, {sampling}, {} rays, {:.2} s)",
+            "raytrace: {} → {}{} ({}×{}, {}, {} rays, {:.2} s)",
             file_name,
             output.display(),
             png.as_ref()
@@ -258,8 +275,122 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                 .unwrap_or_default(),
             img.width,
             img.height,
+            sampling(&opts, img),
             render.stats.rays,
             elapsed.as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// Renders the frames of a deck with a `film` record: one raster per
+/// frame, `STEM.0001.ras` …, each written (atomically) as soon as it is
+/// done, and with `--apng` one animated PNG of them at the end. Every flag
+/// is checked before the first frame, so a bad one writes nothing.
+fn run_film(
+    cli: &Cli,
+    scene: &raytrace::types::Scene,
+    opts: &Options,
+    pool: &rayon::ThreadPool,
+    film: raytrace::film::FilmRecord,
+    file_name: &str,
+    output: &Path,
+) -> Result<(), Failure> {
+    use raytrace::film::{frame_path, frame_stem, FrameRange};
+    let range = match &cli.frames {
+        Some(text) => FrameRange::parse(text, film.frames).map_err(input_error)?,
+        None => film.all(),
+    };
+    if output.extension().is_some_and(|e| !e.eq_ignore_ascii_case("ras")) {
+        return Err(input_error(format!(
+            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras or -o STEM",
+            output.display()
+        )));
+    }
+    for (given, flag, instead) in [
+        (
+            cli.png.is_some(),
+            "--png",
+            "--apng FILE for an animated PNG of the frames",
+        ),
+        (
+            cli.debug.is_some(),
+            "--debug",
+            "a deck without 'film' for the listing's log of one frame",
+        ),
+    ] {
+        if given {
+            return Err(input_error(format!(
+                "{flag} writes one still, and {file_name} is a film: use {instead}"
+            )));
+        }
+    }
+    #[cfg(not(feature = "png"))]
+    if cli.apng.is_some() {
+        return Err(input_error(
+            "--apng: this build has no PNG export (the `png` feature is off)",
+        ));
+    }
+    let stem = frame_stem(output);
+    for path in std::iter::once(&stem.with_extension("ras")).chain(cli.apng.iter()) {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
+        }
+    }
+
+    let rows = scene.image.height as u64;
+    let bar = if cli.quiet {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::with_draw_target(Some(rows * u64::from(range.len())), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
+                .map_err(other_error)?
+                .progress_chars("=> "),
+        );
+        bar
+    };
+    let started = Instant::now();
+    let mut rays = 0;
+    let mut rasters = Vec::new();
+    for k in range.numbers() {
+        bar.set_message(format!("tracing {file_name} frame {k}/{}", film.frames));
+        let render = pool.install(|| raytrace::raytrace::render_frame(scene, opts, film.frame(k), &|| bar.inc(1)));
+        let path = frame_path(&stem, k, film.frames);
+        raytrace::raster::outputframe(&path, &render.raster)
+            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
+        rays += render.stats.rays;
+        if cli.apng.is_some() {
+            rasters.push(render.raster);
+        }
+    }
+    let elapsed = started.elapsed();
+    bar.finish_and_clear();
+    #[cfg(feature = "png")]
+    if let Some(apng) = &cli.apng {
+        raytrace::film::write_apng(apng, &rasters, film.rate)
+            .map_err(|e| other_error(format!("{}: {e}", apng.display())))?;
+    }
+    if !cli.quiet {
+        let img = &scene.image;
+        eprintln!(
+            "raytrace: {} → {} … {}{} (frames {}..{} of {}, {}×{}, {}, {} rays, {:.2} s, {:.2} s a frame)",
+            file_name,
+            frame_path(&stem, range.first, film.frames).display(),
+            frame_path(&stem, range.last, film.frames).display(),
+            cli.apng
+                .as_ref()
+                .map(|p| format!(" and {}", p.display()))
+                .unwrap_or_default(),
+            range.first,
+            range.last,
+            film.frames,
+            img.width,
+            img.height,
+            sampling(opts, img),
+            rays,
+            elapsed.as_secs_f64(),
+            elapsed.as_secs_f64() / f64::from(range.len())
         );
     }
     Ok(())
@@ -276,4 +407,13 @@ fn write_png(path: &Path, _raster: &raytrace::raster::Raster) -> Result<(), Fail
         "{}: this build has no PNG export (the `png` feature is off)",
         path.display()
     )))
+}
+
+/// The summary line's words for the rays a pixel: M×M subpixels, or the
+/// adaptive sampler's average.
+fn sampling(opts: &Options, img: &raytrace::types::ImageSpec) -> String {
+    match opts.sampler {
+        TimeSampler::Adaptive => format!("{} rays a pixel on average, adaptive", img.masksize * img.masksize),
+        _ => format!("{}×{} subpixels", img.masksize, img.masksize),
+    }
 }

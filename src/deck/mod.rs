@@ -125,6 +125,11 @@
 //!   error at the first repeated value); `Fidelity::Listing` accepts
 //!   repeats, as the printed table of Fig. 2.33 has them (erratum 1).
 //!
+//! # Film
+//! - `film FRAMES [shutter S] [rate FPS]` (the port's extension,
+//!   [`crate::film`]): FRAMES an integer 1..10000, S a number in (0, 1]
+//!   (default 0.5), FPS an integer 1..60 (default 12); at most once.
+//!
 //! # Errors
 //! [`DeckError`] reads `FILE:LINE:COL: RECORD 'NAME': MESSAGE`, or
 //! `FILE:LINE:COL: RECORD: MESSAGE` before the record's name is known.
@@ -136,6 +141,7 @@
 //! expected: at the next token, the end of the line or the end of the deck.
 //! A missing `view` or `image` is reported at the end of the deck.
 
+mod film;
 mod lex;
 mod objects;
 mod parse;
@@ -198,6 +204,7 @@ pub fn initialize(source: &str, file_name: &str, deck_dir: &Path, fidelity: Fide
         keyframes: Vec::new(),
         blur: None,
         pattern: None,
+        film: None,
     };
     loop {
         b.p.begin("deck");
@@ -269,6 +276,7 @@ struct Builder<'a> {
     keyframes: Vec<PendingKeyframe>,
     blur: Option<BlurRecord>,
     pattern: Option<PatternRecord>,
+    film: Option<crate::film::FilmRecord>,
 }
 
 impl Builder<'_> {
@@ -295,6 +303,7 @@ impl Builder<'_> {
             "keyframe" => self.keyframe(pos),
             "blur" => self.blur(pos),
             "pattern" => self.pattern(pos),
+            "film" => self.film(pos),
             _ => Err(self.p.error_at(pos, format!("unknown record '{word}'"))),
         }
     }
@@ -360,6 +369,7 @@ impl Builder<'_> {
             keyframes,
             blur: self.blur,
             pattern: self.pattern,
+            film: self.film,
         })
     }
 }

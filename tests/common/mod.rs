@@ -75,6 +75,7 @@ pub fn scene() -> Scene {
         keyframes: vec![],
         blur: None,
         pattern: None,
+        film: None,
     }
 }
 

@@ -7,6 +7,7 @@ pub mod decks;
 pub mod fonts;
 pub mod frames;
 pub mod heatmap;
+pub mod join;
 pub mod measure;
 pub mod stability;
 pub mod textures;

@@ -1,8 +1,10 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
 //! `frames` draws a key-frame deck's filmstrip; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `heatmap` shows where the adaptive sampler spends its rays; `stability` writes the root solvers' stability report. Timings
-//! are measured and printed, never asserted in tests.
+//! chart; `heatmap` shows where the adaptive sampler spends its rays;
+//! `stability` writes the root solvers' stability report. Timings
+//! are measured and printed, never asserted in tests; `join` makes a
+//! film's animated PNG from its frame rasters.
 
 use std::path::PathBuf;
 
@@ -100,6 +102,25 @@ enum Command {
         #[arg(long, default_value_t = 4)]
         mask: usize,
     },
+    /// Join a film's frame rasters (in the order given, e.g. raster/nec.*.ras) into one
+    /// animated PNG; with --strip also a still strip of every Nth frame (docs/film.md).
+    Join {
+        /// The frame rasters, in order.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// The animated PNG to write.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Frames a second (the deck's `film … rate FPS`).
+        #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u32).range(1..=60))]
+        rate: u32,
+        /// Also write a PNG of frames 1, 1+N, 1+2N, … side by side (N from --every).
+        #[arg(long)]
+        strip: Option<PathBuf>,
+        /// The step between the frames of --strip.
+        #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u64).range(1..))]
+        every: u64,
+    },
     /// Write the stability report of the root solvers on hard cases.
     Stability {
         /// The report to write.
@@ -164,5 +185,12 @@ fn main() -> Result<(), String> {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
         Command::Stability { out } => tools::stability::run(&out),
+        Command::Join {
+            files,
+            out,
+            rate,
+            strip,
+            every,
+        } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
     }
 }

@@ -1,0 +1,86 @@
+//! `tools join`: a film's frame rasters, rendered anywhere (one process,
+//! a Slurm job array, GNU parallel over hosts), joined into one animated
+//! PNG, and optionally a still strip of every Nth frame for viewers that do
+//! not animate APNG. The port's extension (docs/film.md).
+
+use std::path::{Path, PathBuf};
+
+use raytrace::film::{read_sequence, write_apng};
+use raytrace::raster::{write_png, Raster};
+
+/// The gap between the frames of a strip, in pixels (black).
+const STRIP_GAP: usize = 4;
+
+/// Reads `files` in order (all one size), writes them to `out` as an APNG
+/// at `rate` frames a second and, with `strip`, frames 1, 1+N, 1+2N, …
+/// side by side to a PNG.
+pub fn join(files: &[PathBuf], out: &Path, rate: u32, strip: Option<(&Path, usize)>) -> Result<(), String> {
+    let frames = read_sequence(files).map_err(|e| e.to_string())?;
+    write_apng(out, &frames, rate).map_err(|e| format!("{}: {e}", out.display()))?;
+    let size = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
+    println!(
+        "wrote {} ({} frames, {} fps, {} bytes)",
+        out.display(),
+        frames.len(),
+        rate,
+        size
+    );
+    if let Some((path, every)) = strip {
+        let picked: Vec<&Raster> = frames.iter().step_by(every.max(1)).collect();
+        let s = strip_of(&picked);
+        write_png(path, &s).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!(
+            "wrote {} ({} frames, every {})",
+            path.display(),
+            picked.len(),
+            every.max(1)
+        );
+    }
+    Ok(())
+}
+
+/// The frames side by side, left to right, `STRIP_GAP` black pixels apart
+/// (all frames one size, as [`read_sequence`] ensures).
+pub fn strip_of(frames: &[&Raster]) -> Raster {
+    let (w, h) = frames.first().map_or((0, 0), |f| (f.width, f.height));
+    let n = frames.len();
+    let width = (n * w + n.saturating_sub(1) * STRIP_GAP).max(1);
+    let mut pixels = vec![[0u8; 3]; width * h.max(1)];
+    for (i, f) in frames.iter().enumerate() {
+        let left = i * (w + STRIP_GAP);
+        for y in 0..h {
+            pixels[y * width + left..][..w].copy_from_slice(&f.pixels[y * w..][..w]);
+        }
+    }
+    Raster {
+        width,
+        height: h.max(1),
+        pixels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_strip_puts_frames_side_by_side_with_gaps() {
+        let a = Raster {
+            width: 2,
+            height: 1,
+            pixels: vec![[1, 1, 1], [2, 2, 2]],
+        };
+        let b = Raster {
+            width: 2,
+            height: 1,
+            pixels: vec![[3, 3, 3], [4, 4, 4]],
+        };
+        let s = strip_of(&[&a, &b]);
+        assert_eq!((s.width, s.height), (2 + STRIP_GAP + 2, 1));
+        assert_eq!(s.pixels[0], [1, 1, 1]);
+        assert_eq!(s.pixels[1], [2, 2, 2]);
+        assert_eq!(s.pixels[2], [0, 0, 0]);
+        assert_eq!(s.pixels[2 + STRIP_GAP], [3, 3, 3]);
+        assert_eq!(s.pixels[3 + STRIP_GAP], [4, 4, 4]);
+    }
+}
