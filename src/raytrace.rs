@@ -504,8 +504,9 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
             .map(|(row, (sums, counts))| {
                 let mut tracer = Tracer::new(shared);
                 for (x, (sum, &count)) in sums.iter_mut().zip(counts).enumerate() {
+                    let samples = adaptive::PixelSamples::new(row * w + x);
                     for j in sum.n..count {
-                        let s = adaptive::sample(row * w + x, j);
+                        let s = samples.sample(j);
                         // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
                         let scancol = (x as f64 + s.u) * m + 0.5;
                         let scanline = (row as f64 + s.v) * m + 0.5;

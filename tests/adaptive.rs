@@ -104,7 +104,10 @@ fn converges_to_the_box_shutter() {
         eprintln!("mask {m}: adaptive worst {worst:.4} rms {rms:.4}; table rms {table:.4}");
         assert!(worst < 0.25, "mask {m}: worst {worst}");
         if m > 2 {
-            assert!(rms < 0.75 * table, "mask {m}: adaptive {rms} against the table's {table}");
+            assert!(
+                rms < 0.75 * table,
+                "mask {m}: adaptive {rms} against the table's {table}"
+            );
         }
         errors.push(rms);
     }
@@ -177,4 +180,48 @@ fn one_ray_a_pixel_and_still_scenes() {
     s.resize(16, 12, 3);
     let (_, counts) = render_counted(&s, &adaptive());
     assert_eq!(counts.iter().sum::<u32>(), 16 * 12 * 9);
+}
+
+/// Per frame of a film: the adaptive times go through the film's
+/// `Frame::time` like the table's, so frame k shows the block where it is
+/// in the k-th quarter of the motion (its brightness centroid moves right
+/// frame by frame), and each frame is the same for 1 and 2 threads.
+#[test]
+fn films_frame_by_frame() {
+    use raytrace::film::Frame;
+    use raytrace::raytrace::render_frame;
+    let s = moving_square(4);
+    let mut centroids = Vec::new();
+    for k in 1..=4 {
+        let frame = Frame {
+            number: k,
+            frames: 4,
+            shutter: 1.0,
+        };
+        let images: Vec<Vec<[u8; 3]>> = [1, 2]
+            .into_iter()
+            .map(|n| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+                pool.install(|| render_frame(&s, &adaptive(), frame, &|| {}).raster.pixels)
+            })
+            .collect();
+        assert_eq!(images[0], images[1], "frame {k}");
+        let (mut sum, mut weight) = (0.0, 0.0);
+        for (i, p) in images[0].iter().enumerate() {
+            sum += (i % 64) as f64 * p[1] as f64;
+            weight += p[1] as f64;
+        }
+        centroids.push(sum / weight);
+    }
+    // The block's centre runs from x = −5 to 5, columns 12 to 52: a
+    // quarter of it is 10 columns a frame.
+    for (k, pair) in centroids.windows(2).enumerate() {
+        let step = pair[1] - pair[0];
+        assert!(
+            (step - 10.0).abs() < 1.0,
+            "frame {} to {}: {step} columns",
+            k + 1,
+            k + 2
+        );
+    }
 }
