@@ -92,7 +92,7 @@ impl Frame {
     /// render loop passes through here. For [`Frame::STILL`] it is `tau`
     /// itself, bit for bit: (0 + 1·τ)/1 rounds to τ.
     pub fn time(&self, tau: f64) -> f64 {
-        (f64::from(self.number - 1) + self.shutter * tau) / f64::from(self.frames)
+        (f64::from(self.number.saturating_sub(1)) + self.shutter * tau) / f64::from(self.frames)
     }
 }
 
@@ -227,6 +227,8 @@ pub fn encode_apng(frames: &[Raster], rate: u32) -> Result<Vec<u8>, ApngError> {
         let mut encoder = png::Encoder::new(&mut bytes, first.width as u32, first.height as u32);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
+        // A film is written once and loaded often (the README's APNG).
+        encoder.set_compression(png::Compression::High);
         encoder.set_animated(frames.len() as u32, 0)?;
         // 1/rate s; a rate of 0 would be an infinite delay, so it is 1.
         encoder.set_frame_delay(1, rate.clamp(1, u16::MAX as u32) as u16)?;

@@ -233,28 +233,14 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
         )));
     }
-    let bar = if cli.quiet {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(Some(scene.image.height as u64), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-                .map_err(other_error)?
-                .progress_chars("=> "),
-        );
-        bar.set_message(format!("tracing {file_name}"));
-        bar
-    };
+    let bar = progress_bar(cli.quiet, scene.image.height as u64)?;
+    bar.set_message(format!("tracing {file_name}"));
     let started = Instant::now();
     let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
     let elapsed = started.elapsed();
     bar.finish_and_clear();
 
-    for path in std::iter::once(&output).chain(png.iter()).chain(cli.debug.iter()) {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
-        }
-    }
+    make_folders(std::iter::once(&output).chain(png.iter()).chain(cli.debug.iter()))?;
     raytrace::raster::outputframe(&output, &render.raster)
         .map_err(|e| other_error(format!("{}: {e}", output.display())))?;
     if let Some(png) = &png {
@@ -279,6 +265,30 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             render.stats.rays,
             elapsed.as_secs_f64()
         );
+    }
+    Ok(())
+}
+
+/// The progress bar over `rows` rows of pixels (hidden with `--quiet`).
+fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
+    if quiet {
+        return Ok(ProgressBar::hidden());
+    }
+    let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
+            .map_err(other_error)?
+            .progress_chars("=> "),
+    );
+    Ok(bar)
+}
+
+/// Creates the folders the output files go in.
+fn make_folders<'a>(paths: impl Iterator<Item = &'a PathBuf>) -> Result<(), Failure> {
+    for path in paths {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
+        }
     }
     Ok(())
 }
@@ -332,24 +342,10 @@ fn run_film(
         ));
     }
     let stem = frame_stem(output);
-    for path in std::iter::once(&stem.with_extension("ras")).chain(cli.apng.iter()) {
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| other_error(format!("{}: {e}", dir.display())))?;
-        }
-    }
+    make_folders(std::iter::once(&stem.with_extension("ras")).chain(cli.apng.iter()))?;
 
-    let rows = scene.image.height as u64;
-    let bar = if cli.quiet {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(Some(rows * u64::from(range.len())), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-                .map_err(other_error)?
-                .progress_chars("=> "),
-        );
-        bar
-    };
+    // One bar over every frame's rows; its message names the frame.
+    let bar = progress_bar(cli.quiet, scene.image.height as u64 * u64::from(range.len()))?;
     let started = Instant::now();
     let mut rays = 0;
     let mut rasters = Vec::new();
