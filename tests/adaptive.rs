@@ -6,7 +6,7 @@ use raytrace::raytrace::{render, render_colours, render_counted};
 use raytrace::types::*;
 
 mod common;
-use common::{block, load_deck, scene, surface};
+use common::load_deck;
 
 fn adaptive() -> Options {
     Options {
@@ -20,35 +20,7 @@ fn adaptive() -> Options {
 /// parallel projection (as tests/drt.rs's `moving_square`), 64×16 pixels
 /// of 0.25 × 0.25: it crosses rows 6..=9, the other rows stay black.
 fn moving_square(m: usize) -> Scene {
-    let mut s = scene();
-    s.view = View {
-        eyept: DVec3::new(0.0, -1000.0, 0.0),
-        lookpt: DVec3::ZERO,
-        screensize: 16.0,
-        scrndistance: 1000.0,
-    };
-    s.image = ImageSpec {
-        width: 64,
-        height: 16,
-        masksize: m,
-        aliasing: 0.0,
-    };
-    s.surfaces
-        .push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
-    s.objects.push(block("square", 0, [-5.0, 0.0, 0.0], [2.0, 0.01, 1.0]));
-    s.motions.push(MotionRecord {
-        pos: Pos::default(),
-        object: 0,
-        to: DVec3::new(5.0, 0.0, 0.0),
-        turn: DVec3::ZERO,
-        via: None,
-        law: Law::Constant,
-    });
-    s.blur = Some(BlurRecord {
-        pos: Pos::default(),
-        n: 1,
-    });
-    s
+    common::moving_block(m, 16, 1.0)
 }
 
 /// The exact colour of each pixel of rows 6..=9: the share of the

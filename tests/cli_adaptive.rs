@@ -8,6 +8,12 @@ fn raytrace() -> Command {
     Command::new(env!("CARGO_BIN_EXE_raytrace"))
 }
 
+/// A folder holding `moving.deck` (`MOVING`), and the deck's path.
+fn moving_deck() -> (tempfile::TempDir, std::path::PathBuf) {
+    let (dir, deck) = moving_deck();
+    (dir, deck)
+}
+
 const MOVING: &str = "\
 view  eye 0 -10 3  look 0 0 0  screen 4  distance 5
 image 16 12  mask 2
@@ -23,9 +29,7 @@ blur 1
 /// it and the rays a pixel.
 #[test]
 fn size_and_mask_override_the_deck() {
-    let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("moving.deck");
-    std::fs::write(&deck, MOVING).unwrap();
+    let (dir, deck) = moving_deck();
     let out = dir.path().join("moving.ras");
     let run = raytrace()
         .args([
@@ -66,9 +70,7 @@ fn size_and_mask_override_the_deck() {
 /// The adaptive image is the same for 1 and 2 threads, byte for byte.
 #[test]
 fn adaptive_is_the_same_for_any_threads() {
-    let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("moving.deck");
-    std::fs::write(&deck, MOVING).unwrap();
+    let (dir, deck) = moving_deck();
     let mut rasters = Vec::new();
     for threads in ["1", "2"] {
         let out = dir.path().join(format!("t{threads}.ras"));
@@ -89,9 +91,7 @@ fn adaptive_is_the_same_for_any_threads() {
 /// the listing's fidelity, both flags), and no file written.
 #[test]
 fn bad_input_exits_2_and_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("moving.deck");
-    std::fs::write(&deck, MOVING).unwrap();
+    let (dir, deck) = moving_deck();
     let out = dir.path().join("out.ras");
     let cases: [(&[&str], &[&str]); 6] = [
         (
