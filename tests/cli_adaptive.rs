@@ -10,7 +10,9 @@ fn raytrace() -> Command {
 
 /// A folder holding `moving.deck` (`MOVING`), and the deck's path.
 fn moving_deck() -> (tempfile::TempDir, std::path::PathBuf) {
-    let (dir, deck) = moving_deck();
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("moving.deck");
+    std::fs::write(&deck, MOVING).unwrap();
     (dir, deck)
 }
 
