@@ -10,6 +10,7 @@
 //! and the PS 390 display emulation [`psout`]; [`output`], the port's own,
 //! writes every output file.
 
+pub mod adaptive;
 pub mod deck;
 pub mod drt;
 pub mod output;

@@ -15,6 +15,7 @@
 
 use rayon::prelude::*;
 
+use crate::adaptive;
 use crate::drt::{motionblur, noise2_table, random_time, strata, stratified_time, Isblur, TimeTable, MAXINDEX};
 use crate::film::Frame;
 use crate::paper::PaperChain;
@@ -287,7 +288,12 @@ pub fn render(scene: &Scene, opts: &Options, progress: &(dyn Fn() + Sync)) -> Re
 /// film time [`Frame::time`] before `motionblur` and the key-frame chains
 /// see it. [`Frame::STILL`] is [`render`] itself.
 pub fn render_frame(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Render {
-    let (colours, stats, primary) = render_rows(scene, opts, frame, progress);
+    let Traced {
+        colours,
+        stats,
+        primary,
+        ..
+    } = render_rows(scene, opts, frame, progress);
     let nonfinite = colours.iter().filter(|c| !c.is_finite()).count();
     let pixels = colours.iter().map(|&c| rgbtochars(c)).collect();
     let img = &scene.image;
@@ -306,39 +312,131 @@ pub fn render_frame(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn
 /// The image as colours, before `rgbtochars` clamps and rounds them (row
 /// 0 at the top): for checks that must see a NaN or a colour above 1.
 pub fn render_colours(scene: &Scene, opts: &Options) -> Vec<Intensity> {
-    render_rows(scene, opts, Frame::STILL, &|| {}).0
+    render_rows(scene, opts, Frame::STILL, &|| {}).colours
+}
+
+/// The image as colours and the primary rays each pixel got (`masksize`²
+/// for the table and the samplers like it, the need of the pixel for
+/// `--sampler adaptive`): for the adaptive sampler's heat map.
+pub fn render_counted(scene: &Scene, opts: &Options) -> (Vec<Intensity>, Vec<u32>) {
+    let traced = render_rows(scene, opts, Frame::STILL, &|| {});
+    (traced.colours, traced.counts)
+}
+
+/// What the scanline loop returns.
+struct Traced {
+    colours: Vec<Intensity>,
+    /// Primary rays a pixel (the listing's extra column not counted).
+    counts: Vec<u32>,
+    stats: TraceStats,
+    primary: u64,
+}
+
+/// What every sample of a render shares: the scene, the objects `Isblur`
+/// says move (the motion table, `motionmatrix`), the key-frame chains.
+struct Shared<'a> {
+    scene: &'a Scene,
+    opts: &'a Options,
+    moving: Vec<&'a crate::types::MotionRecord>,
+    chains: Vec<(usize, PaperChain)>,
+    timed: bool,
+    /// The film frame the sampler's times τ fall in ([`Frame::STILL`]
+    /// outside a film).
+    frame: Frame,
+}
+
+impl<'a> Shared<'a> {
+    fn new(scene: &'a Scene, opts: &'a Options, frame: Frame) -> Self {
+        let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
+        let moving: Vec<&crate::types::MotionRecord> = scene
+            .motions
+            .iter()
+            .filter(|mo| !Isblur(mo.object, &motionmatrix))
+            .collect();
+        // `prepare` has reported a pair that cannot be built; a caller that
+        // skipped it renders the key shapes as they stand.
+        let chains: Vec<(usize, PaperChain)> = key_frame_chains(scene, opts.fidelity)
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(k, chain)| (scene.keyframes[k].first, chain))
+            .collect();
+        let timed = !moving.is_empty() || !chains.is_empty();
+        Shared {
+            scene,
+            opts,
+            moving,
+            chains,
+            timed,
+            frame,
+        }
+    }
+}
+
+/// One worker's scratch for a row: the poses, the in-between objects'
+/// contours (reused for every sample), the counts.
+struct Tracer<'s> {
+    poses: Vec<crate::types::Pose>,
+    deforming: Vec<Deforming<'s>>,
+    stats: TraceStats,
+    primary: u64,
+}
+
+impl<'s> Tracer<'s> {
+    fn new(shared: &'s Shared) -> Self {
+        Tracer {
+            poses: rest_poses(shared.scene),
+            deforming: shared
+                .chains
+                .iter()
+                .map(|(first, chain)| Deforming::new(*first, chain))
+                .collect(),
+            stats: TraceStats::default(),
+            primary: 0,
+        }
+    }
+
+    /// `raytrace` of the primary ray `aray` with the scene at the film time
+    /// of the sampler's `tau()` (asked only when something moves; the
+    /// film's hook [`Frame::time`], the identity for a still): `motionblur` poses every moving
+    /// object; its `paper = 1` branch moves the in-between object's pose by
+    /// `diff`, and the contour (`do34` at time 0 or 1, else `Hermite`) is
+    /// made when a ray first needs it.
+    fn trace(&mut self, shared: &Shared, aray: &Ray, tau: impl FnOnce() -> f64) -> Intensity {
+        if shared.timed {
+            let time = shared.frame.time(tau());
+            for mo in &shared.moving {
+                self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
+            }
+            for (d, (_, chain)) in self.deforming.iter().zip(&shared.chains) {
+                self.poses[d.object] = chain.pose(time);
+                d.at(time);
+            }
+        }
+        let snap = Snapshot {
+            scene: shared.scene,
+            poses: &self.poses,
+            deforming: &self.deforming,
+        };
+        self.primary += 1;
+        raytrace(&snap, aray, 1.0, false, 1, shared.opts, &mut self.stats)
+    }
 }
 
 /// The scanline loop: the colour of every pixel, the counts, the primary rays.
-fn render_rows(
-    scene: &Scene,
-    opts: &Options,
-    frame: Frame,
-    progress: &(dyn Fn() + Sync),
-) -> (Vec<Intensity>, TraceStats, u64) {
+fn render_rows(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Traced {
+    let camera = Camera::new(scene, opts.fidelity);
+    let shared = Shared::new(scene, opts, frame);
+    if opts.sampler == TimeSampler::Adaptive {
+        return render_adaptive(&shared, &camera, progress);
+    }
     let img = &scene.image;
     let m = img.masksize;
-    let camera = Camera::new(scene, opts.fidelity);
     let noise2 = noise2_table();
     // `prepare` has refused a pattern that does not fit; a caller that
     // skipped it gets the default table.
     let blur = scene.blur.as_ref().map_or(0, |b| b.n);
     let times =
         time_table(scene, opts.fidelity).unwrap_or_else(|_| TimeTable::with_default_pattern(m, blur, opts.fidelity));
-    let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
-    let moving: Vec<&crate::types::MotionRecord> = scene
-        .motions
-        .iter()
-        .filter(|mo| !Isblur(mo.object, &motionmatrix))
-        .collect();
-    // `prepare` has reported a pair that cannot be built; a caller that
-    // skipped it renders the key shapes as they stand.
-    let chains: Vec<(usize, PaperChain)> = key_frame_chains(scene, opts.fidelity)
-        .unwrap_or_default()
-        .into_iter()
-        .map(|(k, chain)| (scene.keyframes[k].first, chain))
-        .collect();
-    let timed = !moving.is_empty() || !chains.is_empty();
     let first_col = match opts.fidelity {
         Fidelity::Listing => 0,
         Fidelity::Thesis => 1,
@@ -363,18 +461,10 @@ fn render_rows(
         .par_chunks_mut(img.width)
         .enumerate()
         .map(|(row, out)| {
-            let mut stats = TraceStats::default();
-            let mut primary = 0u64;
+            let mut tracer = Tracer::new(&shared);
             let mut virtual_rows = vec![Intensity::ZERO; m * img.width];
-            let mut poses = rest_poses(scene);
-            // The in-between objects' contours, per row (scratch reused
-            // for every subpixel).
-            let deforming: Vec<Deforming> = chains
-                .iter()
-                .map(|(first, chain)| Deforming::new(*first, chain))
-                .collect();
             let row_strata: Vec<Vec<u32>> = match opts.sampler {
-                TimeSampler::Stratified if timed => {
+                TimeSampler::Stratified if shared.timed => {
                     (0..img.width).map(|x| strata(row * img.width + x, m * m)).collect()
                 }
                 _ => Vec::new(),
@@ -384,9 +474,9 @@ fn render_rows(
                 for scancol in first_col..=camera.virthighx {
                     let (jx, jz) = jitter(scanline, scancol);
                     let aray = camera.ray(scancol as f64, scanline as f64, jx, jz);
-                    if timed {
+                    let tau = || {
                         let k = (scanline - 1) * camera.virthighx + scancol.max(1) - 1;
-                        let tau = match opts.sampler {
+                        match opts.sampler {
                             TimeSampler::Table => times.time(scanline, scancol, k),
                             TimeSampler::Random => random_time(k),
                             TimeSampler::Stratified => {
@@ -394,28 +484,11 @@ fn render_rows(
                                 let j = sub * m + c % m;
                                 stratified_time(row * img.width + c / m, j, row_strata[c / m][j], m * m)
                             }
-                        };
-                        // The film's hook: τ within this frame's shutter to
-                        // film time (identity for a still).
-                        let time = frame.time(tau);
-                        for mo in &moving {
-                            poses[mo.object] = motionblur(&scene.objects[mo.object], mo, time, opts.fidelity);
+                            // Drawn by `render_adaptive`.
+                            TimeSampler::Adaptive => 0.5,
                         }
-                        // `motionblur`'s `paper = 1` branch: the pose moved
-                        // by `diff`; the contour (`do34` at time 0 or 1, else
-                        // `Hermite`) when a ray first needs it.
-                        for (d, (_, chain)) in deforming.iter().zip(&chains) {
-                            poses[d.object] = chain.pose(time);
-                            d.at(time);
-                        }
-                    }
-                    let snap = Snapshot {
-                        scene,
-                        poses: &poses,
-                        deforming: &deforming,
                     };
-                    let acolor = raytrace(&snap, &aray, 1.0, false, 1, opts, &mut stats);
-                    primary += 1;
+                    let acolor = tracer.trace(&shared, &aray, tau);
                     if scancol >= 1 {
                         virtual_rows[sub * img.width + (scancol - 1) / m] += acolor;
                     }
@@ -423,16 +496,81 @@ fn render_rows(
             }
             antialias(&virtual_rows, m, out);
             progress();
-            (stats, primary)
+            (tracer.stats, tracer.primary)
         })
         .collect();
+    let (stats, primary) = sum_counts(per_row);
+    Traced {
+        colours: pixels,
+        counts: vec![(m * m) as u32; img.width * img.height],
+        stats,
+        primary,
+    }
+}
+
+/// The rows' counts, added up.
+fn sum_counts(per_row: Vec<(TraceStats, u64)>) -> (TraceStats, u64) {
     let mut stats = TraceStats::default();
     let mut primary = 0;
     for (s, p) in per_row {
         stats += s;
         primary += p;
     }
-    (pixels, stats, primary)
+    (stats, primary)
+}
+
+/// The scanline loop of `--sampler adaptive` (the port's extension, see
+/// [`crate::adaptive`]): a first pass of a few rays a pixel, then the
+/// passes that deal out the rest of the deck's budget of `masksize`² rays
+/// a pixel by need. Each sample is a place in the pixel and a time, from
+/// [`adaptive::sample`]; a pixel is the mean of its samples (the box filter
+/// of `antialias`). `progress` is called for each row of the last pass.
+fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync)) -> Traced {
+    let img = &shared.scene.image;
+    let (w, m) = (img.width, img.masksize as f64);
+    let budget = (img.masksize * img.masksize) as u32;
+    let first = adaptive::first_pass(img.masksize);
+    let mut sums = vec![adaptive::PixelSum::default(); w * img.height];
+    let mut counts = vec![first; sums.len()];
+    let later = adaptive::later_passes(sums.len(), budget, first);
+    let mut per_row = Vec::new();
+    for pass in 0..=later.len() {
+        if pass > 0 {
+            counts = adaptive::allocate(&sums, w, budget, later[pass - 1]);
+        }
+        let last = pass == later.len();
+        let rows: Vec<(TraceStats, u64)> = sums
+            .par_chunks_mut(w)
+            .zip(counts.par_chunks(w))
+            .enumerate()
+            .map(|(row, (sums, counts))| {
+                let mut tracer = Tracer::new(shared);
+                for (x, (sum, &count)) in sums.iter_mut().zip(counts).enumerate() {
+                    let samples = adaptive::PixelSamples::new(row * w + x);
+                    for j in sum.n..count {
+                        let s = samples.sample(j);
+                        // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
+                        let scancol = (x as f64 + s.u) * m + 0.5;
+                        let scanline = (row as f64 + s.v) * m + 0.5;
+                        let aray = camera.ray(scancol, scanline, 0.0, 0.0);
+                        sum.add(tracer.trace(shared, &aray, || s.tau));
+                    }
+                }
+                if last {
+                    progress();
+                }
+                (tracer.stats, tracer.primary)
+            })
+            .collect();
+        per_row.extend(rows);
+    }
+    let (stats, primary) = sum_counts(per_row);
+    Traced {
+        colours: sums.iter().map(adaptive::PixelSum::mean).collect(),
+        counts,
+        stats,
+        primary,
+    }
 }
 
 /// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the

@@ -474,6 +474,10 @@ pub enum TimeSampler {
     /// dealt to the subpixels by a permutation of the pixel's own, as
     /// renderers later came to do; not the thesis's.
     Stratified,
+    /// M² rays a pixel on average, dealt out by each pixel's need, at
+    /// scrambled Sobol places and times ([`crate::adaptive`]); not the
+    /// thesis's.
+    Adaptive,
 }
 
 /// How to render: the choices that are not part of the scene.
@@ -612,4 +616,21 @@ pub struct Scene {
     /// The `film` record (the port's extension, [`crate::film`]); `None`
     /// renders one still, as the thesis does.
     pub film: Option<crate::film::FilmRecord>,
+}
+
+impl Scene {
+    /// Sets the image to `width`×`height` pixels of `mask`×`mask`
+    /// subpixels in place of the deck's `image` record (`--size`,
+    /// `--mask`); the view (the window on the screen plane) stays, so the
+    /// picture is the same at another resolution. A deck's `pattern`
+    /// record fits one mask only, so it is dropped when the mask changes
+    /// (the default table of that mask is used).
+    pub fn resize(&mut self, width: usize, height: usize, mask: usize) {
+        if self.image.masksize != mask {
+            self.pattern = None;
+        }
+        self.image.width = width;
+        self.image.height = height;
+        self.image.masksize = mask;
+    }
 }

@@ -275,35 +275,8 @@ fn moving_square_matches_its_coverage() {
 
 fn moving_square(sampler: TimeSampler) {
     let m = 8usize;
-    let mut s = scene();
-    s.view = View {
-        eyept: DVec3::new(0.0, -1000.0, 0.0),
-        lookpt: DVec3::ZERO,
-        screensize: 16.0,
-        scrndistance: 1000.0,
-    };
-    s.image = ImageSpec {
-        width: 64,
-        height: 4,
-        masksize: m,
-        aliasing: 0.0,
-    };
-    s.surfaces
-        .push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
+    let s = common::moving_block(m, 4, 20.0);
     let (w_sq, x0, d) = (2.0, -5.0, 10.0);
-    s.objects.push(block("square", 0, [x0, 0.0, 0.0], [w_sq, 0.01, 20.0]));
-    s.motions.push(MotionRecord {
-        pos: Pos::default(),
-        object: 0,
-        to: DVec3::new(x0 + d, 0.0, 0.0),
-        turn: DVec3::ZERO,
-        via: None,
-        law: Law::Constant,
-    });
-    s.blur = Some(BlurRecord {
-        pos: Pos::default(),
-        n: 1,
-    });
     let img = render(
         &s,
         &Options {

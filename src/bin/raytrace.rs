@@ -64,9 +64,21 @@ struct Cli {
 
     /// How each subpixel's time is chosen: the thesis's pattern table with its CLT jitter
     /// (table), an independent uniform time (random), or one time in each stratum of the
-    /// shutter in a per-pixel order (stratified). Only table is the thesis's.
+    /// shutter in a per-pixel order (stratified). adaptive spends the same M² rays a pixel
+    /// on average where each pixel needs them (places and times in pixel and shutter from a
+    /// scrambled Sobol sequence). Only table is the thesis's.
     #[arg(long, value_enum, default_value_t = SamplerArg::Table)]
     sampler: SamplerArg,
+
+    /// M×M subpixels a pixel (M² rays a pixel on average for --sampler adaptive), 1..32,
+    /// in place of the deck's `mask` for this run [default: the deck's].
+    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u16).range(1..=MAX_MASK))]
+    mask: Option<u16>,
+
+    /// The image's width and height in pixels, WxH (each 1..8192), in place of the deck's
+    /// `image` record for this run; the view stays, so the picture is the same at another size.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(usize, usize)>,
 
     /// Worker threads [default: one per core]; the image is the same for any number.
     #[arg(long, value_name = "N")]
@@ -102,6 +114,25 @@ enum SamplerArg {
     Table,
     Random,
     Stratified,
+    Adaptive,
+}
+
+/// The largest `--mask`: 32×32 = 1024 rays a pixel, the chart's reference.
+const MAX_MASK: i64 = 32;
+
+/// The largest side `--size` takes, the deck's `image` limit.
+const MAX_SIDE: usize = 8192;
+
+/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
+fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let (w, h) = text
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("'{text}' is not WxH (e.g. 256x256)"))?;
+    let side = |v: &str, what: &str| match v.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_SIDE).contains(&n) => Ok(n),
+        _ => Err(format!("the {what} '{v}' is not a whole number in 1..={MAX_SIDE}")),
+    };
+    Ok((side(w, "width")?, side(h, "height")?))
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -161,8 +192,10 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             SamplerArg::Table => TimeSampler::Table,
             SamplerArg::Random => TimeSampler::Random,
             SamplerArg::Stratified => TimeSampler::Stratified,
+            SamplerArg::Adaptive => TimeSampler::Adaptive,
         },
     };
+    raytrace::adaptive::check(&opts).map_err(input_error)?;
 
     let output_format = check_output_names(cli)?;
 
@@ -196,6 +229,11 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     });
 
     let mut scene = raytrace::deck::initialize(&source, &file_name, &deck_dir, opts.fidelity).map_err(input_error)?;
+    if cli.mask.is_some() || cli.size.is_some() {
+        let (w, h) = cli.size.unwrap_or((scene.image.width, scene.image.height));
+        let m = cli.mask.map_or(scene.image.masksize, usize::from);
+        scene.resize(w, h, m);
+    }
     raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| input_error(format!("{file_name}:{e}")))?;
 
     // Every output is checked and reserved before the render, so a long
@@ -248,7 +286,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     if !cli.quiet {
         let img = &scene.image;
         eprintln!(
-            "raytrace: {} → {}{} ({}×{}, {}×{} subpixels, {} rays, {:.2} s)",
+            "raytrace: {} → {}{} ({}×{}, {}, {} rays, {:.2} s)",
             file_name,
             output.display(),
             png.as_ref()
@@ -256,8 +294,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                 .unwrap_or_default(),
             img.width,
             img.height,
-            img.masksize,
-            img.masksize,
+            sampling(&opts, img),
             render.stats.rays,
             elapsed.as_secs_f64()
         );
@@ -371,7 +408,7 @@ fn run_film(
     if !cli.quiet {
         let img = &scene.image;
         eprintln!(
-            "raytrace: {} → {} … {}{} (frames {}..{} of {}, {}×{}, {}×{} subpixels, {} rays, {:.2} s, {:.2} s a frame)",
+            "raytrace: {} → {} … {}{} (frames {}..{} of {}, {}×{}, {}, {} rays, {:.2} s, {:.2} s a frame)",
             file_name,
             frame_path(&stem, range.first, film.frames).display(),
             frame_path(&stem, range.last, film.frames).display(),
@@ -384,8 +421,7 @@ fn run_film(
             film.frames,
             img.width,
             img.height,
-            img.masksize,
-            img.masksize,
+            sampling(opts, img),
             rays,
             elapsed.as_secs_f64(),
             elapsed.as_secs_f64() / f64::from(range.len())
@@ -427,5 +463,14 @@ fn check_output_names(cli: &Cli) -> Result<Format, Failure> {
         None => Ok(Format::SunRaster),
         Some(out) if out.as_os_str() == STDOUT => Ok(Format::SunRaster),
         Some(out) => Format::of(out).map_err(|e| usage("-o", out, &e)),
+    }
+}
+
+/// The summary line's words for the rays a pixel: M×M subpixels, or the
+/// adaptive sampler's average.
+fn sampling(opts: &Options, img: &raytrace::types::ImageSpec) -> String {
+    match opts.sampler {
+        TimeSampler::Adaptive => format!("{} rays a pixel on average, adaptive", img.masksize * img.masksize),
+        _ => format!("{}×{} subpixels", img.masksize, img.masksize),
     }
 }

@@ -174,3 +174,40 @@ pub fn sweep_box(class: PrimitiveClass, sw: &SweepShape) -> (DVec3, DVec3) {
         _ => (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax)),
     }
 }
+
+/// A flat (emissive) block 2 wide and `z_size` high moving at constant
+/// speed from x = −5 to 5 across a black background, seen head-on through
+/// a nearly parallel projection (screen 16 wide at distance 1000), 64 ×
+/// `height` pixels of `m`×`m` subpixels, `blur 1`.
+pub fn moving_block(m: usize, height: usize, z_size: f64) -> Scene {
+    let mut s = scene();
+    s.view = View {
+        eyept: DVec3::new(0.0, -1000.0, 0.0),
+        lookpt: DVec3::ZERO,
+        screensize: 16.0,
+        scrndistance: 1000.0,
+    };
+    s.image = ImageSpec {
+        width: 64,
+        height,
+        masksize: m,
+        aliasing: 0.0,
+    };
+    s.surfaces
+        .push(surface(SurfaceAttribute::Light, [1.0, 1.0, 1.0], 0.0, 0.0, 0.0, 0.0));
+    s.objects
+        .push(block("square", 0, [-5.0, 0.0, 0.0], [2.0, 0.01, z_size]));
+    s.motions.push(MotionRecord {
+        pos: Pos::default(),
+        object: 0,
+        to: DVec3::new(5.0, 0.0, 0.0),
+        turn: DVec3::ZERO,
+        via: None,
+        law: Law::Constant,
+    });
+    s.blur = Some(BlurRecord {
+        pos: Pos::default(),
+        n: 1,
+    });
+    s
+}

@@ -24,7 +24,7 @@ pub fn bench(
     if size.is_some() || mask.is_some() {
         let (w, h) = size.unwrap_or((scene.image.width, scene.image.height));
         let m = mask.unwrap_or(scene.image.masksize);
-        crate::decks::resize(&mut scene, w, h, m);
+        scene.resize(w, h, m);
     }
     raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
     let pool = rayon::ThreadPoolBuilder::new()

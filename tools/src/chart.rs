@@ -1,13 +1,14 @@
 //! `tools chart`: the speed/accuracy chart, docs/speed_accuracy.png and .svg.
 //!
-//! Panel 1, time samplers: for each motion-blurred deck of
+//! Panels 1 and 2, time samplers: for each motion-blurred deck of
 //! [`BLUR_DECKS`] and each way of choosing the
 //! subpixel times, the RMSE of the float image (`render_colours`) against
 //! a reference of 1024 stratified time samples a pixel (mask 32), against
-//! the median render time (all threads), at 1, 4, 16 and 64 samples a
-//! pixel (mask 1, 2, 4, 8).
+//! the median render time (all threads; panel 1) and against the rays a
+//! pixel (panel 2), at 1, 4, 16 and 64 samples a pixel (mask 1, 2, 4, 8;
+//! for `--sampler adaptive`, the same numbers on average).
 //!
-//! Panel 2, root solvers: for each sweep deck of
+//! Panel 3, root solvers: for each sweep deck of
 //! [`SOLVER_DECKS`] and each solver, the share
 //! of silhouette pixels whose colour differs (by more than
 //! [`DIFFER`] in a channel) from a reference rendered with the robust
@@ -15,7 +16,7 @@
 //! (one thread, timed at mask 4: a ray's cost does not depend on the mask).
 //!
 //! Every render of the chart is `size`×`size` pixels (96 by default), so
-//! the whole chart takes a minute or two on two cores.
+//! the whole chart takes a few minutes on two cores.
 
 use std::path::Path;
 
@@ -35,11 +36,12 @@ pub struct Sampling {
     pub sampler: TimeSampler,
 }
 
-/// The four samplers of panel 1: the listing's table (times `pattern·0.1`,
-/// up to 6.3 at mask 8: erratum 2, so its error is large by design), the
-/// thesis's table with the CLT jitter of the deck's `blur`, plain random
-/// times, and stratified times.
-pub const SAMPLINGS: [Sampling; 4] = [
+/// The five samplers of panels 1 and 2: the listing's table (times
+/// `pattern·0.1`, up to 6.3 at mask 8: erratum 2, so its error is large by
+/// design), the thesis's table with the CLT jitter of the deck's `blur`,
+/// plain random times, stratified times, and the adaptive sampler (the
+/// port's extension, `raytrace::adaptive`).
+pub const SAMPLINGS: [Sampling; 5] = [
     Sampling {
         label: "listing table",
         fidelity: Fidelity::Listing,
@@ -60,17 +62,22 @@ pub const SAMPLINGS: [Sampling; 4] = [
         fidelity: Fidelity::Thesis,
         sampler: TimeSampler::Stratified,
     },
+    Sampling {
+        label: "adaptive",
+        fidelity: Fidelity::Thesis,
+        sampler: TimeSampler::Adaptive,
+    },
 ];
 
-/// The masks of panel 1: 1, 4, 16 and 64 samples a pixel.
+/// The masks of panels 1 and 2: 1, 4, 16 and 64 samples a pixel.
 pub const BLUR_MASKS: [usize; 4] = [1, 2, 4, 8];
-/// Panel 1's reference: 32×32 = 1024 stratified time samples a pixel.
+/// Panels 1 and 2's reference: 32×32 = 1024 stratified time samples a pixel.
 pub const BLUR_REFERENCE_MASK: usize = 32;
-/// The masks of panel 2.
+/// The masks of panel 3.
 pub const SOLVER_MASKS: [usize; 4] = [1, 2, 4, 8];
-/// The mask of panel 2's timing renders.
+/// The mask of panel 3's timing renders.
 pub const TIMING_MASK: usize = 4;
-/// Panel 2's reference: the robust solver at 16×16 rays a pixel.
+/// Panel 3's reference: the robust solver at 16×16 rays a pixel.
 pub const SOLVER_REFERENCE_MASK: usize = 16;
 /// The probe rays a pixel (k×k) that decide which pixels are silhouette.
 pub const PROBE: usize = 8;
@@ -79,7 +86,7 @@ pub const PROBE: usize = 8;
 /// below a coverage change of one subpixel in four on a silhouette).
 pub const DIFFER: f64 = 0.05;
 
-/// A point of panel 1.
+/// A point of panels 1 and 2.
 #[derive(Clone, Debug)]
 pub struct BlurPoint {
     pub deck: &'static str,
@@ -89,7 +96,7 @@ pub struct BlurPoint {
     pub rmse: f64,
 }
 
-/// A point of panel 2.
+/// A point of panel 3.
 #[derive(Clone, Debug)]
 pub struct SolverPoint {
     pub deck: &'static str,
@@ -115,7 +122,7 @@ fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
     }
 }
 
-/// Panel 1's measurements: the error of each render, then the times,
+/// Panels 1 and 2's measurements: the error of each render, then the times,
 /// `runs` interleaved rounds over every render.
 pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> {
     let mut out = Vec::new();
@@ -168,7 +175,7 @@ fn sweeps_of(scene: &Scene) -> Vec<usize> {
         .collect()
 }
 
-/// Panel 2's measurements.
+/// Panel 3's measurements.
 pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, String> {
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
@@ -236,14 +243,15 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
 }
 
 /// The chart's size in pixels.
-const WIDTH: u32 = 1500;
-const HEIGHT: u32 = 640;
+const WIDTH: u32 = 2100;
+const HEIGHT: u32 = 700;
 
-const SAMPLING_COLOURS: [RGBColor; 4] = [
+const SAMPLING_COLOURS: [RGBColor; 5] = [
     RGBColor(200, 40, 40),
     RGBColor(40, 90, 200),
     RGBColor(230, 140, 20),
     RGBColor(30, 150, 60),
+    RGBColor(140, 50, 170),
 ];
 const SOLVER_COLOURS: [RGBColor; 2] = [RGBColor(200, 40, 40), RGBColor(40, 90, 200)];
 
@@ -293,7 +301,7 @@ fn panel<DB: DrawingBackend>(
     series: &[Series],
     floor: Option<f64>,
     note: &str,
-    legend: SeriesLabelPosition,
+    legend: Option<SeriesLabelPosition>,
     x_room: f64,
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("{e:?}");
@@ -333,11 +341,12 @@ fn panel<DB: DrawingBackend>(
             .map(|&(x, y)| (x, if y > 0.0 { y } else { floor.unwrap_or(y0) }))
             .collect();
         let (colour, m) = (s.colour, s.marker);
-        chart
+        let line = chart
             .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
-            .map_err(err)?
-            .label(s.label.clone())
-            .legend(move |(x, y)| {
+            .map_err(err)?;
+        // Only a panel with a legend labels its series.
+        if legend.is_some() {
+            line.label(s.label.clone()).legend(move |(x, y)| {
                 EmptyElement::at((x, y))
                     + PathElement::new(vec![(-6, 0), (14, 0)], colour.stroke_width(2))
                     + Circle::new((4, 0), if m == 0 { 4 } else { 0 }, colour.filled())
@@ -352,6 +361,7 @@ fn panel<DB: DrawingBackend>(
                         },
                     )
             });
+        }
         // The markers: filled circle, triangle, cross, square, by deck.
         let fill = colour.filled();
         let at = pts.iter().copied();
@@ -369,14 +379,16 @@ fn panel<DB: DrawingBackend>(
         }
         .map_err(err)?;
     }
-    chart
-        .configure_series_labels()
-        .position(legend)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(("sans-serif", 13))
-        .draw()
-        .map_err(err)?;
+    if let Some(legend) = legend {
+        chart
+            .configure_series_labels()
+            .position(legend)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK.mix(0.4))
+            .label_font(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+    }
     strip
         .draw(&Text::new(
             note.to_string(),
@@ -387,7 +399,7 @@ fn panel<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Draws both panels on `root`.
+/// Draws the three panels on `root`.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     blur: &[BlurPoint],
@@ -395,32 +407,47 @@ pub fn draw<DB: DrawingBackend>(
     size: usize,
 ) -> Result<(), String> {
     root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-    let (left, right) = root.split_horizontally(WIDTH / 2);
-    let mut s1 = Vec::new();
-    for (di, &deck) in BLUR_DECKS.iter().enumerate() {
-        for (si, s) in SAMPLINGS.iter().enumerate() {
-            let points: Vec<(f64, f64)> = blur
-                .iter()
-                .filter(|p| p.deck == deck && p.sampling == si)
-                .map(|p| (p.secs, p.rmse))
-                .collect();
-            s1.push(Series {
-                label: format!("{deck} · {}", s.label),
-                colour: SAMPLING_COLOURS[si],
-                marker: di,
-                points,
-            });
+    let (left, rest) = root.split_horizontally(WIDTH / 3);
+    let (middle, right) = rest.split_horizontally(WIDTH / 3);
+    let blur_series = |x: &dyn Fn(&BlurPoint) -> f64| {
+        let mut series = Vec::new();
+        for (di, &deck) in BLUR_DECKS.iter().enumerate() {
+            for (si, s) in SAMPLINGS.iter().enumerate() {
+                let points: Vec<(f64, f64)> = blur
+                    .iter()
+                    .filter(|p| p.deck == deck && p.sampling == si)
+                    .map(|p| (x(p), p.rmse))
+                    .collect();
+                series.push(Series {
+                    label: format!("{deck} · {}", s.label),
+                    colour: SAMPLING_COLOURS[si],
+                    marker: di,
+                    points,
+                });
+            }
         }
-    }
+        series
+    };
     panel(
         &left,
         "Time samplers: error against render time",
         "render time, s (median, 2 threads)",
         "RMSE against 1024 samples a pixel",
-        &s1,
+        &blur_series(&|p| p.secs),
         None,
         &format!("{size}×{size} pixels; left to right on each line: 1, 4, 16, 64 samples a pixel"),
-        SeriesLabelPosition::LowerLeft,
+        Some(SeriesLabelPosition::LowerLeft),
+        1.0,
+    )?;
+    panel(
+        &middle,
+        "Time samplers: error against rays",
+        "primary rays a pixel (adaptive: on average)",
+        "RMSE against 1024 samples a pixel",
+        &blur_series(&|p| (p.mask * p.mask) as f64),
+        None,
+        "markers by deck as in the left panel: circle fig5_3, triangle fig5_9, cross fig5_10, square fig5_12",
+        None,
         1.0,
     )?;
     let mut s2 = Vec::new();
@@ -466,7 +493,7 @@ pub fn draw<DB: DrawingBackend>(
         &format!(
             "{size}×{size}; top to bottom on each line: 1, 4, 16, 64 rays a pixel; reference: robust, 256 rays a pixel; 0 drawn at the bottom"
         ),
-        SeriesLabelPosition::UpperRight,
+        Some(SeriesLabelPosition::UpperRight),
         3.0,
     )?;
     root.present().map_err(|e| format!("{e:?}"))
@@ -563,7 +590,7 @@ mod tests {
     #[test]
     fn draws_from_points() {
         crate::fonts::register().unwrap();
-        let blur: Vec<BlurPoint> = (0..4)
+        let blur: Vec<BlurPoint> = (0..SAMPLINGS.len())
             .flat_map(|s| {
                 BLUR_MASKS.map(|m| BlurPoint {
                     deck: BLUR_DECKS[0],

@@ -14,9 +14,10 @@ pub const CHAPTER5: &[&str] = &[
     "fig5_12",
 ];
 
-/// The motion-blurred decks of the chart's first panel (time samplers): a
-/// moving textured cube, moving translation sweeps, a deforming sweep.
-pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9", "fig5_10"];
+/// The motion-blurred decks of the chart's time-sampler panels: a moving
+/// textured cube, moving translation sweeps, a deforming translation sweep
+/// and a deforming rotation sweep.
+pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9", "fig5_10", "fig5_12"];
 
 /// The sweep decks of the chart's second panel (root solvers): one of each
 /// kind of sweep (translation, conic, rotation) and the deliberately hard
@@ -66,24 +67,10 @@ pub fn load_source(source: &str, file_name: &str, dir: &Path, fidelity: Fidelity
 pub fn prepared(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Result<Scene, String> {
     let mut scene = load(name, opts.fidelity)?;
     if let Some((w, h, m)) = size {
-        resize(&mut scene, w, h, m);
+        scene.resize(w, h, m);
     }
     raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
     Ok(scene)
-}
-
-/// Sets the image to `width`×`height` pixels of `mask`×`mask` subpixels;
-/// the view (the window on the screen plane) stays, so the picture is the
-/// same at another resolution. A deck's `pattern` record fits one mask
-/// only, so it is dropped when the mask changes (the default table of
-/// that mask is used).
-pub fn resize(scene: &mut Scene, width: usize, height: usize, mask: usize) {
-    if scene.image.masksize != mask {
-        scene.pattern = None;
-    }
-    scene.image.width = width;
-    scene.image.height = height;
-    scene.image.masksize = mask;
 }
 
 /// The deck of the segment-count bench: a translation sweep whose contour
@@ -152,7 +139,7 @@ mod tests {
     fn resize_sets_the_image() {
         let mut scene = load("fig5_3", Fidelity::Thesis).unwrap();
         let view = scene.view.clone();
-        resize(&mut scene, 96, 64, 8);
+        scene.resize(96, 64, 8);
         assert_eq!(
             (scene.image.width, scene.image.height, scene.image.masksize),
             (96, 64, 8)

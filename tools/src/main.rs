@@ -2,10 +2,11 @@
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `stability` writes the root solvers' stability report; `pov`
-//! exports a deck to POV-Ray and `vs-povray` compares the two renderers.
-//! Timings are measured and printed, never asserted in tests; `join` makes
-//! a film's animated PNG from its frame rasters.
+//! chart; `heatmap` shows where the adaptive sampler spends its rays;
+//! `stability` writes the root solvers' stability report; `pov` exports a
+//! deck to POV-Ray and `vs-povray` compares the two renderers. Timings are
+//! measured and printed, never asserted in tests; `join` makes a film's
+//! animated PNG from its frame rasters.
 
 use std::path::PathBuf;
 
@@ -75,7 +76,7 @@ enum Command {
         /// Follow the listings instead of the thesis.
         #[arg(long)]
         listing: bool,
-        /// How subpixel times are chosen: table (the thesis's), random, stratified.
+        /// How subpixel times are chosen: table (the thesis's), random, stratified, adaptive.
         #[arg(long, default_value = "table")]
         sampler: String,
         /// Render at this mask (M×M subpixels a pixel) instead of the deck's.
@@ -97,6 +98,21 @@ enum Command {
         /// Timed renders a point (the median is plotted).
         #[arg(long, default_value_t = 5)]
         runs: usize,
+    },
+    /// Where `--sampler adaptive` spends its rays: the image beside a heat map
+    /// of the rays each pixel got, one PNG.
+    Heatmap {
+        /// The deck (a shipped deck's name, e.g. fig5_10, or a path).
+        deck: PathBuf,
+        /// The PNG to write.
+        #[arg(long, default_value = "docs/img/adaptive_heatmap.png")]
+        out: PathBuf,
+        /// Width and height of the image, in pixels.
+        #[arg(long, default_value_t = 256)]
+        size: usize,
+        /// The budget: mask² rays a pixel on average.
+        #[arg(long, default_value_t = 4)]
+        mask: usize,
     },
     /// Join a film's frame rasters (in the order given, e.g. raster/nec.*.ras) into one
     /// animated PNG; with --strip also a still strip of every Nth frame (docs/film.md).
@@ -209,17 +225,26 @@ fn main() -> Result<(), String> {
                 "table" => TimeSampler::Table,
                 "random" => TimeSampler::Random,
                 "stratified" => TimeSampler::Stratified,
-                other => return Err(format!("--sampler {other}: expected table, random or stratified")),
+                "adaptive" => TimeSampler::Adaptive,
+                other => {
+                    return Err(format!(
+                        "--sampler {other}: expected table, random, stratified or adaptive"
+                    ))
+                }
             };
             let opts = Options {
                 fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
                 solver: if robust { Solver::Robust } else { Solver::Laguerre },
                 sampler,
             };
+            raytrace::adaptive::check(&opts)?;
             let size = size.map(|s| (s[0].clamp(1, 8192), s[1].clamp(1, 8192)));
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Heatmap { deck, out, size, mask } => {
+            tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
+        }
         Command::Stability { out } => tools::stability::run(&out),
         Command::Fuzz {
             target,
