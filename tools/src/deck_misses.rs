@@ -6,7 +6,7 @@ use raytrace::raytrace::{prepare, Camera};
 use raytrace::shapes::intersect_object;
 use raytrace::types::{Options, Shape, Solver};
 
-use crate::decks::{load, resize};
+use crate::decks::load;
 
 /// What the primary rays of one deck found on its sweeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -31,7 +31,7 @@ pub fn deck_misses(deck: &str, size: usize) -> Result<DeckMisses, String> {
         ..lag
     };
     let mut scene = load(deck, lag.fidelity)?;
-    resize(&mut scene, size, size, 1);
+    scene.resize(size, size, 1);
     prepare(&mut scene, &lag).map_err(|e| e.to_string())?;
     let cam = Camera::new(&scene, lag.fidelity);
     let sweeps: Vec<_> = scene

@@ -377,7 +377,7 @@ mod tests {
             );
             let opts = Options::default();
             let mut scene = crate::decks::load(deck.to_str().unwrap(), opts.fidelity).unwrap();
-            crate::decks::resize(&mut scene, 48, 48, 2);
+            scene.resize(48, 48, 2);
             raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
             let drawn = raytrace::raytrace::render(&scene, &opts, &|| {}).raster;
             let recs = records(deck);

@@ -16,7 +16,7 @@ use std::process::{Command, Stdio};
 use raytrace::raytrace::{prepare, render};
 use raytrace::types::{DVec3, Options, Scene, Shape, Solver, SurfaceAttribute};
 
-use crate::decks::{deck_path, load, resize};
+use crate::decks::{deck_path, load};
 use crate::pov::scene_sdl;
 
 /// The settings of one comparison.
@@ -192,7 +192,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
         ..Options::default()
     };
     let mut base = load(deck, Options::default().fidelity)?;
-    resize(&mut base, set.size, set.size, set.mask);
+    base.resize(set.size, set.size, set.mask);
     let stem = deck_path(deck)
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
@@ -220,7 +220,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
 
     // Silhouettes at one sample a pixel.
     let mut sil = silhouette_scene(&base);
-    resize(&mut sil, set.size, set.size, 1);
+    sil.resize(set.size, set.size, 1);
     let sil_pov = dir.join(format!("{stem}_silhouette.pov"));
     std::fs::write(&sil_pov, scene_sdl(&sil, Options::default().fidelity))
         .map_err(|e| format!("{}: {e}", sil_pov.display()))?;
