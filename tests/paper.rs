@@ -301,6 +301,11 @@ fn max_gap(pair: &PaperPair, t: f64, end: f64) -> f64 {
     let (mut a, mut b) = (pair.scratch(), pair.scratch());
     Hermite(pair, t, &mut a);
     do34(end, pair, &mut b);
+    // The same curve on [0, 1] (the listing's do34 keeps a piece's `first`,
+    // `last`: D15).
+    for c in b.u.iter_mut().chain(b.v.iter_mut()) {
+        *c = reparam(c);
+    }
     assert_eq!(a.segment, b.segment);
     let mut gap = 0.0f64;
     for (p, q) in a.u.iter().zip(&b.u).chain(a.v.iter().zip(&b.v)) {
