@@ -145,12 +145,13 @@ fn frames_are_different_instants_in_both_fidelities() {
 /// The hook maps every subpixel time. With one subpixel a pixel and no
 /// `blur`, the thesis's table gives every subpixel τ = (0 + ½)/1 = ½; so
 /// frame k of F with shutter S must show the scene still at
-/// t = (k−1+S/2)/F, and the listing's table (erratum 2: 0·0.1) at
-/// t = (k−1)/F. Checked against `still_at`, which poses without the loop.
+/// t = (k−1+S/2)/F, and the listing's table (erratum 2: the entry 7 of
+/// Fig. 2.33's top-left corner, D9, times 0.1) at t = (k−1+0.7·S)/F.
+/// Checked against `still_at`, which poses without the loop.
 #[test]
 fn the_render_loop_uses_frame_time_for_every_sample() {
     let one_instant = MOVING.replace("mask 2", "mask 1").replace("blur 1\n", "");
-    for (fidelity, tau) in [(Fidelity::Thesis, 0.5), (Fidelity::Listing, 0.0)] {
+    for (fidelity, tau) in [(Fidelity::Thesis, 0.5), (Fidelity::Listing, 0.7)] {
         let s = scene(&format!("{one_instant}film 5 shutter 0.8\n"), fidelity).unwrap();
         let o = opts(fidelity);
         let chains = key_frame_chains(&s, fidelity).unwrap();
@@ -189,6 +190,9 @@ fn frame_files(stem: &Path, range: std::ops::RangeInclusive<u32>, frames: u32) -
 fn frames_split_over_processes_equal_one_process_and_join_to_the_same_apng() {
     let dir = tempfile::tempdir().unwrap();
     let deck = write_deck(dir.path(), &format!("{MOVING}film 6 shutter 0.5 rate 8\n"));
+    for folder in ["one", "split", "task"] {
+        std::fs::create_dir(dir.path().join(folder)).unwrap();
+    }
     let one = dir.path().join("one/walk.ras");
     let apng = dir.path().join("one/walk.png");
     let msg = run_ok(
@@ -206,14 +210,14 @@ fn frames_split_over_processes_equal_one_process_and_join_to_the_same_apng() {
         raytrace()
             .arg(&deck)
             .arg("-o")
-            .arg(&split)
+            .arg(split.with_extension("ras"))
             .args(["--frames", "1..3", "--threads", "1", "--quiet"]),
     );
     run_ok(
         raytrace()
             .arg(&deck)
             .arg("-o")
-            .arg(&split)
+            .arg(split.with_extension("ras"))
             .args(["--frames", "4..6", "--threads", "3", "--quiet"]),
     );
     let a = frame_files(&dir.path().join("one/walk"), 1..=6, 6);
@@ -229,7 +233,7 @@ fn frames_split_over_processes_equal_one_process_and_join_to_the_same_apng() {
         raytrace()
             .arg(&deck)
             .arg("-o")
-            .arg(&task)
+            .arg(task.with_extension("ras"))
             .args(["--frames", "5", "--quiet"]),
     );
     assert_eq!(

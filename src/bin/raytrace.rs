@@ -241,6 +241,20 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
         std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| other_error(format!("{DEFAULT_FOLDER}: {e}")))?;
     }
+    let film_range = match scene.film {
+        Some(film) => Some(check_film(cli, film, &file_name, &output)?),
+        None => {
+            if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
+                .iter()
+                .find_map(|&(given, flag)| given.then_some(flag))
+            {
+                return Err(input_error(format!(
+                    "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
+                )));
+            }
+            None
+        }
+    };
     let reserve = |path: &Path| PendingFile::create(path).map_err(|e| other_error(format!("{}: {e}", path.display())));
     let raster_file = reserve(&output)?;
     let png_file = png.as_deref().map(reserve).transpose()?;
@@ -250,16 +264,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .map_err(other_error)?;
-    if let Some(film) = scene.film {
-        return run_film(cli, &scene, &opts, &pool, film, &file_name, &output);
-    }
-    if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
-        .iter()
-        .find_map(|&(given, flag)| given.then_some(flag))
-    {
-        return Err(input_error(format!(
-            "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
-        )));
+    if let (Some(film), Some(range)) = (scene.film, film_range) {
+        return run_film(cli, &scene, &opts, &pool, (film, range), &file_name, &output);
     }
     let bar = progress_bar(cli.quiet, scene.image.height as u64)?;
     bar.set_message(format!("tracing {file_name}"));
@@ -318,27 +324,23 @@ fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
     Ok(bar)
 }
 
-/// Renders the frames of a deck with a `film` record: one raster per
-/// frame, `STEM.0001.ras` …, each written (atomically) as soon as it is
-/// done, and with `--apng` one animated PNG of them at the end. Every flag
-/// is checked before the first frame, so a bad one writes nothing.
-fn run_film(
+/// The flags of a film checked against its `film` record before any output
+/// is reserved, so a usage error (exit 2) comes first and writes nothing:
+/// the frames to render.
+fn check_film(
     cli: &Cli,
-    scene: &raytrace::types::Scene,
-    opts: &Options,
-    pool: &rayon::ThreadPool,
     film: raytrace::film::FilmRecord,
     file_name: &str,
     output: &Path,
-) -> Result<(), Failure> {
-    use raytrace::film::{frame_path, frame_stem, FrameRange};
+) -> Result<raytrace::film::FrameRange, Failure> {
+    use raytrace::film::FrameRange;
     let range = match &cli.frames {
         Some(text) => FrameRange::parse(text, film.frames).map_err(input_error)?,
         None => film.all(),
     };
     if output.as_os_str() == STDOUT || output.extension().is_some_and(|e| !e.eq_ignore_ascii_case("ras")) {
         return Err(input_error(format!(
-            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras or -o STEM",
+            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras",
             output.display()
         )));
     }
@@ -366,6 +368,23 @@ fn run_film(
             "--apng: this build has no PNG export (the `png` feature is off)",
         ));
     }
+    Ok(range)
+}
+
+/// Renders the frames of a deck with a `film` record: one raster per
+/// frame, `STEM.0001.ras` …, each written (atomically) as soon as it is
+/// done, and with `--apng` one animated PNG of them at the end. Every flag
+/// is checked before the first frame, so a bad one writes nothing.
+fn run_film(
+    cli: &Cli,
+    scene: &raytrace::types::Scene,
+    opts: &Options,
+    pool: &rayon::ThreadPool,
+    (film, range): (raytrace::film::FilmRecord, raytrace::film::FrameRange),
+    file_name: &str,
+    output: &Path,
+) -> Result<(), Failure> {
+    use raytrace::film::{frame_path, frame_stem};
     let stem = frame_stem(output);
     // The frames go beside `output`, whose folder `run` has checked; the
     // APNG is reserved now, so a bad name fails before the first frame.
