@@ -29,6 +29,15 @@ pub enum Drawing {
     /// psout's 1024×864 screen showing the render, as
     /// `psout --screenshot OUT.png FILE` writes it.
     Screen,
+    /// A film deck's frames as one animated PNG, as `raytrace DECK --apng
+    /// FILE` writes it (the port's extension, docs/film.md).
+    Film,
+    /// Every `every`-th frame of a film deck side by side, as `tools join
+    /// … --strip FILE --every N` writes it.
+    Strip { every: usize },
+    /// `--sampler adaptive` at `size`² and `mask`² rays a pixel: the image
+    /// beside the heat map of its rays, as `tools heatmap` writes it.
+    Heatmap { size: usize, mask: usize },
 }
 
 /// One picture of the docs.
@@ -116,6 +125,21 @@ pub const GALLERY: &[Picture] = &[
         deck: "legacy_pascal/decks/stress_edge_on.deck",
         drawing: Drawing::Solvers,
     },
+    Picture {
+        image: "docs/img/nec_commercial.png",
+        deck: "legacy_pascal/decks/nec_commercial.deck",
+        drawing: Drawing::Film,
+    },
+    Picture {
+        image: "docs/img/nec_commercial_strip.png",
+        deck: "legacy_pascal/decks/nec_commercial.deck",
+        drawing: Drawing::Strip { every: 6 },
+    },
+    Picture {
+        image: "docs/img/adaptive_heatmap.png",
+        deck: "legacy_pascal/decks/fig5_10.deck",
+        drawing: Drawing::Heatmap { size: 256, mask: 4 },
+    },
     render("docs/img/tutorial_1_sphere.png", "legacy_pascal/tutorial/1_sphere.deck"),
     render("docs/img/tutorial_2_sweep.png", "legacy_pascal/tutorial/2_sweep.deck"),
     render("docs/img/tutorial_3_motion.png", "legacy_pascal/tutorial/3_motion.deck"),
@@ -152,6 +176,13 @@ impl Picture {
             }
             Drawing::Solvers => format!("{deck} with --solver laguerre and --solver robust, side by side"),
             Drawing::Screen => format!("psout --screenshot {image} on the raster of {deck}"),
+            Drawing::Film => format!("cargo run --release -- {deck} --apng {image}"),
+            Drawing::Strip { every } => {
+                format!("cargo run -p tools --release -- join FRAMES… --strip {image} --every {every} (frames of {deck})")
+            }
+            Drawing::Heatmap { size, mask } => {
+                format!("cargo run -p tools --release -- heatmap {deck} --size {size} --mask {mask} --out {image}")
+            }
         }
     }
 
@@ -167,8 +198,62 @@ impl Picture {
                 Ok(side_by_side(&left, &right, GAP))
             }
             Drawing::Screen => Ok(psout::compose(&render_deck(&deck, Solver::Laguerre)?, None, (0, 0)).to_raster()),
+            Drawing::Film => Ok(film_frames(&deck)?.0.swap_remove(0)),
+            Drawing::Strip { every } => {
+                let (frames, _) = film_frames(&deck)?;
+                let picked: Vec<&Raster> = frames.iter().step_by(every.max(1)).collect();
+                Ok(crate::join::strip_of(&picked))
+            }
+            Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, size, mask)?.0),
         }
     }
+
+    /// Every frame of the picture: a [`Drawing::Film`]'s all, any other
+    /// drawing's one.
+    pub fn draw_frames(&self, root: &Path) -> Result<Vec<Raster>, String> {
+        match self.drawing {
+            Drawing::Film => Ok(film_frames(&root.join(self.deck))?.0),
+            _ => Ok(vec![self.draw(root)?]),
+        }
+    }
+}
+
+/// A film deck's frames rendered as `raytrace` renders them (thesis
+/// fidelity, the table sampler), and its rate.
+pub fn film_frames(deck: &Path) -> Result<(Vec<Raster>, u32), String> {
+    let opts = Options::default();
+    let scene = crate::decks::prepared(&deck.display().to_string(), &opts, None)?;
+    let film = scene
+        .film
+        .ok_or_else(|| format!("{}: no 'film' record", deck.display()))?;
+    let frames = (1..=film.frames)
+        .map(|k| raytrace::raytrace::render_frame(&scene, &opts, film.frame(k), &|| {}).raster)
+        .collect();
+    Ok((frames, film.rate))
+}
+
+/// The frames of an animated PNG (one for a still PNG), 8-bit RGB.
+pub fn read_png_frames(path: &Path) -> Result<Vec<Raster>, String> {
+    use image::AnimationDecoder;
+    let err = |e: image::ImageError| format!("{}: {e}", path.display());
+    let file = std::io::BufReader::new(std::fs::File::open(path).map_err(|e| format!("{}: {e}", path.display()))?);
+    let decoder = image::codecs::png::PngDecoder::new(file).map_err(err)?;
+    if !decoder.is_apng().map_err(err)? {
+        return Ok(vec![read_png(path)?]);
+    }
+    decoder
+        .apng()
+        .map_err(err)?
+        .into_frames()
+        .map(|f| {
+            let img = image::DynamicImage::ImageRgba8(f.map_err(err)?.into_buffer()).to_rgb8();
+            Ok(Raster {
+                width: img.width() as usize,
+                height: img.height() as usize,
+                pixels: img.pixels().map(|p| p.0).collect(),
+            })
+        })
+        .collect()
 }
 
 /// The deck's render in thesis fidelity with the table sampler, as the
@@ -236,19 +321,27 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
     crate::textures::write_textures(&root.join("raster"))?;
     let mut stale = Vec::new();
     for picture in chosen {
-        let drawn = picture.draw(root)?;
+        let drawn = picture.draw_frames(root)?;
         let path = root.join(picture.image);
         if check {
-            let differ = match read_png(&path) {
-                Ok(on_disk) => pixels_differing(&drawn, &on_disk),
-                Err(_) => drawn.pixels.len(),
+            let differ = match read_png_frames(&path) {
+                Ok(on_disk) if on_disk.len() == drawn.len() => {
+                    drawn.iter().zip(&on_disk).map(|(a, b)| pixels_differing(a, b)).sum::<usize>()
+                }
+                _ => drawn.iter().map(|d| d.pixels.len()).sum(),
             };
             println!("{:>7} pixels differ  {}", differ, picture.image);
             if differ > 0 {
                 stale.push(picture.image);
             }
+        } else if picture.drawing == Drawing::Film {
+            let rate = crate::decks::prepared(&root.join(picture.deck).display().to_string(), &Options::default(), None)?
+                .film
+                .map_or(12, |f| f.rate);
+            raytrace::film::write_apng(&path, &drawn, rate).map_err(|e| format!("{}: {e}", path.display()))?;
+            println!("wrote {}  ({})", picture.image, picture.command());
         } else {
-            raytrace::raster::write_png(&path, &drawn).map_err(|e| format!("{}: {e}", path.display()))?;
+            raytrace::raster::write_png(&path, &drawn[0]).map_err(|e| format!("{}: {e}", path.display()))?;
             println!("wrote {}  ({})", picture.image, picture.command());
         }
     }

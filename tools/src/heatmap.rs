@@ -41,9 +41,9 @@ pub fn side_by_side(image: &Raster, counts: &[u32]) -> Raster {
 }
 
 /// Renders `deck` with `--sampler adaptive` at `size`×`size` pixels and a
-/// budget of `mask`² rays a pixel, and writes the image beside its heat
-/// map to `out` (PNG). Prints the counts' range.
-pub fn run(deck: &Path, out: &Path, size: usize, mask: usize) -> Result<(), String> {
+/// budget of `mask`² rays a pixel: the image beside its heat map, and the
+/// rays each pixel got.
+pub fn draw(deck: &Path, size: usize, mask: usize) -> Result<(Raster, Vec<u32>), String> {
     let opts = Options {
         fidelity: Fidelity::Thesis,
         sampler: TimeSampler::Adaptive,
@@ -57,7 +57,13 @@ pub fn run(deck: &Path, out: &Path, size: usize, mask: usize) -> Result<(), Stri
         height: size,
         pixels: colours.iter().map(|&c| rgbtochars(c)).collect(),
     };
-    raytrace::raster::write_png(out, &side_by_side(&image, &counts)).map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok((side_by_side(&image, &counts), counts))
+}
+
+/// [`draw`], written to `out` (PNG). Prints the counts' range.
+pub fn run(deck: &Path, out: &Path, size: usize, mask: usize) -> Result<(), String> {
+    let (picture, counts) = draw(deck, size, mask)?;
+    raytrace::raster::write_png(out, &picture).map_err(|e| format!("{}: {e}", out.display()))?;
     let (lo, hi) = (
         counts.iter().copied().min().unwrap_or(0),
         counts.iter().copied().max().unwrap_or(0),
