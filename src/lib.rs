@@ -13,8 +13,8 @@
 pub mod adaptive;
 pub mod deck;
 pub mod drt;
-pub mod output;
 pub mod film;
+pub mod output;
 pub mod paper;
 pub mod proc;
 pub mod psout;

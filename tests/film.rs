@@ -206,20 +206,20 @@ fn frames_split_over_processes_equal_one_process_and_join_to_the_same_apng() {
     );
     assert!(msg.contains("frames 1..6 of 6"), "{msg}");
     let split = dir.path().join("split/walk");
-    run_ok(
-        raytrace()
-            .arg(&deck)
-            .arg("-o")
-            .arg(split.with_extension("ras"))
-            .args(["--frames", "1..3", "--threads", "1", "--quiet"]),
-    );
-    run_ok(
-        raytrace()
-            .arg(&deck)
-            .arg("-o")
-            .arg(split.with_extension("ras"))
-            .args(["--frames", "4..6", "--threads", "3", "--quiet"]),
-    );
+    run_ok(raytrace().arg(&deck).arg("-o").arg(split.with_extension("ras")).args([
+        "--frames",
+        "1..3",
+        "--threads",
+        "1",
+        "--quiet",
+    ]));
+    run_ok(raytrace().arg(&deck).arg("-o").arg(split.with_extension("ras")).args([
+        "--frames",
+        "4..6",
+        "--threads",
+        "3",
+        "--quiet",
+    ]));
     let a = frame_files(&dir.path().join("one/walk"), 1..=6, 6);
     let b = frame_files(&split, 1..=6, 6);
     for (a, b) in a.iter().zip(&b) {

@@ -449,7 +449,6 @@ fn run_film(
     Ok(())
 }
 
-
 /// Checks the output file names before anything is read or written, and
 /// gives the format of `-o`: a usage error (exit 2) when a name has an
 /// extension that names no format or (`--png`) is not a `.png`, or when

@@ -178,7 +178,9 @@ impl Picture {
             Drawing::Screen => format!("psout --screenshot {image} on the raster of {deck}"),
             Drawing::Film => format!("cargo run --release -- {deck} --apng {image}"),
             Drawing::Strip { every } => {
-                format!("cargo run -p tools --release -- join FRAMES… --strip {image} --every {every} (frames of {deck})")
+                format!(
+                    "cargo run -p tools --release -- join FRAMES… --strip {image} --every {every} (frames of {deck})"
+                )
             }
             Drawing::Heatmap { size, mask } => {
                 format!("cargo run -p tools --release -- heatmap {deck} --size {size} --mask {mask} --out {image}")
@@ -325,9 +327,11 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
         let path = root.join(picture.image);
         if check {
             let differ = match read_png_frames(&path) {
-                Ok(on_disk) if on_disk.len() == drawn.len() => {
-                    drawn.iter().zip(&on_disk).map(|(a, b)| pixels_differing(a, b)).sum::<usize>()
-                }
+                Ok(on_disk) if on_disk.len() == drawn.len() => drawn
+                    .iter()
+                    .zip(&on_disk)
+                    .map(|(a, b)| pixels_differing(a, b))
+                    .sum::<usize>(),
                 _ => drawn.iter().map(|d| d.pixels.len()).sum(),
             };
             println!("{:>7} pixels differ  {}", differ, picture.image);
@@ -335,9 +339,13 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
                 stale.push(picture.image);
             }
         } else if picture.drawing == Drawing::Film {
-            let rate = crate::decks::prepared(&root.join(picture.deck).display().to_string(), &Options::default(), None)?
-                .film
-                .map_or(12, |f| f.rate);
+            let rate = crate::decks::prepared(
+                &root.join(picture.deck).display().to_string(),
+                &Options::default(),
+                None,
+            )?
+            .film
+            .map_or(12, |f| f.rate);
             raytrace::film::write_apng(&path, &drawn, rate).map_err(|e| format!("{}: {e}", path.display()))?;
             println!("wrote {}  ({})", picture.image, picture.command());
         } else {
