@@ -238,9 +238,6 @@ fn run(cli: &Cli) -> Result<(), Failure> {
 
     // Every output is checked and reserved before the render, so a long
     // render never ends on a file it cannot write.
-    if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
-        std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| other_error(format!("{DEFAULT_FOLDER}: {e}")))?;
-    }
     let film_range = match scene.film {
         Some(film) => Some(check_film(cli, film, &file_name, &output)?),
         None => {
@@ -255,6 +252,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             None
         }
     };
+    if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
+        std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| other_error(format!("{DEFAULT_FOLDER}: {e}")))?;
+    }
     let reserve = |path: &Path| PendingFile::create(path).map_err(|e| other_error(format!("{}: {e}", path.display())));
     let raster_file = reserve(&output)?;
     let png_file = png.as_deref().map(reserve).transpose()?;
