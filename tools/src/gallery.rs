@@ -200,35 +200,27 @@ impl Picture {
                 Ok(side_by_side(&left, &right, GAP))
             }
             Drawing::Screen => Ok(psout::compose(&render_deck(&deck, Solver::Laguerre)?, None, (0, 0)).to_raster()),
-            Drawing::Film => Ok(film_frames(&deck)?.0.swap_remove(0)),
+            Drawing::Film => Ok(film_frames(&deck, 1)?.0.swap_remove(0)),
             Drawing::Strip { every } => {
-                let (frames, _) = film_frames(&deck)?;
+                let (frames, _) = film_frames(&deck, u32::MAX)?;
                 let picked: Vec<&Raster> = frames.iter().step_by(every.max(1)).collect();
                 Ok(crate::join::strip_of(&picked))
             }
             Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, size, mask)?.0),
         }
     }
-
-    /// Every frame of the picture: a [`Drawing::Film`]'s all, any other
-    /// drawing's one.
-    pub fn draw_frames(&self, root: &Path) -> Result<Vec<Raster>, String> {
-        match self.drawing {
-            Drawing::Film => Ok(film_frames(&root.join(self.deck))?.0),
-            _ => Ok(vec![self.draw(root)?]),
-        }
-    }
 }
 
-/// A film deck's frames rendered as `raytrace` renders them (thesis
-/// fidelity, the table sampler), and its rate.
-pub fn film_frames(deck: &Path) -> Result<(Vec<Raster>, u32), String> {
+/// A film deck's first `limit` frames (all, when it has fewer) rendered as
+/// `raytrace` renders them (thesis fidelity, the table sampler), and its
+/// rate.
+pub fn film_frames(deck: &Path, limit: u32) -> Result<(Vec<Raster>, u32), String> {
     let opts = Options::default();
     let scene = crate::decks::prepared(&deck.display().to_string(), &opts, None)?;
     let film = scene
         .film
         .ok_or_else(|| format!("{}: no 'film' record", deck.display()))?;
-    let frames = (1..=film.frames)
+    let frames = (1..=film.frames.min(limit))
         .map(|k| raytrace::raytrace::render_frame(&scene, &opts, film.frame(k), &|| {}).raster)
         .collect();
     Ok((frames, film.rate))
@@ -323,7 +315,11 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
     crate::textures::write_textures(&root.join("raster"))?;
     let mut stale = Vec::new();
     for picture in chosen {
-        let drawn = picture.draw_frames(root)?;
+        // A film is all its frames and its rate; any other picture one raster.
+        let (drawn, rate) = match picture.drawing {
+            Drawing::Film => film_frames(&root.join(picture.deck), u32::MAX)?,
+            _ => (vec![picture.draw(root)?], 0),
+        };
         let path = root.join(picture.image);
         if check {
             let differ = match read_png_frames(&path) {
@@ -339,13 +335,6 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
                 stale.push(picture.image);
             }
         } else if picture.drawing == Drawing::Film {
-            let rate = crate::decks::prepared(
-                &root.join(picture.deck).display().to_string(),
-                &Options::default(),
-                None,
-            )?
-            .film
-            .map_or(12, |f| f.rate);
             raytrace::film::write_apng(&path, &drawn, rate).map_err(|e| format!("{}: {e}", path.display()))?;
             println!("wrote {}  ({})", picture.image, picture.command());
         } else {
