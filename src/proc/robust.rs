@@ -55,30 +55,29 @@ impl RealRoots {
     }
 }
 
-/// p(x) and p′(x) of the degree-`m` polynomial `p` (ascending coefficients).
-fn eval2(p: &[f64; 7], m: usize, x: f64) -> (f64, f64) {
-    let (mut f, mut df) = (p[m], 0.0);
+/// p(x), p′(x), and a bound on the rounding error of evaluating p(x) by
+/// Horner's rule (with a margin): |p(x)| below it counts as 0.
+fn eval3(p: &[f64; 7], m: usize, x: f64) -> (f64, f64, f64) {
+    let ax = x.abs();
+    let (mut f, mut df, mut s) = (p[m], 0.0, p[m].abs());
     for k in (0..m).rev() {
         df = df * x + f;
         f = f * x + p[k];
-    }
-    (f, df)
-}
-
-/// A bound on the rounding error of evaluating `p` at x by Horner's rule
-/// (with a margin): |p(x)| below it counts as 0.
-fn zero_tol(p: &[f64; 7], m: usize, x: f64) -> f64 {
-    let ax = x.abs();
-    let mut s = 0.0;
-    for k in (0..=m).rev() {
         s = s * ax + p[k].abs();
     }
-    32.0 * EPS * s
+    (f, df, 32.0 * EPS * s)
 }
 
 /// The one root of the monotone `p` in (x0, x1), where p(x0), p(x1) differ
-/// in sign: Newton's method kept inside the shrinking bracket.
+/// in sign. Degrees 1 and 2 in closed form; above, Newton's method kept
+/// inside the shrinking bracket (bisection when a step leaves it), stopped
+/// when the step is at rounding level or |p| is below its evaluation error.
 fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 {
+    if m <= 2 {
+        if let Some(x) = closed_form(p, m, x0, x1) {
+            return x;
+        }
+    }
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let secant = x0 - f0 * (x1 - x0) / (f1 - f0);
     let mut x = if secant > x0 && secant < x1 {
@@ -87,8 +86,8 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
         0.5 * (x0 + x1)
     };
     for _ in 0..200 {
-        let (fx, dfx) = eval2(p, m, x);
-        if fx == 0.0 {
+        let (fx, dfx, tol) = eval3(p, m, x);
+        if fx.abs() <= tol {
             return x;
         }
         if (fx < 0.0) == (fa < 0.0) {
@@ -111,6 +110,37 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
         x = next;
     }
     x
+}
+
+/// The root in [x0, x1] of a line or a quadratic that changes sign there:
+/// the quadratic's root of larger magnitude first and the other from the
+/// product of the roots (no cancellation), the one in the bracket kept
+/// (clamped into it against rounding). `None` when rounding leaves no
+/// real root (the caller falls back to Newton's method).
+fn closed_form(p: &[f64; 7], m: usize, x0: f64, x1: f64) -> Option<f64> {
+    let clamp = |x: f64| x.clamp(x0, x1);
+    if m == 1 || p[2] == 0.0 {
+        return (p[1] != 0.0).then(|| clamp(-p[0] / p[1]));
+    }
+    let (qa, qb, qc) = (p[2], p[1], p[0]);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc.is_nan() || disc < 0.0 {
+        return None;
+    }
+    let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+    if q == 0.0 {
+        return Some(clamp(0.0));
+    }
+    let (r1, r2) = (q / qa, qc / q);
+    let mid = 0.5 * (x0 + x1);
+    // The root inside; when rounding puts both out, the nearer.
+    let out = |r: f64| if r < x0 { x0 - r } else if r > x1 { r - x1 } else { 0.0 };
+    let r = if out(r1) < out(r2) || (out(r1) == out(r2) && (r1 - mid).abs() <= (r2 - mid).abs()) {
+        r1
+    } else {
+        r2
+    };
+    Some(clamp(r))
 }
 
 /// The roots in [lo, hi] of the degree-`m` polynomial `p`, given `crit`,
@@ -145,8 +175,9 @@ fn level_roots(p: &[f64; 7], m: usize, lo: f64, hi: f64, crit: &RealRoots) -> Re
     let mut fs = [0.0; MAX_DEGREE + 2];
     let mut zero = [false; MAX_DEGREE + 2];
     for k in 0..len {
-        fs[k] = eval2(p, m, xs[k]).0;
-        zero[k] = fs[k].abs() <= zero_tol(p, m, xs[k]);
+        let (f, _, tol) = eval3(p, m, xs[k]);
+        fs[k] = f;
+        zero[k] = f.abs() <= tol;
     }
     let mut out = RealRoots::NONE;
     for k in 0..len {
@@ -168,6 +199,17 @@ fn level_roots(p: &[f64; 7], m: usize, lo: f64, hi: f64, crit: &RealRoots) -> Re
 /// (`|a[k]|·Mᵏ ≤ 10⁻¹⁵ Σ_{i<k} |a[i]|·Mⁱ`, M = max(|lo|, |hi|, 1)) are
 /// dropped, so a degree that has dropped does not throw roots to infinity.
 /// Nothing is found for non-finite input or an empty interval.
+///
+/// Two methods, one answer. First the polynomial's Bernstein coefficients
+/// on the interval are counted for sign changes (Descartes' rule of signs
+/// in the Bernstein basis: the roots inside, with multiplicity, are at
+/// most the changes, and of the same parity). No change: no root. One: one
+/// simple root, found by bracketed Newton on p itself. More: the interval
+/// is halved (de Casteljau) up to [`HALVINGS`] times and each half counted
+/// again. Where a count cannot be trusted (a coefficient within rounding
+/// of 0) or the halvings run out, the derivative bracketing of the module
+/// doc takes that interval whole; it alone finds multiple roots. The count
+/// is the fast path for what a ray meets most: a segment it crosses once.
 pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
     let n = n.min(MAX_DEGREE);
     if !lo.is_finite() || !hi.is_finite() || lo > hi || a[..=n].iter().any(|c| !c.is_finite()) {
@@ -176,10 +218,18 @@ pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
     let mut c = [0.0; 7];
     c[..=n].copy_from_slice(&a[..=n]);
     let big = lo.abs().max(hi.abs()).max(1.0);
+    // |c[i]|·Mⁱ, and their sums below each degree.
+    let mut weighted = [0.0; 7];
+    let mut below = [0.0; 8];
+    let mut power = 1.0;
+    for i in 0..=n {
+        weighted[i] = c[i].abs() * power;
+        below[i + 1] = below[i] + weighted[i];
+        power *= big;
+    }
     let mut deg = n;
     while deg > 0 {
-        let lower: f64 = (0..deg).map(|i| c[i].abs() * big.powi(i as i32)).sum();
-        if c[deg] != 0.0 && c[deg].abs() * big.powi(deg as i32) > 1e-15 * lower {
+        if c[deg] != 0.0 && weighted[deg] > 1e-15 * below[deg] {
             break;
         }
         c[deg] = 0.0;
@@ -191,19 +241,186 @@ pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
             ..RealRoots::NONE
         };
     }
-    // The derivatives: polys[k] is p⁽ᵏ⁾, of degree deg − k.
-    let mut polys = [[0.0; 7]; MAX_DEGREE];
-    polys[0] = c;
-    for k in 1..deg {
-        for i in 0..deg - k + 1 {
-            polys[k][i] = (i + 1) as f64 * polys[k - 1][i + 1];
+    let mut out = RealRoots::NONE;
+    match (hi > lo).then(|| bernstein(deg, &c, lo, hi)) {
+        Some((b, tiny)) if sign_changes(&b, deg, tiny).is_some() => {
+            isolate(&c, deg, &b, tiny, lo, hi, HALVINGS, &mut out);
+        }
+        _ => derivative_roots(&c, deg, lo, hi, &mut out),
+    }
+    out
+}
+
+/// How many times [`real_roots`] halves an interval whose Bernstein
+/// coefficients change sign more than once before it brackets by the
+/// derivatives: enough to part the two crossings of most rays that enter
+/// and leave through one segment, few enough that a tangency (a double
+/// root, never parted) costs little before the method that finds it.
+pub const HALVINGS: u32 = 3;
+
+/// The sign changes of the Bernstein coefficients `b[..=n]`, or `None` when
+/// one of them is within `tiny` of 0 (its sign is rounding's).
+fn sign_changes(b: &[f64; 7], n: usize, tiny: f64) -> Option<u32> {
+    let mut changes = 0;
+    for k in 0..=n {
+        if b[k].abs() <= tiny {
+            return None;
+        }
+        if k > 0 && (b[k] < 0.0) != (b[k - 1] < 0.0) {
+            changes += 1;
         }
     }
-    let mut roots = RealRoots::NONE;
-    for k in (0..deg).rev() {
-        roots = level_roots(&polys[k], deg - k, lo, hi, &roots);
+    Some(changes)
+}
+
+/// The roots in (x0, x1) of the degree-`n` polynomial `p` whose Bernstein
+/// coefficients there are `b`, every one of them farther than `tiny` from
+/// 0 (so p(x0) = b[0] and p(x1) = b[n] are not roots), appended to `out`.
+#[allow(clippy::too_many_arguments)]
+fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, halvings: u32, out: &mut RealRoots) {
+    match sign_changes(b, n, tiny) {
+        Some(0) => {}
+        Some(1) => out.push(bracketed(p, n, x0, x1, b[0], b[n]), 1),
+        Some(_) if halvings > 0 => {
+            let (left, right) = halves(b, n);
+            let mid = 0.5 * (x0 + x1);
+            if left[n].abs() <= tiny || !(mid > x0 && mid < x1) {
+                // p(mid) is within rounding of 0, or the interval is too short to halve.
+                derivative_roots(p, n, x0, x1, out);
+                return;
+            }
+            isolate(p, n, &left, tiny, x0, mid, halvings - 1, out);
+            isolate(p, n, &right, tiny, mid, x1, halvings - 1, out);
+        }
+        _ => derivative_roots(p, n, x0, x1, out),
     }
-    roots
+}
+
+/// The Bernstein coefficients of the two halves of the interval of `b`
+/// (de Casteljau at ½).
+fn halves(b: &[f64; 7], n: usize) -> ([f64; 7], [f64; 7]) {
+    let mut w = *b;
+    let (mut left, mut right) = ([0.0; 7], [0.0; 7]);
+    left[0] = w[0];
+    right[n] = w[n];
+    for k in 1..=n {
+        for j in 0..=n - k {
+            w[j] = 0.5 * (w[j] + w[j + 1]);
+        }
+        left[k] = w[0];
+        right[n - k] = w[n - k];
+    }
+    (left, right)
+}
+
+/// The roots in [lo, hi] of the degree-`deg` polynomial `c` (leading
+/// coefficient not negligible), by the derivative bracketing of the module
+/// doc, appended to `out`.
+fn derivative_roots(c: &[f64; 7], deg: usize, lo: f64, hi: f64, out: &mut RealRoots) {
+    let roots = if deg == 1 {
+        level_roots(c, 1, lo, hi, &RealRoots::NONE)
+    } else {
+        // The derivatives: polys[k] is p⁽ᵏ⁾, of degree deg − k.
+        let mut polys = [[0.0; 7]; MAX_DEGREE];
+        polys[0] = *c;
+        for k in 1..deg {
+            for i in 0..deg - k + 1 {
+                polys[k][i] = (i + 1) as f64 * polys[k - 1][i + 1];
+            }
+        }
+        // The bottom level, the root of the linear p^(deg−1), in closed
+        // form: a break point of the level above, whose ends are
+        // evaluated there anyway.
+        let lin = &polys[deg - 1];
+        let mut roots = RealRoots::NONE;
+        let x = -lin[0] / lin[1];
+        if x >= lo && x <= hi {
+            roots.push(x, 1);
+        }
+        for k in (0..deg - 1).rev() {
+            roots = level_roots(&polys[k], deg - k, lo, hi, &roots);
+        }
+        roots
+    };
+    for k in 0..roots.count {
+        out.push(roots.x[k], roots.multiplicity[k]);
+    }
+}
+
+/// Binomial coefficients C(k, j) for k, j ≤ 6.
+const BINOMIAL: [[f64; 7]; 7] = [
+    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
+    [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
+    [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
+    [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
+];
+
+/// `BERNSTEIN[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
+/// weights of degree n, divided once here instead of per segment and ray
+/// (the same quotients, so the same results).
+const BERNSTEIN: [[[f64; 7]; 7]; 7] = {
+    let mut r = [[[0.0; 7]; 7]; 7];
+    let mut n = 0;
+    while n < 7 {
+        let mut k = 0;
+        while k <= n {
+            let mut j = 0;
+            while j <= k {
+                r[n][k][j] = BINOMIAL[k][j] / BINOMIAL[n][j];
+                j += 1;
+            }
+            k += 1;
+        }
+        n += 1;
+    }
+    r
+};
+
+/// The Bernstein coefficients on [lo, hi] of the degree-`n` polynomial `a`
+/// (ascending power coefficients; n ≤ 6), and the size below which one
+/// counts as 0: 10⁻¹² of the largest power coefficient of p(lo + (hi − lo)x)
+/// (0 or not finite when that is). The polynomial lies in the convex hull
+/// of its Bernstein coefficients, and changes sign inside no more often
+/// than they do.
+pub fn bernstein(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f64) {
+    // One body per degree, so that each is unrolled (the same operations
+    // in the same order whatever the degree: the same results).
+    match n {
+        0 => bernstein_of::<0>(a, lo, hi),
+        1 => bernstein_of::<1>(a, lo, hi),
+        2 => bernstein_of::<2>(a, lo, hi),
+        3 => bernstein_of::<3>(a, lo, hi),
+        4 => bernstein_of::<4>(a, lo, hi),
+        5 => bernstein_of::<5>(a, lo, hi),
+        _ => bernstein_of::<6>(a, lo, hi),
+    }
+}
+
+fn bernstein_of<const N: usize>(a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f64) {
+    // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
+    let mut c = [0.0; 7];
+    c[..=N].copy_from_slice(&a[..=N]);
+    for i in 0..N {
+        for j in (i..N).rev() {
+            c[j] += lo * c[j + 1];
+        }
+    }
+    let w = hi - lo;
+    let mut wk = 1.0;
+    for ck in c.iter_mut().take(N + 1) {
+        *ck *= wk;
+        wk *= w;
+    }
+    let tiny = 1e-12 * c[..=N].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut b = [0.0; 7];
+    for (k, wk) in BERNSTEIN[N].iter().enumerate().take(N + 1) {
+        // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
+        b[k] = (0..=k).map(|j| wk[j] * c[j]).sum();
+    }
+    (b, tiny)
 }
 
 /// The ascending coefficients of scale·∏(x − rᵢ), padded to seven (at

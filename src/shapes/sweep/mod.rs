@@ -47,7 +47,7 @@ pub use contour::{point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::proc::robust::real_roots;
+use crate::proc::robust::{bernstein, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
@@ -119,7 +119,7 @@ pub(super) struct Found {
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
-    if !may_have_root(n, a, lo, hi) {
+    if opts.solver == Solver::Laguerre && !may_have_root(n, a, lo, hi) {
         return out;
     }
     match opts.solver {
@@ -142,71 +142,24 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     out
 }
 
-/// Binomial coefficients C(k, j) for k, j ≤ 6.
-const BINOMIAL: [[f64; 7]; 7] = [
-    [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [1.0, 2.0, 1.0, 0.0, 0.0, 0.0, 0.0],
-    [1.0, 3.0, 3.0, 1.0, 0.0, 0.0, 0.0],
-    [1.0, 4.0, 6.0, 4.0, 1.0, 0.0, 0.0],
-    [1.0, 5.0, 10.0, 10.0, 5.0, 1.0, 0.0],
-    [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
-];
-
-/// `BERNSTEIN[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
-/// weights of degree n, divided once here instead of per segment and ray
-/// (the same quotients, so the same results).
-const BERNSTEIN: [[[f64; 7]; 7]; 7] = {
-    let mut r = [[[0.0; 7]; 7]; 7];
-    let mut n = 0;
-    while n < 7 {
-        let mut k = 0;
-        while k <= n {
-            let mut j = 0;
-            while j <= k {
-                r[n][k][j] = BINOMIAL[k][j] / BINOMIAL[n][j];
-                j += 1;
-            }
-            k += 1;
-        }
-        n += 1;
-    }
-    r
-};
-
 /// Can the degree-`n` polynomial `a` (ascending coefficients) vanish in
-/// [lo, hi]? Not when its Bernstein coefficients on that interval are all
-/// of one strict sign: the polynomial lies in their convex hull. A test
-/// before either solver that spares the solve for most segments a ray's
-/// line passes near without crossing; where it answers "no" there is no
-/// root for a solver to find, so no image changes (DEVIATIONS D18).
+/// [lo, hi]? Not when its Bernstein coefficients on that interval
+/// ([`bernstein`]) are all of one strict sign: the polynomial lies in their
+/// convex hull. A test before `laguerre` that spares the solve for most
+/// segments a ray's line passes near without crossing; where it answers
+/// "no" there is no root for a solver to find, so no image changes
+/// (DEVIATIONS D18). The robust solver makes the same count itself.
 pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
     let n = n.min(6);
-    // q(x) = p(lo + (hi − lo)·x): a Taylor shift by lo, then a scaling.
-    let mut c = [0.0; 7];
-    c[..=n].copy_from_slice(&a[..=n]);
-    for i in 0..n {
-        for j in (i..n).rev() {
-            c[j] += lo * c[j + 1];
-        }
-    }
-    let w = hi - lo;
-    let mut wk = 1.0;
-    for ck in c.iter_mut().take(n + 1) {
-        *ck *= wk;
-        wk *= w;
-    }
-    let tiny = 1e-12 * c[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (b, tiny) = bernstein(n, a, lo, hi);
     if tiny.is_nan() || tiny <= 0.0 || tiny.is_infinite() {
         return true; // zero, or not finite: let the solver decide
     }
     let (mut pos, mut neg) = (false, false);
-    for (k, wk) in BERNSTEIN[n].iter().enumerate().take(n + 1) {
-        // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
-        let b: f64 = (0..=k).map(|j| wk[j] * c[j]).sum();
-        if b > tiny {
+    for &bk in &b[..=n] {
+        if bk > tiny {
             pos = true;
-        } else if b < -tiny {
+        } else if bk < -tiny {
             neg = true;
         } else {
             return true;
