@@ -71,7 +71,7 @@ fn eval3(p: &[f64; 7], m: usize, x: f64) -> (f64, f64, f64) {
 /// The one root of the monotone `p` in (x0, x1), where p(x0), p(x1) differ
 /// in sign. Degrees 1 and 2 in closed form; above, Newton's method kept
 /// inside the shrinking bracket (bisection when a step leaves it), stopped
-/// when the step is at rounding level or |p| is below its evaluation error.
+/// when the step is at rounding level.
 fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 {
     if m <= 2 {
         if let Some(x) = closed_form(p, m, x0, x1) {
@@ -86,8 +86,8 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
         0.5 * (x0 + x1)
     };
     for _ in 0..200 {
-        let (fx, dfx, tol) = eval3(p, m, x);
-        if fx.abs() <= tol {
+        let (fx, dfx, _) = eval3(p, m, x);
+        if fx == 0.0 {
             return x;
         }
         if (fx < 0.0) == (fa < 0.0) {
