@@ -25,7 +25,7 @@
 use std::cell::{Cell, Ref, RefCell};
 
 use crate::paper::PaperChain;
-use crate::shapes::{face_coords, in_bounding_sphere, intersect_object, intersect_shape};
+use crate::shapes::{face_coords, in_bounding_sphere, intersect_object, intersect_shape, shape_blocks};
 use crate::types::{
     DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene, Shape,
     SurfaceAttribute, SurfaceRecord,
@@ -89,6 +89,19 @@ impl<'a> Deforming<'a> {
 }
 
 impl Snapshot<'_> {
+    /// Does object `i` as it stands at this instant meet the ray before
+    /// `tmax`? ([`Snapshot::hit_object`]'s hit, before `tmax`.)
+    fn blocks(&self, i: usize, ray: &Ray, tmax: f64, opts: &Options) -> bool {
+        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
+        if !in_bounding_sphere(obj, pose, ray, TMIN) {
+            return false;
+        }
+        match self.deforming.iter().find(|d| d.object == i) {
+            None => shape_blocks(obj, &obj.shape, pose, ray, TMIN, tmax, opts),
+            Some(d) => shape_blocks(obj, &d.contour(), pose, ray, TMIN, tmax, opts),
+        }
+    }
+
     /// The hit of a ray with object `i` as it stands at this instant.
     fn hit_object(&self, i: usize, ray: &Ray, opts: &Options) -> Option<LocalHit> {
         let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
@@ -311,10 +324,7 @@ fn shadow(snap: &Snapshot, ray: Ray, dist: f64, opts: &Options) -> Intensity {
         if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
             continue;
         }
-        let Some(h) = snap.hit_object(i, &ray, opts) else {
-            continue;
-        };
-        if h.t >= dist {
+        if !snap.blocks(i, &ray, dist, opts) {
             continue;
         }
         if surf.surface == SurfaceAttribute::Crystal {

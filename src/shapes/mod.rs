@@ -255,6 +255,26 @@ pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, o
     intersect_shape(obj, &obj.shape, pose, ray, tmin, opts)
 }
 
+/// Does `shape` (as in [`intersect_shape`]) stand on the ray at some t
+/// with `tmin` < t < `tmax`? The shadow ray's question: a sweep answers it
+/// at its first hit before `tmax` ([`sweep::sweep_blocks`]), the other
+/// shapes by their nearest hit. The same answer as
+/// `intersect_shape(..).is_some_and(|h| h.t < tmax)`.
+pub fn shape_blocks(
+    obj: &ObjectRecord,
+    shape: &Shape,
+    pose: &Pose,
+    ray: &Ray,
+    tmin: f64,
+    tmax: f64,
+    opts: &Options,
+) -> bool {
+    match shape {
+        Shape::Sweep(sw) => sweep::sweep_blocks(obj.class, sw, &ray.transformed(&pose.inverse), tmin, tmax, opts),
+        _ => intersect_shape(obj, shape, pose, ray, tmin, opts).is_some_and(|h| h.t < tmax),
+    }
+}
+
 /// Does the ray reach the object's bounding sphere (`sphereo` at `pose`,
 /// `radius`) beyond `tmin`? A cheap rejection before any shape's own test
 /// (§2.1.2 (1)(b), the bounding volume).

@@ -2,8 +2,14 @@
 //! central projection into the contour's plane, and the end caps.
 
 use super::contour::{orientation, point_in_contour, tangent};
-use super::{asc, closer, negligible, norm2, polish, solve, Best, PARALLEL_TOL, RESIDUAL_TOL};
+use super::{
+    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL,
+};
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
+
+/// The "segment" of a cap hit: after every side segment, so a side hit at
+/// the same t stays the nearest, as when the caps were tried last.
+const CAP: usize = usize::MAX;
 
 /// Translation and conic sweeps.
 ///
@@ -24,6 +30,10 @@ use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
 ///
 /// α = β = 0 (then γ = 0 too) when the line degenerates to a point: the
 /// ray runs through the apex (for translation, parallel to the axis).
+///
+/// A translation sweep's side hit at contour point X has
+/// t = (X − o)·d / |d_xy|² (x and y only), so a segment's box bounds its
+/// hits' t from below: the segments are tried in that order.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn extrusion(
     u: &[Coeff],
@@ -34,6 +44,7 @@ pub(super) fn extrusion(
     ray: &Ray,
     tmin: f64,
     opts: &Options,
+    query: Query,
 ) -> Option<LocalHit> {
     let len = sw.length;
     if !(len > 0.0 && len.is_finite()) || (conic && !sw.scale.is_finite()) {
@@ -82,10 +93,11 @@ pub(super) fn extrusion(
         for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
             let t = (zc - o.z) / d.z;
             let at_apex = conic && sw.scale == 0.0 && zc == len;
-            if (inside || at_apex) && closer(&best, t, tmin) {
+            if (inside || at_apex) && closer(&best, t, tmin, CAP) {
                 best = Some(Best {
                     t,
                     normal: DVec3::new(0.0, 0.0, nz),
+                    segment: CAP,
                 });
             }
         }
@@ -96,6 +108,11 @@ pub(super) fn extrusion(
     let mut side = false;
     let ztol = 1e-12 * size;
     let fscale = nrm * size + gamma.abs();
+    let dxy2 = d.x * d.x + d.y * d.y;
+    // Slack on a segment's lower bound: its points may stand 1e-9 of the
+    // size outside its box (the joint slack), rounding far less.
+    let t_pad = 1e-6 * size / dxy2.sqrt();
+    let mut candidates = Candidates::new();
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         // The segment's box against the line α X + β Y + γ = 0.
@@ -105,6 +122,20 @@ pub(super) fn extrusion(
         if gmin > gpad || gmax < -gpad {
             continue;
         }
+        let t_lo = if conic {
+            f64::NEG_INFINITY
+        } else {
+            let x = if d.x > 0.0 { cu.min } else { cu.max };
+            let y = if d.y > 0.0 { cv.min } else { cv.max };
+            ((x - o.x) * d.x + (y - o.y) * d.y) / dxy2 - t_pad
+        };
+        candidates.push(t_lo, i);
+    }
+    for (t_lo, i) in candidates.iter() {
+        if query.past(t_lo, &best) {
+            break;
+        }
+        let (cu, cv) = (&u[i], &v[i]);
         let (pu, pv) = (asc(cu), asc(cv));
         let mut f = [0.0; 7];
         for k in 0..4 {
@@ -127,10 +158,17 @@ pub(super) fn extrusion(
             let p = o + d * t;
             let k = 1.0 + kappa * p.z;
             let residual = norm2(p.x - k * uu, p.y - k * vv);
-            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin) {
+            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin, i) {
                 let (tu, tv) = tangent(cu, cv, s, size);
                 let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
-                best = Some(Best { t, normal });
+                if query.done(t) {
+                    return Some(hit(t, normal));
+                }
+                best = Some(Best {
+                    t,
+                    normal,
+                    segment: i,
+                });
                 side = true;
             }
         }
@@ -144,7 +182,7 @@ pub(super) fn extrusion(
                 continue; // the cap is the apex: a ray through it took the path above
             }
             let t = (zc - o.z) / d.z;
-            if !closer(&best, t, tmin) {
+            if !closer(&best, t, tmin, CAP) || query.past(t, &None) {
                 continue;
             }
             let p = o + d * t;
@@ -152,13 +190,20 @@ pub(super) fn extrusion(
                 best = Some(Best {
                     t,
                     normal: DVec3::new(0.0, 0.0, nz),
+                    segment: CAP,
                 });
                 side = false;
+                if query.done(t) {
+                    break;
+                }
             }
         }
     }
 
     let b = best?;
+    if matches!(query.want, Want::Before(_)) {
+        return Some(hit(b.t, b.normal)); // the caller needs only its t
+    }
     let normal = if side { b.normal * orientation(u, v) } else { b.normal };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))

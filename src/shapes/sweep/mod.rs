@@ -225,6 +225,12 @@ pub(super) fn box_size(b: &BoundingBox) -> f64 {
 /// The ray is taken [`Near`] the object's box first, so the polynomials'
 /// coefficients are of the object's size whatever the eye's distance.
 ///
+/// The segments the ray's line may meet are tried nearest first, by a
+/// lower bound on their hits' t (translation: from the segment's box along
+/// the ray's projection; rotation: from its height range), and the rest
+/// skipped once the bound passes the nearest hit so far: the same nearest
+/// hit as trying them all (of two at one t, the lower segment's).
+///
 /// Each root gives its hit from the better conditioned equation, is
 /// polished, and is rejected unless the hit lies on the surface (within
 /// 1e-9 of the object's size); so a spurious root of either solver (the
@@ -235,6 +241,65 @@ pub fn intersect_sweep(
     ray: &Ray,
     tmin: f64,
     opts: &Options,
+) -> Option<LocalHit> {
+    sweep_query(class, sweep, ray, tmin, opts, Want::Nearest)
+}
+
+/// Does the ray meet the sweep object at some t with `tmin` < t < `tmax`?
+/// The shadow ray's question (a light `tmax` away): the answer of
+/// [`intersect_sweep`] (its nearest hit lies before `tmax`), reached by
+/// stopping at the first hit before `tmax` instead of the nearest.
+pub fn sweep_blocks(
+    class: PrimitiveClass,
+    sweep: &SweepShape,
+    ray: &Ray,
+    tmin: f64,
+    tmax: f64,
+    opts: &Options,
+) -> bool {
+    sweep_query(class, sweep, ray, tmin, opts, Want::Before(tmax)).is_some_and(|h| h.t < tmax)
+}
+
+/// What a caller asks of the sweep driver.
+#[derive(Clone, Copy)]
+pub(super) enum Want {
+    /// The nearest hit.
+    Nearest,
+    /// Whether a hit lies before this t of the caller's ray (a shadow ray's
+    /// light): the first hit found before it is returned, else the nearest
+    /// (or none); the normal is not turned by the orientation.
+    Before(f64),
+}
+
+/// The question of [`Want`] in the frame of the ray [`Near`] the object,
+/// whose t is the caller's less `shift`.
+#[derive(Clone, Copy)]
+pub(super) struct Query {
+    pub(super) want: Want,
+    pub(super) shift: f64,
+}
+
+impl Query {
+    /// Is a hit at t (near frame) an answer at once? Before the caller's
+    /// `tmax`, compared as the caller would compare the hit it gets back.
+    pub(super) fn done(&self, t: f64) -> bool {
+        matches!(self.want, Want::Before(tmax) if t + self.shift < tmax)
+    }
+
+    /// Can no hit at t ≥ `t_lo` (near frame) matter? Beyond the nearest hit
+    /// so far, or beyond the caller's `tmax`.
+    pub(super) fn past(&self, t_lo: f64, best: &Option<Best>) -> bool {
+        best.is_some_and(|b| t_lo > b.t) || matches!(self.want, Want::Before(tmax) if t_lo + self.shift >= tmax)
+    }
+}
+
+fn sweep_query(
+    class: PrimitiveClass,
+    sweep: &SweepShape,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+    want: Want,
 ) -> Option<LocalHit> {
     let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
     if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
@@ -276,19 +341,63 @@ pub fn intersect_sweep(
     if boxed && !ray_meets_box(ray, tmin, lo, hi) {
         return None;
     }
+    let query = Query {
+        want,
+        shift: near.shift,
+    };
     near.back(match class {
-        PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts),
-        _ => extrusion(u, v, sweep, class == PrimitiveClass::Conic, size, ray, tmin, opts),
+        PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts, query),
+        _ => extrusion(u, v, sweep, class == PrimitiveClass::Conic, size, ray, tmin, opts, query),
     })
 }
 
-/// The nearest hit so far.
+/// The nearest hit so far, and the segment it is on.
 #[derive(Clone, Copy)]
 pub(super) struct Best {
     pub(super) t: f64,
     pub(super) normal: DVec3,
+    pub(super) segment: usize,
 }
 
-pub(super) fn closer(best: &Option<Best>, t: f64, tmin: f64) -> bool {
-    t > tmin && best.is_none_or(|b| t < b.t)
+/// Is a hit at t on `segment` the new nearest? Of two hits at one t, the
+/// one on the lower segment: the answer of trying the segments in their
+/// order, whatever order they are tried in.
+pub(super) fn closer(best: &Option<Best>, t: f64, tmin: f64, segment: usize) -> bool {
+    t > tmin && best.is_none_or(|b| t < b.t || (t == b.t && segment < b.segment))
+}
+
+/// Segments a ray may meet, tried nearest first: each with a lower bound
+/// on the t of its hits (−∞ where none is known).
+pub(super) struct Candidates {
+    len: usize,
+    at: [(f64, usize); MAXSEGMENTS],
+}
+
+impl Candidates {
+    pub(super) fn new() -> Self {
+        Candidates {
+            len: 0,
+            at: [(0.0, 0); MAXSEGMENTS],
+        }
+    }
+
+    /// Adds `segment`, whose hits lie at t ≥ `t_lo`, keeping the list in
+    /// ascending `t_lo` (ties in segment order): insertion into a list of a
+    /// few entries.
+    pub(super) fn push(&mut self, t_lo: f64, segment: usize) {
+        if self.len == MAXSEGMENTS {
+            return;
+        }
+        let mut k = self.len;
+        while k > 0 && self.at[k - 1].0 > t_lo {
+            self.at[k] = self.at[k - 1];
+            k -= 1;
+        }
+        self.at[k] = (t_lo, segment);
+        self.len += 1;
+    }
+
+    pub(super) fn iter(&self) -> impl Iterator<Item = (f64, usize)> + '_ {
+        self.at[..self.len].iter().copied()
+    }
 }

@@ -2,7 +2,9 @@
 //! (radius, height) plane, with `outrectp` as the segment's bounding test.
 
 use super::contour::{orientation, tangent};
-use super::{asc, closer, negligible, norm2, polish, solve, Best, JOINT_SLACK, PARALLEL_TOL, RESIDUAL_TOL};
+use super::{
+    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, JOINT_SLACK, PARALLEL_TOL, RESIDUAL_TOL,
+};
 use crate::proc::sweep::outrectp;
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray};
 
@@ -96,7 +98,16 @@ pub(super) fn sextic(cu: &Coeff, cv: &Coeff, ray: &Ray) -> [f64; 7] {
 /// heights measured from o_z). On the contour r = U(s), w = V(s) − o_z:
 ///   A (V − o_z)² + B d_z (V − o_z) + d_z² (C − U²) = 0,
 /// a sextic in s.
-pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
+#[allow(clippy::too_many_arguments)]
+pub(super) fn revolve(
+    u: &[Coeff],
+    v: &[Coeff],
+    size: f64,
+    ray: &Ray,
+    tmin: f64,
+    opts: &Options,
+    query: Query,
+) -> Option<LocalHit> {
     let (o, d) = (ray.origin, ray.dir);
     let dn = d.length();
     let a = d.x * d.x + d.y * d.y;
@@ -106,15 +117,19 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
     let along = a.sqrt() <= PARALLEL_TOL * dn;
     let across = d.z.abs() <= PARALLEL_TOL * dn;
     let mut best: Option<Best> = None;
-    let consider = |cu: &Coeff, cv: &Coeff, s: f64, t: f64, best: &mut Option<Best>| {
+    // Whether the hit polished from (s, t) on segment i is an answer at once.
+    let consider = |i: usize, s: f64, t: f64, best: &mut Option<Best>| -> bool {
         if !t.is_finite() {
-            return;
+            return false;
         }
+        let (cu, cv) = (&u[i], &v[i]);
         let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
-        if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin) {
+        if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin, i) {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size);
-            *best = Some(Best { t, normal });
+            *best = Some(Best { t, normal, segment: i });
+            return query.done(t);
         }
+        false
     };
     // Both crossings of the circle of radius r (A t² + B t + C = r²).
     let circle = |r: f64| -> Option<(f64, f64)> {
@@ -130,54 +145,35 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
         }
         Some((q / a, cc / q))
     };
+    let rc = c.sqrt();
+    let hu = (c - b * b / (4.0 * a)).max(0.0).sqrt();
+    let dz = d.z;
+    let (ha, hb, hc, hd) = (a, b * dz, c * dz * dz, dz * dz);
+    let hv = -hb / (2.0 * ha);
+    // Slack on a segment's lower bound on t from its heights: a hit's
+    // height is V(s) to 1e-9 of the size, with s 1e-9 outside [0, 1].
+    let t_pad = 1e-6 * size / dz.abs();
 
+    // The segments whose bounds the ray passes, nearest first.
+    let mut candidates = Candidates::new();
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         if cu.max.abs().max(cu.min.abs()) <= 1e-12 * size {
             continue; // a segment on the axis sweeps no surface
         }
-        if along {
-            // Along the axis: the ray keeps the radius √C; U(s) = √C.
-            let rc = c.sqrt();
+        let t_lo = if along {
+            // Along the axis: the ray keeps the radius √C.
             if cu.min > rc + pad || cu.max < rc - pad {
                 continue;
             }
-            let mut p = [0.0; 7];
-            p[..4].copy_from_slice(&asc(cu));
-            p[0] -= rc;
-            if negligible(&p, size) {
-                continue;
-            }
-            let found = solve(3, &p, opts);
-            for &s in &found.s[..found.count] {
-                let s = polish(&p, s);
-                consider(cu, cv, s, (cv.value(s) - o.z) / d.z, &mut best);
-            }
+            f64::NEG_INFINITY
         } else if across {
             // Perpendicular to the axis: the ray keeps the height o_z.
-            let hu = (c - b * b / (4.0 * a)).max(0.0).sqrt();
             if cv.min > o.z + pad || cv.max < o.z - pad || cu.max < hu - pad {
                 continue;
             }
-            let mut p = [0.0; 7];
-            p[..4].copy_from_slice(&asc(cv));
-            p[0] -= o.z;
-            if negligible(&p, size) {
-                continue;
-            }
-            let found = solve(3, &p, opts);
-            for &s in &found.s[..found.count] {
-                let s = polish(&p, s);
-                if let Some((t1, t2)) = circle(cu.value(s)) {
-                    consider(cu, cv, s, t1, &mut best);
-                    consider(cu, cv, s, t2, &mut best);
-                }
-            }
+            f64::NEG_INFINITY
         } else {
-            let dz = d.z;
-            let (ha, hb, hc, hd) = (a, b * dz, c * dz * dz, dz * dz);
-            let hv = -hb / (2.0 * ha);
-            let hu = (c - b * b / (4.0 * a)).max(0.0).sqrt();
             let pu = Coeff {
                 min: cu.min - pad,
                 max: cu.max + pad,
@@ -191,6 +187,49 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
             if outrectp(&pu, &pv, ha, hb, hc, hd, hu, hv) {
                 continue;
             }
+            ((cv.min - o.z) / dz).min((cv.max - o.z) / dz) - t_pad
+        };
+        candidates.push(t_lo, i);
+    }
+
+    for (t_lo, i) in candidates.iter() {
+        if query.past(t_lo, &best) {
+            break;
+        }
+        let (cu, cv) = (&u[i], &v[i]);
+        if along {
+            // U(s) = √C, a cubic; t from the height.
+            let mut p = [0.0; 7];
+            p[..4].copy_from_slice(&asc(cu));
+            p[0] -= rc;
+            if negligible(&p, size) {
+                continue;
+            }
+            let found = solve(3, &p, opts);
+            for &s in &found.s[..found.count] {
+                let s = polish(&p, s);
+                if consider(i, s, (cv.value(s) - o.z) / d.z, &mut best) {
+                    return best.map(|h| hit(ray, h));
+                }
+            }
+        } else if across {
+            // V(s) = o_z, a cubic; t from the circle of radius U(s).
+            let mut p = [0.0; 7];
+            p[..4].copy_from_slice(&asc(cv));
+            p[0] -= o.z;
+            if negligible(&p, size) {
+                continue;
+            }
+            let found = solve(3, &p, opts);
+            for &s in &found.s[..found.count] {
+                let s = polish(&p, s);
+                if let Some((t1, t2)) = circle(cu.value(s)) {
+                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
+                        return best.map(|h| hit(ray, h));
+                    }
+                }
+            }
+        } else {
             let p = sextic(cu, cv, ray);
             let pscale = a * size * size + hd * (size * size + c);
             if negligible(&p, pscale) {
@@ -201,15 +240,21 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
                 let s = polish(&p, s);
                 // The better conditioned of the height and the radius
                 // equations: try each, keep what lands on the surface.
-                consider(cu, cv, s, (cv.value(s) - o.z) / dz, &mut best);
+                if consider(i, s, (cv.value(s) - o.z) / dz, &mut best) {
+                    return best.map(|h| hit(ray, h));
+                }
                 if let Some((t1, t2)) = circle(cu.value(s)) {
-                    consider(cu, cv, s, t1, &mut best);
-                    consider(cu, cv, s, t2, &mut best);
+                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
+                        return best.map(|h| hit(ray, h));
+                    }
                 }
             }
         }
     }
     let bst = best?;
+    if matches!(query.want, Want::Before(_)) {
+        return Some(hit(ray, bst)); // the caller needs only its t
+    }
     // The contour's orientation turns the normal out: once, for the hit kept.
     let normal = (bst.normal * orientation(u, v)).try_normalize()?;
     Some(LocalHit {
@@ -217,6 +262,15 @@ pub(super) fn revolve(u: &[Coeff], v: &[Coeff], size: f64, ray: &Ray, tmin: f64,
         point: ray.at(bst.t),
         normal,
     })
+}
+
+/// A hit as it stands (the normal not yet turned out).
+fn hit(ray: &Ray, b: Best) -> LocalHit {
+    LocalHit {
+        t: b.t,
+        point: ray.at(b.t),
+        normal: b.normal,
+    }
 }
 
 #[cfg(test)]
