@@ -73,6 +73,15 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let next = (i + 1) % n;
         let g0 = v[i].d - y;
         let g1 = v[next].d - y;
+        if cu.min > x {
+            // Every change on this segment is right of x (its joints and its
+            // roots alike), so they count as one when the signs at its two
+            // joints differ: the count below, without its roots.
+            if above(g0) != above(g1) {
+                inside = !inside;
+            }
+            continue;
+        }
         let mut p = [0.0; 7];
         p[..4].copy_from_slice(&asc(cv));
         p[0] -= y;
