@@ -78,10 +78,16 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
             return x;
         }
     }
+    newton_in(p, m, x0, x1, f0, x0 - f0 * (x1 - x0) / (f1 - f0))
+}
+
+/// Newton's method on `p` from `start`, kept inside the bracket (x0, x1)
+/// that holds its one root (p(x0) = `f0`, of the other sign than p(x1));
+/// a start outside it becomes the midpoint.
+fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
-    let secant = x0 - f0 * (x1 - x0) / (f1 - f0);
-    let mut x = if secant > x0 && secant < x1 {
-        secant
+    let mut x = if start > x0 && start < x1 {
+        start
     } else {
         0.5 * (x0 + x1)
     };
@@ -280,7 +286,13 @@ fn sign_changes(b: &[f64; 7], n: usize, tiny: f64) -> Option<u32> {
 fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, halvings: u32, out: &mut RealRoots) {
     match sign_changes(b, n, tiny) {
         Some(0) => {}
-        Some(1) => out.push(bracketed(p, n, x0, x1, b[0], b[n]), 1),
+        Some(1) => {
+            // Start where the control polygon crosses 0: nearer the root
+            // than the chord's crossing when the curve bends.
+            let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
+            let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
+            out.push(newton_in(p, n, x0, x1, b[0], x0 + u * (x1 - x0)), 1);
+        }
         Some(_) if halvings > 0 => {
             let (left, right) = halves(b, n);
             let mid = 0.5 * (x0 + x1);
