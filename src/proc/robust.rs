@@ -370,10 +370,10 @@ const BINOMIAL: [[f64; 7]; 7] = [
     [1.0, 6.0, 15.0, 20.0, 15.0, 6.0, 1.0],
 ];
 
-/// `BERNSTEIN[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
-/// weights of degree n, divided once here instead of per segment and ray
-/// (the same quotients, so the same results).
-const BERNSTEIN: [[[f64; 7]; 7]; 7] = {
+/// `BERNSTEIN_WEIGHTS[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
+/// weights of degree n on [0, 1], divided once here instead of per segment
+/// and ray (the same quotients, so the same results).
+pub const BERNSTEIN_WEIGHTS: [[[f64; 7]; 7]; 7] = {
     let mut r = [[[0.0; 7]; 7]; 7];
     let mut n = 0;
     while n < 7 {
@@ -428,7 +428,7 @@ fn bernstein_of<const N: usize>(a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f6
     }
     let tiny = 1e-12 * c[..=N].iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut b = [0.0; 7];
-    for (k, wk) in BERNSTEIN[N].iter().enumerate().take(N + 1) {
+    for (k, wk) in BERNSTEIN_WEIGHTS[N].iter().enumerate().take(N + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
         b[k] = (0..=k).map(|j| wk[j] * c[j]).sum();
     }
