@@ -154,19 +154,57 @@ fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f
 /// A box centred on the local origin with edge lengths `lengths`.
 ///
 /// Reconstructed: the slab test, as a convex clip of six planes.
+///
+/// The six planes ±x = h.x, ±y = h.y, ±z = h.z taken in that order, as
+/// [`intersect_convex`] would take them, with its dot products written out:
+/// n·d and n·o of an axis normal are ±d_k and ±o_k exactly, so the hits are
+/// the same to the bit, without the products by zero.
 pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let h = lengths * 0.5;
     let near = Near::of(ray, tmin, DVec3::ZERO, h.length_squared());
     let (ray, tmin) = (&near.ray, near.tmin);
-    let planes = [
-        (DVec3::X, h.x),
-        (DVec3::NEG_X, h.x),
-        (DVec3::Y, h.y),
-        (DVec3::NEG_Y, h.y),
-        (DVec3::Z, h.z),
-        (DVec3::NEG_Z, h.z),
-    ];
-    near.back(intersect_convex(ray, tmin, planes.into_iter()))
+    let mut t_enter = f64::NEG_INFINITY;
+    let mut t_exit = f64::INFINITY;
+    let mut n_enter = DVec3::ZERO;
+    let mut n_exit = DVec3::ZERO;
+    let axes = [(DVec3::X, DVec3::NEG_X), (DVec3::Y, DVec3::NEG_Y), (DVec3::Z, DVec3::NEG_Z)];
+    for (k, (plus, minus)) in axes.into_iter().enumerate() {
+        let (o, d, hk) = (ray.origin[k], ray.dir[k], h[k]);
+        // (normal, n·d, h − n·o) of the planes +axis and −axis.
+        for (n, denom, dist) in [(plus, d, hk - o), (minus, -d, hk + o)] {
+            if denom == 0.0 {
+                if dist < 0.0 {
+                    return None;
+                }
+                continue;
+            }
+            let t = dist / denom;
+            if denom < 0.0 {
+                if t > t_enter {
+                    t_enter = t;
+                    n_enter = n;
+                }
+            } else if t < t_exit {
+                t_exit = t;
+                n_exit = n;
+            }
+        }
+    }
+    if t_enter > t_exit {
+        return None;
+    }
+    let (t, normal) = if t_enter > tmin {
+        (t_enter, n_enter)
+    } else if t_exit > tmin && t_exit.is_finite() {
+        (t_exit, n_exit)
+    } else {
+        return None;
+    };
+    near.back(Some(LocalHit {
+        t,
+        point: ray.at(t),
+        normal,
+    }))
 }
 
 /// A right prism over the convex, counter-clockwise polygon `vertex` in the
@@ -400,6 +438,46 @@ mod tests {
 
     fn close(a: DVec3, b: DVec3) -> bool {
         (a - b).length() < 1e-12
+    }
+
+    /// The block's written-out slab test gives the six-plane convex clip's
+    /// hits to the bit: rays from inside, outside, along a face and through
+    /// edges, exactly axis-parallel ones included.
+    #[test]
+    fn block_is_the_six_plane_clip_to_the_bit() {
+        use crate::drt::hashed_uniform;
+        let lengths = DVec3::new(2.0, 3.0, 0.5);
+        let h = lengths * 0.5;
+        let planes = [
+            (DVec3::X, h.x),
+            (DVec3::NEG_X, h.x),
+            (DVec3::Y, h.y),
+            (DVec3::NEG_Y, h.y),
+            (DVec3::Z, h.z),
+            (DVec3::NEG_Z, h.z),
+        ];
+        let mut hits = 0;
+        for k in 0..4000u64 {
+            let r = |j: u64| 2.0 * hashed_uniform(8 * k + j) - 1.0;
+            let mut o = DVec3::new(3.0 * r(0), 3.0 * r(1), 2.0 * r(2));
+            let mut d = DVec3::new(r(3), r(4), r(5));
+            match k % 4 {
+                1 => d[(k / 4 % 3) as usize] = 0.0, // parallel to a pair of faces
+                2 => o.z = h.z,                     // in the top face's plane
+                3 => o = DVec3::new(h.x, h.y, 0.0) - d * 4.0, // through an edge
+                _ => {}
+            }
+            if d == DVec3::ZERO {
+                continue;
+            }
+            let ray = Ray::new(o, d);
+            let near = Near::of(&ray, 1e-9, DVec3::ZERO, h.length_squared());
+            let clip = near.back(intersect_convex(&near.ray, near.tmin, planes.into_iter()));
+            let slab = intersect_block(lengths, &ray, 1e-9);
+            assert_eq!(clip, slab, "ray {k}: {o} {d}");
+            hits += slab.is_some() as usize;
+        }
+        assert!(hits > 1000, "the rays meet the block often: {hits}");
     }
 
     #[test]
