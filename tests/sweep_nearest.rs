@@ -1,0 +1,131 @@
+//! The sweep driver tries a ray's segments nearest first and stops past
+//! the nearest hit, and answers a shadow ray at its first hit before the
+//! light: checked here against the answers that need neither, on the
+//! sweeps of Chapter 5 (fig5_6's star, fig5_7's obelisk, fig5_8's goblet).
+
+mod common;
+use raytrace::drt::hashed_uniform;
+use raytrace::shapes::sweep::{intersect_sweep, sweep_blocks};
+use raytrace::types::*;
+
+const SOLVERS: [Solver; 2] = [Solver::Laguerre, Solver::Robust];
+
+fn opts(solver: Solver) -> Options {
+    Options {
+        solver,
+        ..Options::default()
+    }
+}
+
+/// The deck's first sweep object, its class and shape.
+fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
+    let scene = common::load_deck(&format!("{deck}.deck"), Fidelity::Thesis);
+    scene
+        .objects
+        .iter()
+        .find_map(|o| match &o.shape {
+            Shape::Sweep(sw) => Some((o.class, sw.clone())),
+            _ => None,
+        })
+        .expect("a sweep object")
+}
+
+/// Segment `i` alone, with the whole contour's box (so the ray is taken
+/// near the object in the same way and each segment's polynomial is the
+/// same to the bit).
+fn single(sw: &SweepShape, i: usize) -> SweepShape {
+    SweepShape {
+        segment: 1,
+        u: vec![sw.u[i]],
+        v: vec![sw.v[i]],
+        ..sw.clone()
+    }
+}
+
+/// Ray `k`: from 6 units off the box's centre toward a point of the box,
+/// or (every other ray) toward a joint of the contour, where two segments'
+/// hits compete at nearly one t; horizontal (local z fixed) when `flat`.
+fn ray(class: PrimitiveClass, sw: &SweepShape, k: u64, flat: bool) -> Ray {
+    let (lo, hi) = common::sweep_box(class, sw);
+    let r = |j: u64| hashed_uniform(16 * k + j);
+    let mut target = lo + (hi - lo) * DVec3::new(r(0), r(1), r(2));
+    if k % 2 == 1 {
+        let j = (r(5) * sw.segment as f64) as usize % sw.segment;
+        let (ju, jv) = (sw.u[j].d, sw.v[j].d);
+        target = match class {
+            PrimitiveClass::Rotation => {
+                let phi = std::f64::consts::TAU * r(6);
+                DVec3::new(ju * phi.cos(), ju * phi.sin(), jv)
+            }
+            _ => {
+                let z = sw.length * r(2);
+                let scale = 1.0 + (sw.scale - 1.0) * z / sw.length;
+                DVec3::new(scale * ju, scale * jv, z)
+            }
+        };
+    }
+    let a = std::f64::consts::TAU * r(3);
+    let mut origin = 0.5 * (lo + hi) + 6.0 * DVec3::new(a.cos(), a.sin(), r(4) - 0.5);
+    if flat {
+        origin.z = target.z;
+    }
+    Ray::new(origin, (target - origin).normalize())
+}
+
+/// The nearest hit of the whole contour is the nearest of its segments'
+/// own, to the bit: culling by the segments' bounds never skips the one
+/// that holds it. Translation rays are horizontal, so no cap is met and a
+/// segment alone answers for its side.
+#[test]
+fn nearest_first_finds_the_nearest_segment_hit() {
+    for (deck, flat) in [("fig5_6", true), ("fig5_7", true), ("fig5_8", false)] {
+        let (class, sw) = deck_sweep(deck);
+        let singles: Vec<SweepShape> = (0..sw.segment).map(|i| single(&sw, i)).collect();
+        for solver in SOLVERS {
+            let o = opts(solver);
+            let mut hits = 0;
+            for k in 0..1500 {
+                let ray = ray(class, &sw, k, flat);
+                let whole = intersect_sweep(class, &sw, &ray, 1e-9, &o).map(|h| h.t);
+                let each = singles
+                    .iter()
+                    .filter_map(|s| intersect_sweep(class, s, &ray, 1e-9, &o).map(|h| h.t))
+                    .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
+                assert_eq!(whole, each, "{deck} {solver:?} ray {k}");
+                hits += whole.is_some() as usize;
+            }
+            assert!(hits > 300, "{deck} {solver:?}: the rays meet the sweep ({hits})");
+        }
+    }
+}
+
+/// `sweep_blocks` answers what the nearest hit answers, before lights at
+/// every distance: in front of the sweep, inside it, behind it.
+#[test]
+fn shadow_query_is_the_nearest_hit_before_the_light() {
+    for deck in ["fig5_6", "fig5_7", "fig5_8"] {
+        let (class, sw) = deck_sweep(deck);
+        for solver in SOLVERS {
+            let o = opts(solver);
+            let (mut blocked, mut free) = (0, 0);
+            for k in 0..1500 {
+                let ray = ray(class, &sw, k, false);
+                let nearest = intersect_sweep(class, &sw, &ray, 1e-9, &o).map(|h| h.t);
+                let tmax = 3.0 + 6.0 * hashed_uniform(7_000_000 + k);
+                let want = nearest.is_some_and(|t| t < tmax);
+                assert_eq!(sweep_blocks(class, &sw, &ray, 1e-9, tmax, &o), want, "{deck} {solver:?} ray {k}");
+                if let Some(t) = nearest {
+                    // Just before and just after the nearest hit.
+                    assert!(!sweep_blocks(class, &sw, &ray, 1e-9, t, &o), "{deck} ray {k}: at t");
+                    assert!(sweep_blocks(class, &sw, &ray, 1e-9, t * (1.0 + 1e-12), &o));
+                }
+                if want {
+                    blocked += 1;
+                } else {
+                    free += 1;
+                }
+            }
+            assert!(blocked > 200 && free > 200, "{deck} {solver:?}: {blocked} blocked, {free} free");
+        }
+    }
+}
