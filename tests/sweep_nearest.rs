@@ -5,7 +5,7 @@
 
 mod common;
 use raytrace::drt::hashed_uniform;
-use raytrace::shapes::sweep::{intersect_sweep, sweep_blocks};
+use raytrace::shapes::sweep::{intersect_sweep, point_in_contour, sweep_blocks};
 use raytrace::types::*;
 
 const SOLVERS: [Solver; 2] = [Solver::Laguerre, Solver::Robust];
@@ -95,6 +95,46 @@ fn nearest_first_finds_the_nearest_segment_hit() {
                 hits += whole.is_some() as usize;
             }
             assert!(hits > 300, "{deck} {solver:?}: the rays meet the sweep ({hits})");
+        }
+    }
+}
+
+/// A ray that enters the slab between the caps' planes through the near
+/// cap's plane, inside the contour there, hits that cap: the cap tried
+/// first is kept, and no side beyond it is taken for the hit. (A side hit
+/// at the rim may stand a hair before it.) Caps that the ray enters
+/// outside the contour are passed, and the hit is farther.
+#[test]
+fn the_near_cap_first_is_the_hit_where_it_is_inside() {
+    for deck in ["fig5_6", "fig5_7"] {
+        let (class, sw) = deck_sweep(deck);
+        for solver in SOLVERS {
+            let o = opts(solver);
+            let (mut inside, mut outside) = (0, 0);
+            for k in 0..1500 {
+                let ray = ray(class, &sw, k, false);
+                let (p, d) = (ray.origin, ray.dir);
+                let (zc, nz) = if d.z < 0.0 { (sw.length, 1.0) } else { (0.0, -1.0) };
+                let t_cap = (zc - p.z) / d.z;
+                if !(t_cap > 0.0) {
+                    continue;
+                }
+                let at = ray.at(t_cap);
+                let scale = 1.0 + (sw.scale - 1.0) * zc / sw.length;
+                let hit = intersect_sweep(class, &sw, &ray, 1e-9, &o);
+                if point_in_contour(&sw.u, &sw.v, at.x / scale, at.y / scale) {
+                    let h = hit.expect("the near cap is hit");
+                    assert!((h.t - t_cap).abs() <= 1e-9 * t_cap, "{deck} {solver:?} ray {k}: {} vs {t_cap}", h.t);
+                    if h.t == t_cap {
+                        assert_eq!(h.normal, DVec3::new(0.0, 0.0, nz));
+                    }
+                    inside += 1;
+                } else {
+                    assert!(hit.is_none_or(|h| h.t > t_cap), "{deck} {solver:?} ray {k}");
+                    outside += 1;
+                }
+            }
+            assert!(inside > 20 && outside > 100, "{deck} {solver:?}: {inside} in, {outside} out");
         }
     }
 }

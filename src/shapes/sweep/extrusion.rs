@@ -131,6 +131,41 @@ pub(super) fn extrusion(
         };
         candidates.push(t_lo, i);
     }
+    // The caps, where the ray's point lies inside the (scaled) contour.
+    // The near cap is tried first: the ray reaches no side before it (the
+    // sides lie between the caps' planes), so when it is hit it is the
+    // nearest hit but for a side at the rim, and the sides beyond it are
+    // skipped. Whatever the order, the hit kept is the least (t, segment).
+    let cap = |zc: f64, nz: f64, best: &mut Option<Best>| -> bool {
+        let k = 1.0 + kappa * zc;
+        if k == 0.0 {
+            return false; // the cap is the apex: a ray through it took the path above
+        }
+        let t = (zc - o.z) / d.z;
+        if !closer(best, t, tmin, CAP) || query.past(t, &None) {
+            return false;
+        }
+        let p = o + d * t;
+        if !point_in_contour(u, v, p.x / k, p.y / k) {
+            return false;
+        }
+        *best = Some(Best {
+            t,
+            normal: DVec3::new(0.0, 0.0, nz),
+            segment: CAP,
+        });
+        true
+    };
+    let caps: &[(f64, f64)] = match d.z {
+        z if z > 0.0 => &[(0.0, -1.0), (len, 1.0)],
+        z if z < 0.0 => &[(len, 1.0), (0.0, -1.0)],
+        _ => &[],
+    };
+    if let Some(&(zc, nz)) = caps.first() {
+        if cap(zc, nz, &mut best) && query.done(best.map_or(f64::INFINITY, |b| b.t)) {
+            return best.map(|b| hit(b.t, b.normal));
+        }
+    }
     for (t_lo, i) in candidates.iter() {
         if query.past(t_lo, &best) {
             break;
@@ -174,29 +209,10 @@ pub(super) fn extrusion(
         }
     }
 
-    // The caps, where the ray's point lies inside the (scaled) contour.
-    if d.z != 0.0 {
-        for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
-            let k = 1.0 + kappa * zc;
-            if k == 0.0 {
-                continue; // the cap is the apex: a ray through it took the path above
-            }
-            let t = (zc - o.z) / d.z;
-            if !closer(&best, t, tmin, CAP) || query.past(t, &None) {
-                continue;
-            }
-            let p = o + d * t;
-            if point_in_contour(u, v, p.x / k, p.y / k) {
-                best = Some(Best {
-                    t,
-                    normal: DVec3::new(0.0, 0.0, nz),
-                    segment: CAP,
-                });
-                side = false;
-                if query.done(t) {
-                    break;
-                }
-            }
+    // The far cap, if it is nearer than what the sides gave.
+    if let Some(&(zc, nz)) = caps.get(1) {
+        if cap(zc, nz, &mut best) {
+            side = false;
         }
     }
 
