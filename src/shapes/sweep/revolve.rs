@@ -8,11 +8,12 @@ use super::{
 use crate::proc::sweep::outrectp;
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray};
 
-/// The rotation sweep's surface point nearest the ray point at t, for the
-/// contour point s of segment (u, v): the 2-D residual (radius, height).
-pub(super) fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> f64 {
+/// U(s), V(s) of segment (u, v), and the 2-D residual (radius, height) of
+/// the ray point at t against that contour point of the rotation sweep.
+pub(super) fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) -> (f64, f64, f64) {
+    let (uu, vv) = (u.value(s), v.value(s));
     let p = ray.at(t);
-    norm2(norm2(p.x, p.y) - u.value(s), p.z - v.value(s))
+    (uu, vv, norm2(norm2(p.x, p.y) - uu, p.z - vv))
 }
 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
@@ -24,12 +25,13 @@ pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t:
         2.0 * (o.x * d.x + o.y * d.y),
         o.x * o.x + o.y * o.y,
     );
-    let mut res = revolve_residual(u, v, ray, s, t);
+    // U and V kept from each residual for the step from there.
+    let (mut uu, mut vv, mut res) = revolve_residual(u, v, ray, s, t);
     for _ in 0..5 {
         if res == 0.0 {
             break;
         }
-        let (uu, vv, du, dv) = (u.value(s), v.value(s), u.slope(s), v.slope(s));
+        let (du, dv) = (u.slope(s), v.slope(s));
         let g1 = (a * t + b) * t + c - uu * uu;
         let g2 = o.z + t * d.z - vv;
         // J = [[2at + b, −2U U′], [d_z, −V′]] in (t, s).
@@ -41,11 +43,11 @@ pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t:
         let dt = (-g1 * j22 + g2 * j12) / det;
         let ds = (-g2 * j11 + g1 * j21) / det;
         let (ns, nt) = (s + ds, t + dt);
-        let nres = revolve_residual(u, v, ray, ns, nt);
+        let (nu, nv, nres) = revolve_residual(u, v, ray, ns, nt);
         if nres.is_nan() || nres >= res {
             break;
         }
-        (s, t, res) = (ns, nt, nres);
+        (s, t, uu, vv, res) = (ns, nt, nu, nv, nres);
     }
     (s, t, res)
 }
