@@ -1,12 +1,19 @@
 //! A second root solver for the sweep intersection, not the thesis's (the
 //! thesis uses [`laguerre`](super::sweep::laguerre)): every real root of a
-//! polynomial of degree ≤ 6 in an interval, by recursive derivative-root
-//! bracketing. The roots of p′ cut the interval into pieces on which p is
-//! monotone; a piece whose ends differ in sign holds exactly one simple
-//! root, found by Newton's method kept inside the bracket (bisection when
-//! a step leaves it); a root of p′ where p vanishes (to rounding) is a
-//! multiple root, reported once with its multiplicity. The roots of p′
-//! come the same way from p″, down to a linear polynomial.
+//! polynomial of degree ≤ 6 in an interval.
+//!
+//! First the cheap answer of the polynomial's Bernstein coefficients on the
+//! interval (their sign changes bound the roots, [`real_roots`]): none, or
+//! one simple root found by Newton's method, which is what a ray meets on
+//! most segments. Where that cannot decide, recursive derivative-root
+//! bracketing (after Yuksel 2022, *High-Performance Polynomial Root Finding
+//! for Graphics*): the roots of p′ cut the interval into pieces on which p
+//! is monotone; a piece whose ends differ in sign holds exactly one simple
+//! root, found by Newton's method kept inside the bracket (bisection when a
+//! step leaves it; closed form for degrees 1 and 2); a root of p′ where p
+//! vanishes (to rounding) is a multiple root, reported once with its
+//! multiplicity. The roots of p′ come the same way from p″, down to a
+//! linear polynomial.
 //!
 //! Chosen with `--solver robust` ([`Solver::Robust`](crate::types::Solver)).
 //! Allocation-free: fixed arrays of seven coefficients and six roots.
