@@ -116,7 +116,7 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
                 let (p, d) = (ray.origin, ray.dir);
                 let (zc, nz) = if d.z < 0.0 { (sw.length, 1.0) } else { (0.0, -1.0) };
                 let t_cap = (zc - p.z) / d.z;
-                if !(t_cap > 0.0) {
+                if t_cap.is_nan() || t_cap <= 0.0 {
                     continue;
                 }
                 let at = ray.at(t_cap);
@@ -124,7 +124,11 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
                 let hit = intersect_sweep(class, &sw, &ray, 1e-9, &o);
                 if point_in_contour(&sw.u, &sw.v, at.x / scale, at.y / scale) {
                     let h = hit.expect("the near cap is hit");
-                    assert!((h.t - t_cap).abs() <= 1e-9 * t_cap, "{deck} {solver:?} ray {k}: {} vs {t_cap}", h.t);
+                    assert!(
+                        (h.t - t_cap).abs() <= 1e-9 * t_cap,
+                        "{deck} {solver:?} ray {k}: {} vs {t_cap}",
+                        h.t
+                    );
                     if h.t == t_cap {
                         assert_eq!(h.normal, DVec3::new(0.0, 0.0, nz));
                     }
@@ -134,7 +138,10 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
                     outside += 1;
                 }
             }
-            assert!(inside > 20 && outside > 100, "{deck} {solver:?}: {inside} in, {outside} out");
+            assert!(
+                inside > 20 && outside > 100,
+                "{deck} {solver:?}: {inside} in, {outside} out"
+            );
         }
     }
 }
@@ -153,7 +160,11 @@ fn shadow_query_is_the_nearest_hit_before_the_light() {
                 let nearest = intersect_sweep(class, &sw, &ray, 1e-9, &o).map(|h| h.t);
                 let tmax = 3.0 + 6.0 * hashed_uniform(7_000_000 + k);
                 let want = nearest.is_some_and(|t| t < tmax);
-                assert_eq!(sweep_blocks(class, &sw, &ray, 1e-9, tmax, &o), want, "{deck} {solver:?} ray {k}");
+                assert_eq!(
+                    sweep_blocks(class, &sw, &ray, 1e-9, tmax, &o),
+                    want,
+                    "{deck} {solver:?} ray {k}"
+                );
                 if let Some(t) = nearest {
                     // Just before and just after the nearest hit.
                     assert!(!sweep_blocks(class, &sw, &ray, 1e-9, t, &o), "{deck} ray {k}: at t");
@@ -165,7 +176,10 @@ fn shadow_query_is_the_nearest_hit_before_the_light() {
                     free += 1;
                 }
             }
-            assert!(blocked > 200 && free > 200, "{deck} {solver:?}: {blocked} blocked, {free} free");
+            assert!(
+                blocked > 200 && free > 200,
+                "{deck} {solver:?}: {blocked} blocked, {free} free"
+            );
         }
     }
 }

@@ -147,7 +147,15 @@ fn closed_form(p: &[f64; 7], m: usize, x0: f64, x1: f64) -> Option<f64> {
     let (r1, r2) = (q / qa, qc / q);
     let mid = 0.5 * (x0 + x1);
     // The root inside; when rounding puts both out, the nearer.
-    let out = |r: f64| if r < x0 { x0 - r } else if r > x1 { r - x1 } else { 0.0 };
+    let out = |r: f64| {
+        if r < x0 {
+            x0 - r
+        } else if r > x1 {
+            r - x1
+        } else {
+            0.0
+        }
+    };
     let r = if out(r1) < out(r2) || (out(r1) == out(r2) && (r1 - mid).abs() <= (r2 - mid).abs()) {
         r1
     } else {

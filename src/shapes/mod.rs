@@ -167,7 +167,11 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
     let mut t_exit = f64::INFINITY;
     let mut n_enter = DVec3::ZERO;
     let mut n_exit = DVec3::ZERO;
-    let axes = [(DVec3::X, DVec3::NEG_X), (DVec3::Y, DVec3::NEG_Y), (DVec3::Z, DVec3::NEG_Z)];
+    let axes = [
+        (DVec3::X, DVec3::NEG_X),
+        (DVec3::Y, DVec3::NEG_Y),
+        (DVec3::Z, DVec3::NEG_Z),
+    ];
     for (k, (plus, minus)) in axes.into_iter().enumerate() {
         let (o, d, hk) = (ray.origin[k], ray.dir[k], h[k]);
         // (normal, n·d, h − n·o) of the planes +axis and −axis.
@@ -462,8 +466,8 @@ mod tests {
             let mut o = DVec3::new(3.0 * r(0), 3.0 * r(1), 2.0 * r(2));
             let mut d = DVec3::new(r(3), r(4), r(5));
             match k % 4 {
-                1 => d[(k / 4 % 3) as usize] = 0.0, // parallel to a pair of faces
-                2 => o.z = h.z,                     // in the top face's plane
+                1 => d[(k / 4 % 3) as usize] = 0.0,           // parallel to a pair of faces
+                2 => o.z = h.z,                               // in the top face's plane
                 3 => o = DVec3::new(h.x, h.y, 0.0) - d * 4.0, // through an edge
                 _ => {}
             }

@@ -2,9 +2,7 @@
 //! central projection into the contour's plane, and the end caps.
 
 use super::contour::{orientation, point_in_contour, tangent};
-use super::{
-    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL,
-};
+use super::{asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL};
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
 
 /// The "segment" of a cap hit: after every side segment, so a side hit at
@@ -199,11 +197,7 @@ pub(super) fn extrusion(
                 if query.done(t) {
                     return Some(hit(t, normal));
                 }
-                best = Some(Best {
-                    t,
-                    normal,
-                    segment: i,
-                });
+                best = Some(Best { t, normal, segment: i });
                 side = true;
             }
         }

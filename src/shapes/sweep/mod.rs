@@ -370,7 +370,17 @@ fn sweep_query(
     };
     near.back(match class {
         PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts, query),
-        _ => extrusion(u, v, sweep, class == PrimitiveClass::Conic, size, ray, tmin, opts, query),
+        _ => extrusion(
+            u,
+            v,
+            sweep,
+            class == PrimitiveClass::Conic,
+            size,
+            ray,
+            tmin,
+            opts,
+            query,
+        ),
     })
 }
 

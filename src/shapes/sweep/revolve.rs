@@ -3,7 +3,8 @@
 
 use super::contour::{orientation, tangent};
 use super::{
-    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, JOINT_SLACK, PARALLEL_TOL, RESIDUAL_TOL,
+    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, JOINT_SLACK, PARALLEL_TOL,
+    RESIDUAL_TOL,
 };
 use crate::proc::sweep::outrectp;
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray};
