@@ -279,3 +279,34 @@ fn erratum_15_jitter_cursor() {
     let thesis_0 = render(&s, &opts(), &|| {}).raster;
     assert_ne!(thesis_a, thesis_0, "jitter changes the image");
 }
+
+/// fig5_6's star casts its shadow (the sweep's shadow query, `sweep_blocks`):
+/// a floor point whose ray to a low light crosses the star is lit by the
+/// ambient term alone, and lit by the light once the star is gone;
+/// a floor point whose ray passes beside it is lit the same either way.
+#[test]
+fn a_sweep_casts_its_shadow() {
+    let mut s = common::load_deck("fig5_6.deck", Fidelity::Thesis);
+    s.lights = vec![light([10.0, 0.0, 0.6], [1.0, 1.0, 1.0])];
+    let down = |x: f64, y: f64| Ray::new(DVec3::new(x, y, 3.0), DVec3::NEG_Z);
+    let (behind, beside) = (down(-3.0, 0.0), down(0.0, -5.0));
+    let with_star = (trace_one(&s, &behind), trace_one(&s, &beside));
+    let star = s
+        .objects
+        .iter()
+        .position(|o| matches!(o.shape, Shape::Sweep(_)))
+        .unwrap();
+    s.objects[star].shape = match &s.objects[star].shape {
+        Shape::Sweep(sw) => Shape::Sweep(SweepShape {
+            segment: 0,
+            ..sw.clone()
+        }),
+        _ => unreachable!(),
+    };
+    let without = (trace_one(&s, &behind), trace_one(&s, &beside));
+    s.lights.clear();
+    let unlit = trace_one(&s, &behind);
+    assert_eq!(with_star.0, unlit, "in the star's shadow: the ambient term alone");
+    assert!(without.0.element_sum() > unlit.element_sum() + 0.01, "{without:?}");
+    assert_eq!(with_star.1, without.1);
+}
