@@ -99,6 +99,19 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// Issue 13's goal: RMSE and one-thread CPU time of `--sampler adaptive`
+    /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
+    Goal {
+        /// The width and height of every render, in pixels.
+        #[arg(long, default_value_t = 96)]
+        size: usize,
+        /// Timed rounds (the medians are compared).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+        /// A folder to keep the references in between runs.
+        #[arg(long)]
+        cache: Option<PathBuf>,
+    },
     /// Where `--sampler adaptive` spends its rays: the image beside a heat map
     /// of the rays each pixel got, one PNG.
     Heatmap {
@@ -242,6 +255,7 @@ fn main() -> Result<(), String> {
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs.max(1), cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
