@@ -209,36 +209,57 @@ pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     out
 }
 
-/// The samples of one pixel: the scrambles of its three dimensions.
+/// The samples of one pixel: the scrambles of its three dimensions, the
+/// place in the pixel (dimensions 0 and 1) by a seed of the pixel, the
+/// time (dimension 2) by a seed of its row, so that sample j of every
+/// pixel of a row is taken at the same instant (interleaved sampling,
+/// Keller & Heidrich 2001): the scene at that instant (the poses, an
+/// in-between contour) is made once for the row's j-th rays. Each
+/// dimension scrambled on its own, every pixel's samples are still a
+/// scrambled 3-D Sobol sequence, stratified in space, time and both.
 #[derive(Clone, Copy, Debug)]
 pub struct PixelSamples {
     seeds: [u32; 3],
 }
 
+/// The scramble of dimension `d` for key `key`.
+fn seed(key: u64, d: u64) -> u32 {
+    (hashed_uniform((key << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32
+}
+
 impl PixelSamples {
-    /// The samples of pixel `pixel` (its index in the image, row by row).
-    pub fn new(pixel: usize) -> Self {
-        let seed =
-            |d: u64| (hashed_uniform(((pixel as u64) << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32;
+    /// The samples of pixel `pixel` (its index in the image, row by row)
+    /// of an image `width` pixels wide.
+    pub fn new(pixel: usize, width: usize) -> Self {
+        let row = (pixel / width.max(1)) as u64;
         PixelSamples {
-            seeds: [seed(0), seed(1), seed(2)],
+            seeds: [seed(pixel as u64, 0), seed(pixel as u64, 1), seed(row, 2)],
         }
     }
 
     /// Sample `j` of the pixel.
     pub fn sample(&self, j: u32) -> Sample {
-        let at = |d: usize| owen_scramble(sobol(j, d), self.seeds[d]) as f64 / 4_294_967_296.0;
         Sample {
-            u: at(0),
-            v: at(1),
-            tau: at(2),
+            u: self.at(j, 0),
+            v: self.at(j, 1),
+            tau: self.tau(j),
         }
+    }
+
+    /// The time of sample `j`: the same for every pixel of the row.
+    pub fn tau(&self, j: u32) -> f64 {
+        self.at(j, 2)
+    }
+
+    fn at(&self, j: u32, d: usize) -> f64 {
+        owen_scramble(sobol(j, d), self.seeds[d]) as f64 / 4_294_967_296.0
     }
 }
 
-/// Sample `j` of pixel `pixel` (its index in the image, row by row).
-pub fn sample(pixel: usize, j: u32) -> Sample {
-    PixelSamples::new(pixel).sample(j)
+/// Sample `j` of pixel `pixel` (its index in the image, row by row) of an
+/// image `width` pixels wide.
+pub fn sample(pixel: usize, width: usize, j: u32) -> Sample {
+    PixelSamples::new(pixel, width).sample(j)
 }
 
 /// The Sobol sequence's direction numbers, 32 bits, of dimensions 0–2:
@@ -373,7 +394,7 @@ mod tests {
                 let mut cells = vec![false; n as usize];
                 let half = k / 2;
                 for j in 0..n {
-                    let s = sample(pixel, j);
+                    let s = sample(pixel, 100, j);
                     assert!((0.0..1.0).contains(&s.u) && (0.0..1.0).contains(&s.v) && (0.0..1.0).contains(&s.tau));
                     let t = (s.tau * n as f64) as usize;
                     assert!(!times[t], "pixel {pixel}: two of {n} times in stratum {t}");
@@ -385,8 +406,13 @@ mod tests {
                 }
             }
         }
-        assert_ne!(sample(0, 1), sample(1, 1));
-        assert_ne!(sample(0, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
+        // Places differ from pixel to pixel; times from row to row, and
+        // not between the pixels of a row.
+        assert_ne!(sample(0, 100, 1).u, sample(1, 100, 1).u);
+        assert_ne!(sample(0, 100, 1).v, sample(1, 100, 1).v);
+        assert_eq!(sample(0, 100, 1).tau, sample(99, 100, 1).tau);
+        assert_ne!(sample(0, 100, 1).tau, sample(100, 100, 1).tau);
+        assert_ne!(sample(0, 100, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
     }
 
     /// Every prefix length, pixel and channel: mean and spread as a

@@ -403,15 +403,28 @@ impl<'s> Tracer<'s> {
     /// made when a ray first needs it.
     fn trace(&mut self, shared: &Shared, aray: &Ray, tau: impl FnOnce() -> f64) -> Intensity {
         if shared.timed {
-            let time = shared.frame.time(tau());
-            for mo in &shared.moving {
-                self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
-            }
-            for (d, (_, chain)) in self.deforming.iter().zip(&shared.chains) {
-                self.poses[d.object] = chain.pose(time);
-                d.at(time);
-            }
+            self.at(shared, tau());
         }
+        self.shoot(shared, aray)
+    }
+
+    /// The scene at the film time of the sampler's time `tau`: the poses
+    /// and in-between contours of [`Tracer::trace`], for the rays that
+    /// follow.
+    fn at(&mut self, shared: &Shared, tau: f64) {
+        let time = shared.frame.time(tau);
+        for mo in &shared.moving {
+            self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
+        }
+        for (d, (_, chain)) in self.deforming.iter().zip(&shared.chains) {
+            self.poses[d.object] = chain.pose(time);
+            d.at(time);
+        }
+    }
+
+    /// `raytrace` of the primary ray `aray` with the scene as the last
+    /// [`Tracer::at`] left it.
+    fn shoot(&mut self, shared: &Shared, aray: &Ray) -> Intensity {
         let snap = Snapshot {
             scene: shared.scene,
             poses: &self.poses,
@@ -545,15 +558,28 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
             .enumerate()
             .map(|(row, (sums, counts))| {
                 let mut tracer = Tracer::new(shared);
-                for (x, (sum, &count)) in sums.iter_mut().zip(counts).enumerate() {
-                    let samples = adaptive::PixelSamples::new(row * w + x);
-                    for j in sum.n..count {
-                        let s = samples.sample(j);
+                let samples: Vec<_> = (0..w).map(|x| adaptive::PixelSamples::new(row * w + x, w)).collect();
+                let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
+                let (from, to) = (
+                    start.iter().copied().min().unwrap_or(0),
+                    counts.iter().copied().max().unwrap_or(0),
+                );
+                // Sample j of every pixel of the row at once: they share
+                // their time (`PixelSamples`), so the scene is posed once.
+                for j in from..to {
+                    if shared.timed {
+                        tracer.at(shared, samples[0].tau(j));
+                    }
+                    for x in 0..w {
+                        if j < start[x] || j >= counts[x] {
+                            continue;
+                        }
+                        let s = samples[x].sample(j);
                         // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
                         let scancol = (x as f64 + s.u) * m + 0.5;
                         let scanline = (row as f64 + s.v) * m + 0.5;
                         let aray = camera.ray(scancol, scanline, 0.0, 0.0);
-                        sum.add(tracer.trace(shared, &aray, || s.tau));
+                        sums[x].add(tracer.shoot(shared, &aray));
                     }
                 }
                 if last {
