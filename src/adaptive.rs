@@ -137,15 +137,22 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     }
     let height = sums.len() / width;
     let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+    // The largest spread of the 3×3 pixels around each: along the row,
+    // then of those along the column.
+    let across: Vec<f64> = (0..sums.len())
+        .map(|i| {
+            let x = i % width;
+            let left = if x > 0 { spread[i - 1] } else { 0.0 };
+            let right = if x + 1 < width { spread[i + 1] } else { 0.0 };
+            spread[i].max(left).max(right)
+        })
+        .collect();
     let need: Vec<f64> = (0..sums.len())
         .map(|i| {
-            let (x, y) = (i % width, i / width);
-            let mut around = 0.0f64;
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    around = around.max(spread[ny * width + nx]);
-                }
-            }
+            let y = i / width;
+            let up = if y > 0 { across[i - width] } else { 0.0 };
+            let down = if y + 1 < height { across[i + width] } else { 0.0 };
+            let around = across[i].max(up).max(down);
             spread[i].max(NEIGHBOUR * around).powf(NEED_POWER)
         })
         .collect();
@@ -165,17 +172,24 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
         counts.iter().map(|&n| cap.max(n as f64)).collect()
     } else {
         // λ by bisection: Σ target(λ) grows with λ, from `spent` at 0.
-        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        // The start: λ where the counts would add up without their bounds.
+        let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
         let sum_at = |l: f64| (0..need.len()).map(|i| target(l, i)).sum::<f64>();
         while sum_at(hi) < total {
             hi *= 2.0;
         }
-        for _ in 0..40 {
+        // Until the counts at `hi` overshoot the total by less than half a
+        // ray: the rounding below then hands out the rest exactly.
+        for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            if sum_at(mid) < total {
+            let at = sum_at(mid);
+            if at < total {
                 lo = mid;
             } else {
                 hi = mid;
+                if at - total < 0.5 {
+                    break;
+                }
             }
         }
         (0..need.len()).map(|i| target(hi, i)).collect()
@@ -184,12 +198,17 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     let given: u64 = out.iter().map(|&n| n as u64).sum();
     let left = (spent + extra).saturating_sub(given);
     let mut order: Vec<usize> = (0..out.len()).filter(|&i| (out[i] as f64) < cap).collect();
-    order.sort_by(|&a, &b| {
-        (real[b] - real[b].floor())
-            .total_cmp(&(real[a] - real[a].floor()))
-            .then(a.cmp(&b))
-    });
-    for &i in order.iter().take(left as usize) {
+    let left = (left as usize).min(order.len());
+    if left > 0 && left < order.len() {
+        // Only which pixels are among the first `left` matters, not their
+        // order: a selection, not a sort.
+        order.select_nth_unstable_by(left - 1, |&a, &b| {
+            (real[b] - real[b].floor())
+                .total_cmp(&(real[a] - real[a].floor()))
+                .then(a.cmp(&b))
+        });
+    }
+    for &i in &order[..left] {
         out[i] += 1;
     }
     out
@@ -239,11 +258,13 @@ impl PixelSamples {
 
     /// Sample `j` of the pixel.
     pub fn sample(&self, j: u32) -> Sample {
-        Sample {
-            u: self.at(j, 0),
-            v: self.at(j, 1),
-            tau: self.tau(j),
-        }
+        let (u, v) = self.place(j);
+        Sample { u, v, tau: self.tau(j) }
+    }
+
+    /// Where in the pixel sample `j` lies: `u` across, `v` down.
+    pub fn place(&self, j: u32) -> (f64, f64) {
+        (self.at(j, 0), self.at(j, 1))
     }
 
     /// The time of sample `j`: the same for every pixel of the row.

@@ -574,10 +574,10 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                         if j < start[x] || j >= counts[x] {
                             continue;
                         }
-                        let s = samples[x].sample(j);
+                        let (u, v) = samples[x].place(j);
                         // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
-                        let scancol = (x as f64 + s.u) * m + 0.5;
-                        let scanline = (row as f64 + s.v) * m + 0.5;
+                        let scancol = (x as f64 + u) * m + 0.5;
+                        let scanline = (row as f64 + v) * m + 0.5;
                         let aray = camera.ray(scancol, scanline, 0.0, 0.0);
                         sums[x].add(tracer.shoot(shared, &aray));
                     }
