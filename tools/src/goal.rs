@@ -3,7 +3,8 @@
 //! and 8), the RMSE of the adaptive image over the thesis table's, both
 //! against the chart's reference (1024 stratified time samples a pixel),
 //! and the CPU time of the adaptive render over the table's (one thread,
-//! the two interleaved, median of `runs` rounds). The goal is an RMSE ratio
+//! the two interleaved, median of `runs` rounds; the thread's own CPU
+//! time, [`thread_cpu_secs`], so that other work on the machine counts less). The goal is an RMSE ratio
 //! ≤ 0.5 and a time ratio ≤ 1.1.
 //!
 //! The references take most of the run; `cache` keeps them in a folder
@@ -13,11 +14,11 @@
 use std::path::Path;
 
 use raytrace::raytrace::render_colours;
-use raytrace::types::{Fidelity, Intensity, Options, Solver, TimeSampler};
+use raytrace::types::{Fidelity, Intensity, Options, Scene, Solver, TimeSampler};
 
 use crate::chart::BLUR_REFERENCE_MASK;
 use crate::decks::{prepared, BLUR_DECKS};
-use crate::measure::{interleaved_medians, rmse};
+use crate::measure::{median, rmse, thread_cpu_secs};
 
 /// The masks of the goal: 16 and 64 rays a pixel.
 pub const GOAL_MASKS: [usize; 2] = [4, 8];
@@ -87,15 +88,7 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
             let a_scene = prepared(deck, &adaptive, Some((size, size, mask)))?;
             let rmse_table = rmse(&render_colours(&t_scene, &table), &reference);
             let rmse_adaptive = rmse(&render_colours(&a_scene, &adaptive), &reference);
-            let secs = one.install(|| {
-                interleaved_medians(
-                    &mut [
-                        &mut || drop(std::hint::black_box(render_colours(&t_scene, &table))),
-                        &mut || drop(std::hint::black_box(render_colours(&a_scene, &adaptive))),
-                    ],
-                    runs,
-                )
-            });
+            let secs = cpu_medians(&one, &[(&t_scene, &table), (&a_scene, &adaptive)], runs);
             let row = GoalRow {
                 deck,
                 mask,
@@ -109,6 +102,35 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
         }
     }
     Ok(rows)
+}
+
+/// The median CPU seconds of each render on the one thread of `pool`,
+/// `runs` rounds of all of them in turn after an untimed one (NaN for
+/// `runs` 0, the clock where the thread's CPU time cannot be read).
+fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[(&Scene, &Options)], runs: usize) -> Vec<f64> {
+    let time = |scene: &Scene, o: &Options| {
+        pool.install(|| {
+            let (cpu, wall) = (thread_cpu_secs(), std::time::Instant::now());
+            drop(std::hint::black_box(render_colours(scene, o)));
+            match (cpu, thread_cpu_secs()) {
+                (Some(a), Some(b)) => b - a,
+                _ => wall.elapsed().as_secs_f64(),
+            }
+        })
+    };
+    if runs == 0 {
+        return vec![f64::NAN; jobs.len()];
+    }
+    for (scene, o) in jobs {
+        time(scene, o);
+    }
+    let mut secs = vec![Vec::with_capacity(runs); jobs.len()];
+    for _ in 0..runs {
+        for (k, (scene, o)) in jobs.iter().enumerate() {
+            secs[k].push(time(scene, o));
+        }
+    }
+    secs.iter().map(|s| median(s)).collect()
 }
 
 /// A row of the goal's Markdown table.

@@ -255,7 +255,7 @@ fn main() -> Result<(), String> {
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
-        Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs.max(1), cache.as_deref()),
+        Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
