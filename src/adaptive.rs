@@ -230,16 +230,29 @@ pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
 
 /// The samples of one pixel: the scrambles of its three dimensions, the
 /// place in the pixel (dimensions 0 and 1) by a seed of the pixel, the
-/// time (dimension 2) by a seed of its row, so that sample j of every
-/// pixel of a row is taken at the same instant (interleaved sampling,
-/// Keller & Heidrich 2001): the scene at that instant (the poses, an
-/// in-between contour) is made once for the row's j-th rays. Each
-/// dimension scrambled on its own, every pixel's samples are still a
-/// scrambled 3-D Sobol sequence, stratified in space, time and both.
+/// time (dimension 2) by a seed of its row, so that the rows' pixels can
+/// share their instants (interleaved sampling, Keller & Heidrich 2001):
+/// the scene at an instant (the poses, an in-between contour) is made
+/// once for all the row's rays at it. Pixel x takes the row's time k for
+/// its sample j = k ⊕ c with c < [`SHIFT_BLOCK`] a hash of the pixel: a
+/// digital shift of its times (the Sobol points are linear over bits,
+/// point k ⊕ c = point k ⊕ point c), so the pixels of a row do not all
+/// take their first samples at the same instants (a first pass that
+/// missed a brief change in one pixel would miss it along the whole
+/// row), and each pixel's samples are still a scrambled 3-D Sobol
+/// sequence, every prefix stratified in space, time and both.
 #[derive(Clone, Copy, Debug)]
 pub struct PixelSamples {
     seeds: [u32; 3],
+    shift: u32,
 }
+
+/// The shifts of [`PixelSamples`] are below this (a power of two): the
+/// row's instants k and a pixel's samples j = k ⊕ c then lie in the same
+/// block of this many, and the instants a pass traces are at most the
+/// blocks its samples reach (16: eight different first pairs of times in
+/// a row, and still few instants a pass).
+pub const SHIFT_BLOCK: u32 = 16;
 
 /// The scramble of dimension `d` for key `key`.
 fn seed(key: u64, d: u64) -> u32 {
@@ -253,7 +266,13 @@ impl PixelSamples {
         let row = (pixel / width.max(1)) as u64;
         PixelSamples {
             seeds: [seed(pixel as u64, 0), seed(pixel as u64, 1), seed(row, 2)],
+            shift: seed(pixel as u64, 3) % SHIFT_BLOCK,
         }
+    }
+
+    /// The sample the pixel takes at its row's instant `k`.
+    pub fn at_instant(&self, k: u32) -> u32 {
+        k ^ self.shift
     }
 
     /// Sample `j` of the pixel.
@@ -267,9 +286,10 @@ impl PixelSamples {
         (self.at(j, 0), self.at(j, 1))
     }
 
-    /// The time of sample `j`: the same for every pixel of the row.
+    /// The time of sample `j`: the row's instant `j ⊕ c`, the same for
+    /// every pixel of the row at that instant.
     pub fn tau(&self, j: u32) -> f64 {
-        self.at(j, 2)
+        self.at(j ^ self.shift, 2)
     }
 
     fn at(&self, j: u32, d: usize) -> f64 {
@@ -431,7 +451,15 @@ mod tests {
         // not between the pixels of a row.
         assert_ne!(sample(0, 100, 1).u, sample(1, 100, 1).u);
         assert_ne!(sample(0, 100, 1).v, sample(1, 100, 1).v);
-        assert_eq!(sample(0, 100, 1).tau, sample(99, 100, 1).tau);
+        let (a, b) = (PixelSamples::new(0, 100), PixelSamples::new(99, 100));
+        for k in 0..64 {
+            assert_eq!(a.tau(a.at_instant(k)), b.tau(b.at_instant(k)), "instant {k}");
+            assert_eq!(a.at_instant(a.at_instant(k)), k);
+            assert_eq!(a.at_instant(k) / SHIFT_BLOCK, k / SHIFT_BLOCK);
+        }
+        // The first pairs of times of a row's pixels are not all the same.
+        let first = |x: usize| sample(x, 100, 0).tau.min(sample(x, 100, 1).tau);
+        assert!((1..100).any(|x| first(x) != first(0)));
         assert_ne!(sample(0, 100, 1).tau, sample(100, 100, 1).tau);
         assert_ne!(sample(0, 100, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
     }

@@ -560,19 +560,22 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                 let mut tracer = Tracer::new(shared);
                 let samples: Vec<_> = (0..w).map(|x| adaptive::PixelSamples::new(row * w + x, w)).collect();
                 let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
-                let (from, to) = (
-                    start.iter().copied().min().unwrap_or(0),
-                    counts.iter().copied().max().unwrap_or(0),
-                );
-                // Sample j of every pixel of the row at once: they share
-                // their time (`PixelSamples`), so the scene is posed once.
-                for j in from..to {
-                    if shared.timed {
-                        tracer.at(shared, samples[0].tau(j));
-                    }
+                // The row's instants k in the blocks its samples reach: at
+                // each, every pixel whose sample k ⊕ c is due, with the
+                // scene posed once (`PixelSamples`).
+                let block = adaptive::SHIFT_BLOCK;
+                let from = start.iter().copied().min().unwrap_or(0) / block * block;
+                let to = counts.iter().copied().max().unwrap_or(0).div_ceil(block) * block;
+                for k in from..to {
+                    let mut posed = false;
                     for x in 0..w {
+                        let j = samples[x].at_instant(k);
                         if j < start[x] || j >= counts[x] {
                             continue;
+                        }
+                        if shared.timed && !posed {
+                            tracer.at(shared, samples[x].tau(j));
+                            posed = true;
                         }
                         let (u, v) = samples[x].place(j);
                         // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
