@@ -14,9 +14,13 @@
 //!   (space and time together: a sample varies in both), widened to its
 //!   neighbours so an edge the first rays missed is still found.
 //! - Sample j of a pixel is point j of a 3-D Sobol sequence (pixel x,
-//!   pixel y, shutter time τ), Owen-scrambled by a seed of the pixel
-//!   (Burley 2020, *Practical hash-based Owen scrambling*): every prefix is
-//!   well spread in all three, so a pixel can stop after any count.
+//!   pixel y, shutter time τ), Owen-scrambled (Burley 2020, *Practical
+//!   hash-based Owen scrambling*): every prefix is well spread in all
+//!   three, so a pixel can stop after any count. The place is scrambled by
+//!   a seed of the pixel, the time by a seed of its row and a shift of the
+//!   pixel ([`PixelSamples`]), so that a row's pixels take their samples
+//!   at shared instants and the scene is posed once an instant, not once
+//!   a ray.
 //! - τ is uniform over [0, 1): the box shutter `blur 1` samples, so the
 //!   picture converges to the same one as the other samplers'.
 //!
