@@ -536,8 +536,11 @@ fn sum_counts(per_row: Vec<(TraceStats, u64)>) -> (TraceStats, u64) {
 /// [`crate::adaptive`]): a first pass of a few rays a pixel, then the
 /// passes that deal out the rest of the deck's budget of `masksize`² rays
 /// a pixel by need. Each sample is a place in the pixel and a time, from
-/// [`adaptive::sample`]; a pixel is the mean of its samples (the box filter
-/// of `antialias`). `progress` is called for each row of the last pass.
+/// [`adaptive::PixelSamples`]; a row is traced instant by instant (the
+/// times its pixels share), the scene posed once an instant ([`Tracer::at`])
+/// and each due pixel's ray shot at it ([`Tracer::shoot`]); a pixel is the
+/// mean of its samples (the box filter of `antialias`). `progress` is
+/// called for each row of the last pass.
 fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync)) -> Traced {
     let img = &shared.scene.image;
     let (w, m) = (img.width, img.masksize as f64);
