@@ -170,33 +170,15 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     let spent: u64 = counts.iter().map(|&n| n as u64).sum();
     let room: f64 = counts.iter().map(|&n| cap - (n as f64).min(cap)).sum();
     let total = (spent + extra) as f64;
-    let target = |lambda: f64, i: usize| (lambda * need[i]).clamp(counts[i] as f64, cap.max(counts[i] as f64));
+    let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
+    let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
+    let target = |lambda: f64, i: usize| (lambda * need[i]).clamp(low[i], high[i]);
     let real: Vec<f64> = if room <= extra as f64 {
         // More rays than the caps hold: every pixel to its cap.
-        counts.iter().map(|&n| cap.max(n as f64)).collect()
+        high.clone()
     } else {
-        // λ by bisection: Σ target(λ) grows with λ, from `spent` at 0.
-        // The start: λ where the counts would add up without their bounds.
-        let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
-        let sum_at = |l: f64| (0..need.len()).map(|i| target(l, i)).sum::<f64>();
-        while sum_at(hi) < total {
-            hi *= 2.0;
-        }
-        // Until the counts at `hi` overshoot the total by less than half a
-        // ray: the rounding below then hands out the rest exactly.
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            let at = sum_at(mid);
-            if at < total {
-                lo = mid;
-            } else {
-                hi = mid;
-                if at - total < 0.5 {
-                    break;
-                }
-            }
-        }
-        (0..need.len()).map(|i| target(hi, i)).collect()
+        let lambda = solve_lambda(&need, &low, &high, total);
+        (0..need.len()).map(|i| target(lambda, i)).collect()
     };
     let mut out: Vec<u32> = real.iter().map(|&r| r.floor() as u32).collect();
     let given: u64 = out.iter().map(|&n| n as u64).sum();
@@ -216,6 +198,65 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
         out[i] += 1;
     }
     out
+}
+
+/// The λ of [`allocate`]: Σ clamp(λ·need, low, high) reaches `total`, by
+/// less than half a ray beyond it (the rounding then hands out the rest
+/// exactly). The sum is piecewise linear and grows with λ; Newton's steps
+/// on it, kept inside a bracket that halves when a step would leave it,
+/// take a handful of sums where bisection takes twenty or more. `total`
+/// must lie between Σ low and Σ high.
+fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
+    // The sum and its slope at λ (the needs of the pixels not at a bound).
+    let sum_at = |l: f64| {
+        let (mut sum, mut slope) = (0.0, 0.0);
+        for i in 0..need.len() {
+            let t = l * need[i];
+            if t <= low[i] {
+                sum += low[i];
+            } else if t >= high[i] {
+                sum += high[i];
+            } else {
+                sum += t;
+                slope += need[i];
+            }
+        }
+        (sum, slope)
+    };
+    // The start: λ where the counts would add up without their bounds.
+    let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
+    let mut at = sum_at(hi);
+    while at.0 < total {
+        (lo, hi) = (hi, hi * 2.0);
+        at = sum_at(hi);
+    }
+    let mut lambda = hi;
+    for _ in 0..100 {
+        let (sum, slope) = at;
+        if sum >= total {
+            hi = lambda;
+            if sum - total < 0.5 {
+                return hi;
+            }
+        } else {
+            lo = lambda;
+        }
+        let step = if slope > 0.0 {
+            lambda + (total - sum) / slope
+        } else {
+            f64::NAN
+        };
+        // Aim a little beyond the total, so that a step from below lands
+        // above it rather than just short.
+        let step = if sum < total && slope > 0.0 {
+            step + 0.25 / slope
+        } else {
+            step
+        };
+        lambda = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+        at = sum_at(lambda);
+    }
+    hi
 }
 
 /// The rays of the passes after the first, for an image of `pixels` pixels

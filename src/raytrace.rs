@@ -548,13 +548,20 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
     let first = adaptive::first_pass(img.masksize);
     let mut sums = vec![adaptive::PixelSum::default(); w * img.height];
     let mut counts = vec![first; sums.len()];
-    let later = adaptive::later_passes(sums.len(), budget, first);
+    // The first pass, then the passes that have rays to deal out (none
+    // for a budget of one ray).
+    let mut passes = vec![0];
+    passes.extend(
+        adaptive::later_passes(sums.len(), budget, first)
+            .into_iter()
+            .filter(|&e| e > 0),
+    );
     let mut per_row = Vec::new();
-    for pass in 0..=later.len() {
+    for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = adaptive::allocate(&sums, w, budget, later[pass - 1]);
+            counts = adaptive::allocate(&sums, w, budget, extra);
         }
-        let last = pass == later.len();
+        let last = pass + 1 == passes.len();
         let rows: Vec<(TraceStats, u64)> = sums
             .par_chunks_mut(w)
             .zip(counts.par_chunks(w))
