@@ -28,6 +28,8 @@
 //! counts after a whole pass, never on the order threads finish in: the
 //! image is the same for any number of threads.
 
+use rayon::prelude::*;
+
 use crate::drt::hashed_uniform;
 use crate::types::{Fidelity, Intensity, Options, TimeSampler};
 
@@ -140,10 +142,13 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
         return counts;
     }
     let height = sums.len() / width;
-    let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+    // Each pixel's need on its own, so in parallel (the same numbers for
+    // any number of threads).
+    let spread: Vec<f64> = sums.par_iter().map(PixelSum::spread).collect();
     // The largest spread of the 3×3 pixels around each: along the row,
     // then of those along the column.
     let across: Vec<f64> = (0..sums.len())
+        .into_par_iter()
         .map(|i| {
             let x = i % width;
             let left = if x > 0 { spread[i - 1] } else { 0.0 };
@@ -152,6 +157,7 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
         })
         .collect();
     let need: Vec<f64> = (0..sums.len())
+        .into_par_iter()
         .map(|i| {
             let y = i / width;
             let up = if y > 0 { across[i - width] } else { 0.0 };

@@ -556,6 +556,7 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
             .into_iter()
             .filter(|&e| e > 0),
     );
+    let samples: Vec<_> = (0..sums.len()).map(|i| adaptive::PixelSamples::new(i, w)).collect();
     let mut per_row = Vec::new();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
@@ -565,10 +566,10 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
         let rows: Vec<(TraceStats, u64)> = sums
             .par_chunks_mut(w)
             .zip(counts.par_chunks(w))
+            .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, (sums, counts))| {
+            .map(|(row, ((sums, counts), samples))| {
                 let mut tracer = Tracer::new(shared);
-                let samples: Vec<_> = (0..w).map(|x| adaptive::PixelSamples::new(row * w + x, w)).collect();
                 let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
                 // The row's instants k in the blocks its samples reach: at
                 // each, every pixel whose sample k ⊕ c is due, with the
