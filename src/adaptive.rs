@@ -571,6 +571,23 @@ mod tests {
         );
     }
 
+    /// λ makes the bounded counts add up to the total, by less than half a
+    /// ray beyond it, whether few or most pixels end at a bound.
+    #[test]
+    fn lambda_meets_the_total() {
+        let n = 500;
+        let need: Vec<f64> = (0..n).map(|i| 0.001 + hashed_uniform(i as u64).powi(3)).collect();
+        let low: Vec<f64> = (0..n).map(|i| (2 + i % 5) as f64).collect();
+        let high: Vec<f64> = low.iter().map(|&l| l.max(64.0)).collect();
+        let sum = |l: f64| (0..n).map(|i| (l * need[i]).clamp(low[i], high[i])).sum::<f64>();
+        let (lo_sum, hi_sum): (f64, f64) = (low.iter().sum(), high.iter().sum());
+        for share in [0.001, 0.05, 0.3, 0.7, 0.95, 0.999] {
+            let total = (lo_sum + share * (hi_sum - lo_sum)).round();
+            let got = sum(solve_lambda(&need, &low, &high, total));
+            assert!(got >= total && got - total < 0.5, "share {share}: {got} for {total}");
+        }
+    }
+
     /// With no spread anywhere the rays go evenly, the remainder to the
     /// first pixels; the cap holds when the need is all in one pixel.
     #[test]

@@ -2,7 +2,9 @@
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `heatmap` shows where the adaptive sampler spends its rays;
+//! chart; `goal` measures issue 13's goal for the adaptive sampler (its
+//! error and CPU time over the table's); `heatmap` shows where the
+//! adaptive sampler spends its rays;
 //! `stability` writes the root solvers' stability report; `pov` exports a
 //! deck to POV-Ray and `vs-povray` compares the two renderers. Timings are
 //! measured and printed, never asserted in tests; `join` makes a film's
