@@ -14,15 +14,21 @@
 //!   (space and time together: a sample varies in both), widened to its
 //!   neighbours so an edge the first rays missed is still found.
 //! - Sample j of a pixel is point j of a 3-D Sobol sequence (pixel x,
-//!   pixel y, shutter time τ), Owen-scrambled by a seed of the pixel
-//!   (Burley 2020, *Practical hash-based Owen scrambling*): every prefix is
-//!   well spread in all three, so a pixel can stop after any count.
+//!   pixel y, shutter time τ), Owen-scrambled (Burley 2020, *Practical
+//!   hash-based Owen scrambling*): every prefix is well spread in all
+//!   three, so a pixel can stop after any count. The place is scrambled by
+//!   a seed of the pixel, the time by a seed of its row and a shift of the
+//!   pixel ([`PixelSamples`]), so that a row's pixels take their samples
+//!   at shared instants and the scene is posed once an instant, not once
+//!   a ray.
 //! - τ is uniform over [0, 1): the box shutter `blur 1` samples, so the
 //!   picture converges to the same one as the other samplers'.
 //!
 //! Every choice depends on the pixel, the sample's index and the image's
 //! counts after a whole pass, never on the order threads finish in: the
 //! image is the same for any number of threads.
+
+use rayon::prelude::*;
 
 use crate::drt::hashed_uniform;
 use crate::types::{Fidelity, Intensity, Options, TimeSampler};
@@ -136,16 +142,27 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
         return counts;
     }
     let height = sums.len() / width;
-    let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
-    let need: Vec<f64> = (0..sums.len())
+    // Each pixel's need on its own, so in parallel (the same numbers for
+    // any number of threads).
+    let spread: Vec<f64> = sums.par_iter().map(PixelSum::spread).collect();
+    // The largest spread of the 3×3 pixels around each: along the row,
+    // then of those along the column.
+    let across: Vec<f64> = (0..sums.len())
+        .into_par_iter()
         .map(|i| {
-            let (x, y) = (i % width, i / width);
-            let mut around = 0.0f64;
-            for ny in y.saturating_sub(1)..=(y + 1).min(height - 1) {
-                for nx in x.saturating_sub(1)..=(x + 1).min(width - 1) {
-                    around = around.max(spread[ny * width + nx]);
-                }
-            }
+            let x = i % width;
+            let left = if x > 0 { spread[i - 1] } else { 0.0 };
+            let right = if x + 1 < width { spread[i + 1] } else { 0.0 };
+            spread[i].max(left).max(right)
+        })
+        .collect();
+    let need: Vec<f64> = (0..sums.len())
+        .into_par_iter()
+        .map(|i| {
+            let y = i / width;
+            let up = if y > 0 { across[i - width] } else { 0.0 };
+            let down = if y + 1 < height { across[i + width] } else { 0.0 };
+            let around = across[i].max(up).max(down);
             spread[i].max(NEIGHBOUR * around).powf(NEED_POWER)
         })
         .collect();
@@ -159,40 +176,93 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     let spent: u64 = counts.iter().map(|&n| n as u64).sum();
     let room: f64 = counts.iter().map(|&n| cap - (n as f64).min(cap)).sum();
     let total = (spent + extra) as f64;
-    let target = |lambda: f64, i: usize| (lambda * need[i]).clamp(counts[i] as f64, cap.max(counts[i] as f64));
+    let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
+    let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
+    let target = |lambda: f64, i: usize| (lambda * need[i]).clamp(low[i], high[i]);
     let real: Vec<f64> = if room <= extra as f64 {
         // More rays than the caps hold: every pixel to its cap.
-        counts.iter().map(|&n| cap.max(n as f64)).collect()
+        high.clone()
     } else {
-        // λ by bisection: Σ target(λ) grows with λ, from `spent` at 0.
-        let (mut lo, mut hi) = (0.0f64, 1.0f64);
-        let sum_at = |l: f64| (0..need.len()).map(|i| target(l, i)).sum::<f64>();
-        while sum_at(hi) < total {
-            hi *= 2.0;
-        }
-        for _ in 0..40 {
-            let mid = 0.5 * (lo + hi);
-            if sum_at(mid) < total {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        (0..need.len()).map(|i| target(hi, i)).collect()
+        let lambda = solve_lambda(&need, &low, &high, total);
+        (0..need.len()).map(|i| target(lambda, i)).collect()
     };
     let mut out: Vec<u32> = real.iter().map(|&r| r.floor() as u32).collect();
     let given: u64 = out.iter().map(|&n| n as u64).sum();
     let left = (spent + extra).saturating_sub(given);
     let mut order: Vec<usize> = (0..out.len()).filter(|&i| (out[i] as f64) < cap).collect();
-    order.sort_by(|&a, &b| {
-        (real[b] - real[b].floor())
-            .total_cmp(&(real[a] - real[a].floor()))
-            .then(a.cmp(&b))
-    });
-    for &i in order.iter().take(left as usize) {
+    let left = (left as usize).min(order.len());
+    if left > 0 && left < order.len() {
+        // Only which pixels are among the first `left` matters, not their
+        // order: a selection, not a sort.
+        order.select_nth_unstable_by(left - 1, |&a, &b| {
+            (real[b] - real[b].floor())
+                .total_cmp(&(real[a] - real[a].floor()))
+                .then(a.cmp(&b))
+        });
+    }
+    for &i in &order[..left] {
         out[i] += 1;
     }
     out
+}
+
+/// The λ of [`allocate`]: Σ clamp(λ·need, low, high) reaches `total`, by
+/// less than half a ray beyond it (the rounding then hands out the rest
+/// exactly). The sum is piecewise linear and grows with λ; Newton's steps
+/// on it, kept inside a bracket that halves when a step would leave it,
+/// take a handful of sums where bisection takes twenty or more. `total`
+/// must lie between Σ low and Σ high.
+fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
+    // The sum and its slope at λ (the needs of the pixels not at a bound).
+    let sum_at = |l: f64| {
+        let (mut sum, mut slope) = (0.0, 0.0);
+        for i in 0..need.len() {
+            let t = l * need[i];
+            if t <= low[i] {
+                sum += low[i];
+            } else if t >= high[i] {
+                sum += high[i];
+            } else {
+                sum += t;
+                slope += need[i];
+            }
+        }
+        (sum, slope)
+    };
+    // The start: λ where the counts would add up without their bounds.
+    let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
+    let mut at = sum_at(hi);
+    while at.0 < total {
+        (lo, hi) = (hi, hi * 2.0);
+        at = sum_at(hi);
+    }
+    let mut lambda = hi;
+    for _ in 0..100 {
+        let (sum, slope) = at;
+        if sum >= total {
+            hi = lambda;
+            if sum - total < 0.5 {
+                return hi;
+            }
+        } else {
+            lo = lambda;
+        }
+        let step = if slope > 0.0 {
+            lambda + (total - sum) / slope
+        } else {
+            f64::NAN
+        };
+        // Aim a little beyond the total, so that a step from below lands
+        // above it rather than just short.
+        let step = if sum < total && slope > 0.0 {
+            step + 0.25 / slope
+        } else {
+            step
+        };
+        lambda = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+        at = sum_at(lambda);
+    }
+    hi
 }
 
 /// The rays of the passes after the first, for an image of `pixels` pixels
@@ -209,36 +279,79 @@ pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     out
 }
 
-/// The samples of one pixel: the scrambles of its three dimensions.
+/// The samples of one pixel: the scrambles of its three dimensions, the
+/// place in the pixel (dimensions 0 and 1) by a seed of the pixel, the
+/// time (dimension 2) by a seed of its row, so that the rows' pixels can
+/// share their instants (interleaved sampling, Keller & Heidrich 2001):
+/// the scene at an instant (the poses, an in-between contour) is made
+/// once for all the row's rays at it. Pixel x takes the row's time k for
+/// its sample j = k ⊕ c with c < [`SHIFT_BLOCK`] a hash of the pixel: a
+/// digital shift of its times (the Sobol points are linear over bits,
+/// point k ⊕ c = point k ⊕ point c), so the pixels of a row do not all
+/// take their first samples at the same instants (a first pass that
+/// missed a brief change in one pixel would miss it along the whole
+/// row), and each pixel's samples are still a scrambled 3-D Sobol
+/// sequence, every prefix stratified in space, time and both.
 #[derive(Clone, Copy, Debug)]
 pub struct PixelSamples {
     seeds: [u32; 3],
+    shift: u32,
+}
+
+/// The shifts of [`PixelSamples`] are below this (a power of two): the
+/// row's instants k and a pixel's samples j = k ⊕ c then lie in the same
+/// block of this many, and the instants a pass traces are at most the
+/// blocks its samples reach (16: eight different first pairs of times in
+/// a row, and still few instants a pass).
+pub const SHIFT_BLOCK: u32 = 16;
+
+/// The scramble of dimension `d` for key `key`.
+fn seed(key: u64, d: u64) -> u32 {
+    (hashed_uniform((key << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32
 }
 
 impl PixelSamples {
-    /// The samples of pixel `pixel` (its index in the image, row by row).
-    pub fn new(pixel: usize) -> Self {
-        let seed =
-            |d: u64| (hashed_uniform(((pixel as u64) << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32;
+    /// The samples of pixel `pixel` (its index in the image, row by row)
+    /// of an image `width` pixels wide.
+    pub fn new(pixel: usize, width: usize) -> Self {
+        let row = (pixel / width.max(1)) as u64;
         PixelSamples {
-            seeds: [seed(0), seed(1), seed(2)],
+            seeds: [seed(pixel as u64, 0), seed(pixel as u64, 1), seed(row, 2)],
+            shift: seed(pixel as u64, 3) % SHIFT_BLOCK,
         }
+    }
+
+    /// The sample the pixel takes at its row's instant `k`.
+    pub fn at_instant(&self, k: u32) -> u32 {
+        k ^ self.shift
     }
 
     /// Sample `j` of the pixel.
     pub fn sample(&self, j: u32) -> Sample {
-        let at = |d: usize| owen_scramble(sobol(j, d), self.seeds[d]) as f64 / 4_294_967_296.0;
-        Sample {
-            u: at(0),
-            v: at(1),
-            tau: at(2),
-        }
+        let (u, v) = self.place(j);
+        Sample { u, v, tau: self.tau(j) }
+    }
+
+    /// Where in the pixel sample `j` lies: `u` across, `v` down.
+    pub fn place(&self, j: u32) -> (f64, f64) {
+        (self.at(j, 0), self.at(j, 1))
+    }
+
+    /// The time of sample `j`: the row's instant `j ⊕ c`, the same for
+    /// every pixel of the row at that instant.
+    pub fn tau(&self, j: u32) -> f64 {
+        self.at(j ^ self.shift, 2)
+    }
+
+    fn at(&self, j: u32, d: usize) -> f64 {
+        owen_scramble(sobol(j, d), self.seeds[d]) as f64 / 4_294_967_296.0
     }
 }
 
-/// Sample `j` of pixel `pixel` (its index in the image, row by row).
-pub fn sample(pixel: usize, j: u32) -> Sample {
-    PixelSamples::new(pixel).sample(j)
+/// Sample `j` of pixel `pixel` (its index in the image, row by row) of an
+/// image `width` pixels wide.
+pub fn sample(pixel: usize, width: usize, j: u32) -> Sample {
+    PixelSamples::new(pixel, width).sample(j)
 }
 
 /// The Sobol sequence's direction numbers, 32 bits, of dimensions 0–2:
@@ -373,7 +486,7 @@ mod tests {
                 let mut cells = vec![false; n as usize];
                 let half = k / 2;
                 for j in 0..n {
-                    let s = sample(pixel, j);
+                    let s = sample(pixel, 100, j);
                     assert!((0.0..1.0).contains(&s.u) && (0.0..1.0).contains(&s.v) && (0.0..1.0).contains(&s.tau));
                     let t = (s.tau * n as f64) as usize;
                     assert!(!times[t], "pixel {pixel}: two of {n} times in stratum {t}");
@@ -385,8 +498,21 @@ mod tests {
                 }
             }
         }
-        assert_ne!(sample(0, 1), sample(1, 1));
-        assert_ne!(sample(0, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
+        // Places differ from pixel to pixel; times from row to row, and
+        // not between the pixels of a row.
+        assert_ne!(sample(0, 100, 1).u, sample(1, 100, 1).u);
+        assert_ne!(sample(0, 100, 1).v, sample(1, 100, 1).v);
+        let (a, b) = (PixelSamples::new(0, 100), PixelSamples::new(99, 100));
+        for k in 0..64 {
+            assert_eq!(a.tau(a.at_instant(k)), b.tau(b.at_instant(k)), "instant {k}");
+            assert_eq!(a.at_instant(a.at_instant(k)), k);
+            assert_eq!(a.at_instant(k) / SHIFT_BLOCK, k / SHIFT_BLOCK);
+        }
+        // The first pairs of times of a row's pixels are not all the same.
+        let first = |x: usize| sample(x, 100, 0).tau.min(sample(x, 100, 1).tau);
+        assert!((1..100).any(|x| first(x) != first(0)));
+        assert_ne!(sample(0, 100, 1).tau, sample(100, 100, 1).tau);
+        assert_ne!(sample(0, 100, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
     }
 
     /// Every prefix length, pixel and channel: mean and spread as a
@@ -443,6 +569,23 @@ mod tests {
             out[0],
             out[63]
         );
+    }
+
+    /// λ makes the bounded counts add up to the total, by less than half a
+    /// ray beyond it, whether few or most pixels end at a bound.
+    #[test]
+    fn lambda_meets_the_total() {
+        let n = 500;
+        let need: Vec<f64> = (0..n).map(|i| 0.001 + hashed_uniform(i as u64).powi(3)).collect();
+        let low: Vec<f64> = (0..n).map(|i| (2 + i % 5) as f64).collect();
+        let high: Vec<f64> = low.iter().map(|&l| l.max(64.0)).collect();
+        let sum = |l: f64| (0..n).map(|i| (l * need[i]).clamp(low[i], high[i])).sum::<f64>();
+        let (lo_sum, hi_sum): (f64, f64) = (low.iter().sum(), high.iter().sum());
+        for share in [0.001, 0.05, 0.3, 0.7, 0.95, 0.999] {
+            let total = (lo_sum + share * (hi_sum - lo_sum)).round();
+            let got = sum(solve_lambda(&need, &low, &high, total));
+            assert!(got >= total && got - total < 0.5, "share {share}: {got} for {total}");
+        }
     }
 
     /// With no spread anywhere the rays go evenly, the remainder to the

@@ -403,15 +403,28 @@ impl<'s> Tracer<'s> {
     /// made when a ray first needs it.
     fn trace(&mut self, shared: &Shared, aray: &Ray, tau: impl FnOnce() -> f64) -> Intensity {
         if shared.timed {
-            let time = shared.frame.time(tau());
-            for mo in &shared.moving {
-                self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
-            }
-            for (d, (_, chain)) in self.deforming.iter().zip(&shared.chains) {
-                self.poses[d.object] = chain.pose(time);
-                d.at(time);
-            }
+            self.at(shared, tau());
         }
+        self.shoot(shared, aray)
+    }
+
+    /// The scene at the film time of the sampler's time `tau`: the poses
+    /// and in-between contours of [`Tracer::trace`], for the rays that
+    /// follow.
+    fn at(&mut self, shared: &Shared, tau: f64) {
+        let time = shared.frame.time(tau);
+        for mo in &shared.moving {
+            self.poses[mo.object] = motionblur(&shared.scene.objects[mo.object], mo, time, shared.opts.fidelity);
+        }
+        for (d, (_, chain)) in self.deforming.iter().zip(&shared.chains) {
+            self.poses[d.object] = chain.pose(time);
+            d.at(time);
+        }
+    }
+
+    /// `raytrace` of the primary ray `aray` with the scene as the last
+    /// [`Tracer::at`] left it.
+    fn shoot(&mut self, shared: &Shared, aray: &Ray) -> Intensity {
         let snap = Snapshot {
             scene: shared.scene,
             poses: &self.poses,
@@ -523,8 +536,11 @@ fn sum_counts(per_row: Vec<(TraceStats, u64)>) -> (TraceStats, u64) {
 /// [`crate::adaptive`]): a first pass of a few rays a pixel, then the
 /// passes that deal out the rest of the deck's budget of `masksize`² rays
 /// a pixel by need. Each sample is a place in the pixel and a time, from
-/// [`adaptive::sample`]; a pixel is the mean of its samples (the box filter
-/// of `antialias`). `progress` is called for each row of the last pass.
+/// [`adaptive::PixelSamples`]; a row is traced instant by instant (the
+/// times its pixels share), the scene posed once an instant ([`Tracer::at`])
+/// and each due pixel's ray shot at it ([`Tracer::shoot`]); a pixel is the
+/// mean of its samples (the box filter of `antialias`). `progress` is
+/// called for each row of the last pass.
 fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync)) -> Traced {
     let img = &shared.scene.image;
     let (w, m) = (img.width, img.masksize as f64);
@@ -532,28 +548,52 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
     let first = adaptive::first_pass(img.masksize);
     let mut sums = vec![adaptive::PixelSum::default(); w * img.height];
     let mut counts = vec![first; sums.len()];
-    let later = adaptive::later_passes(sums.len(), budget, first);
+    // The first pass, then the passes that have rays to deal out (none
+    // for a budget of one ray).
+    let mut passes = vec![0];
+    passes.extend(
+        adaptive::later_passes(sums.len(), budget, first)
+            .into_iter()
+            .filter(|&e| e > 0),
+    );
+    let samples: Vec<_> = (0..sums.len()).map(|i| adaptive::PixelSamples::new(i, w)).collect();
     let mut per_row = Vec::new();
-    for pass in 0..=later.len() {
+    for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = adaptive::allocate(&sums, w, budget, later[pass - 1]);
+            counts = adaptive::allocate(&sums, w, budget, extra);
         }
-        let last = pass == later.len();
+        let last = pass + 1 == passes.len();
         let rows: Vec<(TraceStats, u64)> = sums
             .par_chunks_mut(w)
             .zip(counts.par_chunks(w))
+            .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, (sums, counts))| {
+            .map(|(row, ((sums, counts), samples))| {
                 let mut tracer = Tracer::new(shared);
-                for (x, (sum, &count)) in sums.iter_mut().zip(counts).enumerate() {
-                    let samples = adaptive::PixelSamples::new(row * w + x);
-                    for j in sum.n..count {
-                        let s = samples.sample(j);
+                let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
+                // The row's instants k in the blocks its samples reach: at
+                // each, every pixel whose sample k ⊕ c is due, with the
+                // scene posed once (`PixelSamples`).
+                let block = adaptive::SHIFT_BLOCK;
+                let from = start.iter().copied().min().unwrap_or(0) / block * block;
+                let to = counts.iter().copied().max().unwrap_or(0).div_ceil(block) * block;
+                for k in from..to {
+                    let mut posed = false;
+                    for x in 0..w {
+                        let j = samples[x].at_instant(k);
+                        if j < start[x] || j >= counts[x] {
+                            continue;
+                        }
+                        if shared.timed && !posed {
+                            tracer.at(shared, samples[x].tau(j));
+                            posed = true;
+                        }
+                        let (u, v) = samples[x].place(j);
                         // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
-                        let scancol = (x as f64 + s.u) * m + 0.5;
-                        let scanline = (row as f64 + s.v) * m + 0.5;
+                        let scancol = (x as f64 + u) * m + 0.5;
+                        let scanline = (row as f64 + v) * m + 0.5;
                         let aray = camera.ray(scancol, scanline, 0.0, 0.0);
-                        sum.add(tracer.trace(shared, &aray, || s.tau));
+                        sums[x].add(tracer.shoot(shared, &aray));
                     }
                 }
                 if last {

@@ -197,3 +197,18 @@ fn films_frame_by_frame() {
         );
     }
 }
+
+/// `progress` is called once a row, for the rows of the last pass only,
+/// whatever the budget (a budget of one ray is the first pass alone).
+#[test]
+fn progress_once_a_row() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    for m in [1usize, 2, 4] {
+        let s = moving_square(m);
+        let rows = AtomicUsize::new(0);
+        render(&s, &adaptive(), &|| {
+            rows.fetch_add(1, Ordering::Relaxed);
+        });
+        assert_eq!(rows.load(Ordering::Relaxed), s.image.height, "mask {m}");
+    }
+}

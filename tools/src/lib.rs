@@ -9,6 +9,7 @@ pub mod fonts;
 pub mod frames;
 pub mod fuzz;
 pub mod gallery;
+pub mod goal;
 pub mod heatmap;
 pub mod join;
 pub mod measure;

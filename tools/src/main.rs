@@ -2,7 +2,9 @@
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `heatmap` shows where the adaptive sampler spends its rays;
+//! chart; `goal` measures issue 13's goal for the adaptive sampler (its
+//! error and CPU time over the table's); `heatmap` shows where the
+//! adaptive sampler spends its rays;
 //! `stability` writes the root solvers' stability report; `pov` exports a
 //! deck to POV-Ray and `vs-povray` compares the two renderers. Timings are
 //! measured and printed, never asserted in tests; `join` makes a film's
@@ -98,6 +100,19 @@ enum Command {
         /// Timed renders a point (the median is plotted).
         #[arg(long, default_value_t = 5)]
         runs: usize,
+    },
+    /// Issue 13's goal: RMSE and one-thread CPU time of `--sampler adaptive`
+    /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
+    Goal {
+        /// The width and height of every render, in pixels.
+        #[arg(long, default_value_t = 96)]
+        size: usize,
+        /// Timed rounds (the medians are compared).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+        /// A folder to keep the references in between runs.
+        #[arg(long)]
+        cache: Option<PathBuf>,
     },
     /// Where `--sampler adaptive` spends its rays: the image beside a heat map
     /// of the rays each pixel got, one PNG.
@@ -242,6 +257,7 @@ fn main() -> Result<(), String> {
             tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }

@@ -45,6 +45,16 @@ pub fn interleaved_medians(jobs: &mut [&mut dyn FnMut()], rounds: usize) -> Vec<
     secs.iter().map(|s| median(s)).collect()
 }
 
+/// The CPU time the calling thread has used, in seconds, from
+/// `/proc/thread-self/schedstat` (Linux: its first field, nanoseconds on
+/// a CPU); `None` where that cannot be read. Unlike the clock it does not
+/// count the time other work on a shared machine takes the core away.
+pub fn thread_cpu_secs() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns as f64 * 1e-9)
+}
+
 /// Whether an object is a sweep (translation, conic, rotation).
 pub fn is_sweep(class: PrimitiveClass) -> bool {
     matches!(
