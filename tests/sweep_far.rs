@@ -14,19 +14,6 @@ use raytrace::shapes::sweep::intersect_sweep;
 use raytrace::shapes::{intersect_block, intersect_cylinder, intersect_prism, intersect_sphere};
 use raytrace::types::*;
 
-/// The sweep object of a deck, prepared as the renderer prepares it.
-fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
-    let scene = common::load_deck(deck, Fidelity::Thesis);
-    scene
-        .objects
-        .iter()
-        .find_map(|o| match &o.shape {
-            Shape::Sweep(sw) => Some((o.class, sw.clone())),
-            _ => None,
-        })
-        .expect("the deck has a sweep")
-}
-
 /// The centre and half-diagonal of the sweep's box (a rotation sweep's
 /// spans ± its largest radius).
 fn bounds(class: PrimitiveClass, sw: &SweepShape) -> (DVec3, f64) {
@@ -105,7 +92,7 @@ fn sweeps_from_far_away_keep_their_silhouette() {
     // from above, at the height of the goblet's bowl and across it.
     let views = [DVec3::new(0.3, -1.0, 0.05), DVec3::new(-0.4, -1.0, 0.6)];
     for deck in ["fig5_6.deck", "fig5_7.deck", "fig5_8.deck"] {
-        let (class, sw) = deck_sweep(deck);
+        let (class, sw) = common::deck_sweep(deck);
         for solver in SOLVERS {
             let opts = Options {
                 solver,

@@ -17,19 +17,6 @@ fn opts(solver: Solver) -> Options {
     }
 }
 
-/// The deck's first sweep object, its class and shape.
-fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
-    let scene = common::load_deck(&format!("{deck}.deck"), Fidelity::Thesis);
-    scene
-        .objects
-        .iter()
-        .find_map(|o| match &o.shape {
-            Shape::Sweep(sw) => Some((o.class, sw.clone())),
-            _ => None,
-        })
-        .expect("a sweep object")
-}
-
 /// Segment `i` alone, with the whole contour's box (so the ray is taken
 /// near the object in the same way and each segment's polynomial is the
 /// same to the bit).
@@ -79,7 +66,7 @@ fn ray(class: PrimitiveClass, sw: &SweepShape, k: u64, flat: bool) -> Ray {
 #[test]
 fn nearest_first_finds_the_nearest_segment_hit() {
     for (deck, flat) in [("fig5_6", true), ("fig5_7", true), ("fig5_8", false)] {
-        let (class, sw) = deck_sweep(deck);
+        let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
         let singles: Vec<SweepShape> = (0..sw.segment).map(|i| single(&sw, i)).collect();
         for solver in SOLVERS {
             let o = opts(solver);
@@ -107,7 +94,7 @@ fn nearest_first_finds_the_nearest_segment_hit() {
 #[test]
 fn the_near_cap_first_is_the_hit_where_it_is_inside() {
     for deck in ["fig5_6", "fig5_7"] {
-        let (class, sw) = deck_sweep(deck);
+        let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
         for solver in SOLVERS {
             let o = opts(solver);
             let (mut inside, mut outside) = (0, 0);
@@ -151,7 +138,7 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
 #[test]
 fn shadow_query_is_the_nearest_hit_before_the_light() {
     for deck in ["fig5_6", "fig5_7", "fig5_8"] {
-        let (class, sw) = deck_sweep(deck);
+        let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
         for solver in SOLVERS {
             let o = opts(solver);
             let (mut blocked, mut free) = (0, 0);

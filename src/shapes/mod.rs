@@ -109,13 +109,21 @@ fn sphere_hit(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
 /// half-spaces n·p ≤ h (n unit, outward): the Cyrus–Beck clip. Blocks and
 /// prisms both use it.
 fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f64)>) -> Option<LocalHit> {
+    clip(
+        ray,
+        tmin,
+        planes.map(|(n, h)| (n, n.dot(ray.dir), h - n.dot(ray.origin))),
+    )
+}
+
+/// The clip of [`intersect_convex`], given each plane's normal n, n·d and
+/// h − n·o.
+fn clip(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f64, f64)>) -> Option<LocalHit> {
     let mut t_enter = f64::NEG_INFINITY;
     let mut t_exit = f64::INFINITY;
     let mut n_enter = DVec3::ZERO;
     let mut n_exit = DVec3::ZERO;
-    for (n, h) in planes {
-        let denom = n.dot(ray.dir);
-        let dist = h - n.dot(ray.origin);
+    for (n, denom, dist) in planes {
         if denom == 0.0 {
             // Parallel to the plane: inside its half-space or never.
             if dist < 0.0 {
@@ -163,52 +171,17 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
     let h = lengths * 0.5;
     let near = Near::of(ray, tmin, DVec3::ZERO, h.length_squared());
     let (ray, tmin) = (&near.ray, near.tmin);
-    let mut t_enter = f64::NEG_INFINITY;
-    let mut t_exit = f64::INFINITY;
-    let mut n_enter = DVec3::ZERO;
-    let mut n_exit = DVec3::ZERO;
-    let axes = [
-        (DVec3::X, DVec3::NEG_X),
-        (DVec3::Y, DVec3::NEG_Y),
-        (DVec3::Z, DVec3::NEG_Z),
+    let (o, d) = (ray.origin, ray.dir);
+    // (normal, n·d, h − n·o) of ±x, ±y, ±z.
+    let planes = [
+        (DVec3::X, d.x, h.x - o.x),
+        (DVec3::NEG_X, -d.x, h.x + o.x),
+        (DVec3::Y, d.y, h.y - o.y),
+        (DVec3::NEG_Y, -d.y, h.y + o.y),
+        (DVec3::Z, d.z, h.z - o.z),
+        (DVec3::NEG_Z, -d.z, h.z + o.z),
     ];
-    for (k, (plus, minus)) in axes.into_iter().enumerate() {
-        let (o, d, hk) = (ray.origin[k], ray.dir[k], h[k]);
-        // (normal, n·d, h − n·o) of the planes +axis and −axis.
-        for (n, denom, dist) in [(plus, d, hk - o), (minus, -d, hk + o)] {
-            if denom == 0.0 {
-                if dist < 0.0 {
-                    return None;
-                }
-                continue;
-            }
-            let t = dist / denom;
-            if denom < 0.0 {
-                if t > t_enter {
-                    t_enter = t;
-                    n_enter = n;
-                }
-            } else if t < t_exit {
-                t_exit = t;
-                n_exit = n;
-            }
-        }
-    }
-    if t_enter > t_exit {
-        return None;
-    }
-    let (t, normal) = if t_enter > tmin {
-        (t_enter, n_enter)
-    } else if t_exit > tmin && t_exit.is_finite() {
-        (t_exit, n_exit)
-    } else {
-        return None;
-    };
-    near.back(Some(LocalHit {
-        t,
-        point: ray.at(t),
-        normal,
-    }))
+    near.back(clip(ray, tmin, planes.into_iter()))
 }
 
 /// A right prism over the convex, counter-clockwise polygon `vertex` in the

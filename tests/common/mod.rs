@@ -211,3 +211,17 @@ pub fn moving_block(m: usize, height: usize, z_size: f64) -> Scene {
     });
     s
 }
+
+/// The (first) sweep object of a deck, prepared as the renderer prepares
+/// it: its class and shape.
+pub fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
+    let scene = load_deck(deck, Fidelity::Thesis);
+    scene
+        .objects
+        .iter()
+        .find_map(|o| match &o.shape {
+            Shape::Sweep(sw) => Some((o.class, sw.clone())),
+            _ => None,
+        })
+        .expect("the deck has a sweep")
+}
