@@ -25,10 +25,10 @@
 use std::cell::{Cell, Ref, RefCell};
 
 use crate::paper::PaperChain;
-use crate::shapes::{face_coords, in_bounding_sphere, intersect_object, intersect_shape, shape_blocks};
+use crate::shapes::{face_coords, in_bounding_sphere, intersect_shape, shape_blocks};
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, LocalHit, Options, PaintKind, Painting, Pose, Ray, Scene, Shape,
-    SurfaceAttribute, SurfaceRecord,
+    DVec3, Intensity, IntersectionRecord, LocalHit, ObjectRecord, Options, PaintKind, Painting, Pose, Ray, Scene,
+    Shape, SurfaceAttribute, SurfaceRecord,
 };
 
 /// The scene at one instant of the shutter: the read-only scene, where
@@ -89,31 +89,39 @@ impl<'a> Deforming<'a> {
 }
 
 impl Snapshot<'_> {
+    /// `f` of object `i` as it stands at this instant (its own shape, or
+    /// its contour of the moment when it deforms), for a ray that reaches
+    /// its bounding sphere; `None` for one that does not.
+    fn at_instant<R>(
+        &self,
+        i: usize,
+        ray: &Ray,
+        f: impl FnOnce(&ObjectRecord, &Shape, &Pose) -> Option<R>,
+    ) -> Option<R> {
+        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
+        if !in_bounding_sphere(obj, pose, ray, TMIN) {
+            return None;
+        }
+        match self.deforming.iter().find(|d| d.object == i) {
+            None => f(obj, &obj.shape, pose),
+            Some(d) => f(obj, &d.contour(), pose),
+        }
+    }
+
     /// Does object `i` as it stands at this instant meet the ray before
     /// `tmax`? ([`Snapshot::hit_object`]'s hit, before `tmax`.)
     fn blocks(&self, i: usize, ray: &Ray, tmax: f64, opts: &Options) -> bool {
-        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
-        if !in_bounding_sphere(obj, pose, ray, TMIN) {
-            return false;
-        }
-        match self.deforming.iter().find(|d| d.object == i) {
-            None => shape_blocks(obj, &obj.shape, pose, ray, TMIN, tmax, opts),
-            Some(d) => shape_blocks(obj, &d.contour(), pose, ray, TMIN, tmax, opts),
-        }
+        self.at_instant(i, ray, |obj, shape, pose| {
+            shape_blocks(obj, shape, pose, ray, TMIN, tmax, opts).then_some(())
+        })
+        .is_some()
     }
 
     /// The hit of a ray with object `i` as it stands at this instant.
     fn hit_object(&self, i: usize, ray: &Ray, opts: &Options) -> Option<LocalHit> {
-        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
-        match self.deforming.iter().find(|d| d.object == i) {
-            None => intersect_object(obj, pose, ray, TMIN, opts),
-            Some(d) => {
-                if !in_bounding_sphere(obj, pose, ray, TMIN) {
-                    return None;
-                }
-                intersect_shape(obj, &d.contour(), pose, ray, TMIN, opts)
-            }
-        }
+        self.at_instant(i, ray, |obj, shape, pose| {
+            intersect_shape(obj, shape, pose, ray, TMIN, opts)
+        })
     }
 }
 

@@ -263,11 +263,11 @@ pub fn real_roots(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> RealRoots {
         };
     }
     let mut out = RealRoots::NONE;
-    match (hi > lo).then(|| bernstein(deg, &c, lo, hi)) {
-        Some((b, tiny)) if sign_changes(&b, deg, tiny).is_some() => {
-            isolate(&c, deg, &b, tiny, lo, hi, HALVINGS, &mut out);
-        }
-        _ => derivative_roots(&c, deg, lo, hi, &mut out),
+    if hi > lo {
+        let (b, tiny) = bernstein(deg, &c, lo, hi);
+        isolate(&c, deg, &b, tiny, lo, hi, HALVINGS, &mut out);
+    } else {
+        derivative_roots(&c, deg, lo, hi, &mut out);
     }
     out
 }
@@ -294,9 +294,12 @@ fn sign_changes(b: &[f64; 7], n: usize, tiny: f64) -> Option<u32> {
     Some(changes)
 }
 
-/// The roots in (x0, x1) of the degree-`n` polynomial `p` whose Bernstein
-/// coefficients there are `b`, every one of them farther than `tiny` from
-/// 0 (so p(x0) = b[0] and p(x1) = b[n] are not roots), appended to `out`.
+/// The roots in [x0, x1] of the degree-`n` polynomial `p` whose Bernstein
+/// coefficients there are `b`, appended to `out`. Where every coefficient
+/// is farther than `tiny` from 0 (so p(x0) = b[0] and p(x1) = b[n] are not
+/// roots) the sign count decides; where one is not, the derivative
+/// bracketing takes the interval whole (only the first call can meet that
+/// with an end at 0: a half whose midpoint is within `tiny` is not made).
 #[allow(clippy::too_many_arguments)]
 fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, halvings: u32, out: &mut RealRoots) {
     match sign_changes(b, n, tiny) {
@@ -388,7 +391,7 @@ const BINOMIAL: [[f64; 7]; 7] = [
 /// `BERNSTEIN_WEIGHTS[n][k][j]` = C(k, j) / C(n, j): the power-to-Bernstein
 /// weights of degree n on [0, 1], divided once here instead of per segment
 /// and ray (the same quotients, so the same results).
-pub const BERNSTEIN_WEIGHTS: [[[f64; 7]; 7]; 7] = {
+const BERNSTEIN_WEIGHTS: [[[f64; 7]; 7]; 7] = {
     let mut r = [[[0.0; 7]; 7]; 7];
     let mut n = 0;
     while n < 7 {
@@ -442,12 +445,20 @@ fn bernstein_of<const N: usize>(a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f6
         wk *= w;
     }
     let tiny = 1e-12 * c[..=N].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    (bernstein_unit(N, &c), tiny)
+}
+
+/// The Bernstein coefficients on [0, 1] of the degree-`n` polynomial `c`
+/// (ascending power coefficients; n ≤ 6): the conversion at the end of
+/// [`bernstein`], without its shift to another interval.
+pub fn bernstein_unit(n: usize, c: &[f64; 7]) -> [f64; 7] {
+    let n = n.min(6);
     let mut b = [0.0; 7];
-    for (k, wk) in BERNSTEIN_WEIGHTS[N].iter().enumerate().take(N + 1) {
+    for (k, wk) in BERNSTEIN_WEIGHTS[n].iter().enumerate().take(n + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
         b[k] = (0..=k).map(|j| wk[j] * c[j]).sum();
     }
-    (b, tiny)
+    b
 }
 
 /// The ascending coefficients of scale·∏(x − rᵢ), padded to seven (at

@@ -103,7 +103,6 @@ pub(super) fn extrusion(
     }
 
     let mut best: Option<Best> = None;
-    let mut side = false;
     let ztol = 1e-12 * size;
     let fscale = nrm * size + gamma.abs();
     let dxy2 = d.x * d.x + d.y * d.y;
@@ -198,23 +197,24 @@ pub(super) fn extrusion(
                     return Some(hit(t, normal));
                 }
                 best = Some(Best { t, normal, segment: i });
-                side = true;
             }
         }
     }
 
     // The far cap, if it is nearer than what the sides gave.
     if let Some(&(zc, nz)) = caps.get(1) {
-        if cap(zc, nz, &mut best) {
-            side = false;
-        }
+        cap(zc, nz, &mut best);
     }
 
     let b = best?;
     if matches!(query.want, Want::Before(_)) {
         return Some(hit(b.t, b.normal)); // the caller needs only its t
     }
-    let normal = if side { b.normal * orientation(u, v) } else { b.normal };
+    let normal = if b.segment == CAP {
+        b.normal
+    } else {
+        b.normal * orientation(u, v)
+    };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))
 }

@@ -47,7 +47,7 @@ pub use contour::{point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::proc::robust::{bernstein, real_roots, BERNSTEIN_WEIGHTS};
+use crate::proc::robust::{bernstein, bernstein_unit, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
@@ -172,8 +172,8 @@ pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
 }
 
 /// Is the degree-`n` polynomial `a` clearly of one sign on the segment,
-/// joint slack included? Its Bernstein coefficients on [0, 1] (no shift:
-/// the cheap half of [`bernstein`]) all beyond 10⁻⁷ of the largest, with
+/// joint slack included? Its Bernstein coefficients on [0, 1]
+/// ([`bernstein_unit`], no shift: the cheap half of [`bernstein`]) all beyond 10⁻⁷ of the largest, with
 /// one sign. On [−δ, 1 + δ] (δ = [`JOINT_SLACK`]) p strays from its values
 /// on [0, 1] by at most δ·max|p′| ≤ 2nδ·max|bₖ|, far less, so there is no
 /// root there and the finer tests (`may_have_root`, the robust solver's
@@ -183,10 +183,7 @@ pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
 /// which the test rejects too few to pay.
 pub(super) fn clearly_one_sign(n: usize, a: &[f64; 7]) -> bool {
     let n = n.min(6);
-    let mut b = [0.0; 7];
-    for (k, wk) in BERNSTEIN_WEIGHTS[n].iter().enumerate().take(n + 1) {
-        b[k] = (0..=k).map(|j| wk[j] * a[j]).sum();
-    }
+    let b = bernstein_unit(n, a);
     let margin = 1e-7 * b[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if !(margin > 0.0 && margin.is_finite()) {
         return false;
