@@ -1,6 +1,6 @@
-//! `tools goal`: issue 13's goal for `--sampler adaptive`, measured in one
-//! run: on each deck of [`BLUR_DECKS`] at 16 and 64 rays a pixel (masks 4
-//! and 8), the RMSE of the adaptive image over the thesis table's, both
+//! `tools goal`: the adaptive sampler's goal (half the table's error in
+//! at most 1.1 times its time), measured in one run: on each deck of
+//! [`BLUR_DECKS`] at 16 and 64 rays a pixel (masks 4 and 8), the RMSE of the adaptive image over the thesis table's, both
 //! against the chart's reference (1024 stratified time samples a pixel),
 //! and the CPU time of the adaptive render over the table's (one thread,
 //! the two interleaved, median of `runs` rounds; the thread's own CPU

@@ -2,7 +2,7 @@
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
 //! on a deck; `chart` draws the speed/accuracy
-//! chart; `goal` measures issue 13's goal for the adaptive sampler (its
+//! chart; `goal` measures the adaptive sampler's goal (its
 //! error and CPU time over the table's); `heatmap` shows where the
 //! adaptive sampler spends its rays;
 //! `stability` writes the root solvers' stability report; `pov` exports a
@@ -101,7 +101,7 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
-    /// Issue 13's goal: RMSE and one-thread CPU time of `--sampler adaptive`
+    /// The adaptive sampler's goal: RMSE and one-thread CPU time of `--sampler adaptive`
     /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
     Goal {
         /// The width and height of every render, in pixels.
