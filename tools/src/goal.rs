@@ -1,11 +1,12 @@
-//! `tools goal`: the adaptive sampler's goal (half the table's error in
-//! at most 1.1 times its time), measured in one run: on each deck of
-//! [`BLUR_DECKS`] at 16 and 64 rays a pixel (masks 4 and 8), the RMSE of the adaptive image over the thesis table's, both
-//! against the chart's reference (1024 stratified time samples a pixel),
-//! and the CPU time of the adaptive render over the table's (one thread,
-//! the two interleaved, median of `runs` rounds; the thread's own CPU
-//! time, [`thread_cpu_secs`], so that other work on the machine counts less). The goal is an RMSE ratio
-//! ≤ 0.5 and a time ratio ≤ 1.1.
+//! `tools goal`: the adaptive sampler's goal (half the table's error in at
+//! most 1.1 times its time), measured in one run: on each deck of
+//! [`BLUR_DECKS`] at 16 and 64 rays a pixel (masks 4 and 8), the RMSE of
+//! the adaptive image over the thesis table's, both against the chart's
+//! reference (1024 stratified time samples a pixel), and the CPU time of
+//! the adaptive render over the table's (one thread, the two interleaved,
+//! median of `runs` rounds; the thread's own CPU time, [`thread_cpu_secs`],
+//! so that other work on the machine counts less). The goal is an RMSE
+//! ratio ≤ 0.5 and a time ratio ≤ 1.1.
 //!
 //! The references take most of the run; `cache` keeps them in a folder
 //! (one file per deck and size, the colours as little-endian f64s), for
