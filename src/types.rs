@@ -286,6 +286,12 @@ pub struct SweepShape {
     /// `thesis` fidelity, the class's shared `tbox`/`cbox`/`rbox` in
     /// `listing` fidelity (erratum 9).
     pub bbox: BoundingBox,
+    /// Which way the contour runs, +1 counter-clockwise or −1 clockwise in
+    /// the (U, V) plane (the sign of its signed area), filled with `u` and
+    /// `v` so that a hit's normal is turned outward without a pass over
+    /// the contour per ray (the port's; the thesis keeps no such field).
+    /// 0 where not known: computed from `u` and `v` when needed.
+    pub orientation: f64,
 }
 
 /// The variant part of `objectrecord`, in local coordinates (the local

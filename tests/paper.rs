@@ -52,6 +52,7 @@ fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
         length: 2.0,
         scale: 1.0,
         bbox,
+        orientation: 0.0,
     }
 }
 

@@ -108,6 +108,7 @@ fn raw(curve: CurveKind, points: Vec<[f64; 2]>, length: f64, scale: f64) -> Swee
         length,
         scale,
         bbox: BoundingBox::default(),
+        orientation: 0.0,
     }
 }
 

@@ -506,6 +506,7 @@ impl Builder<'_> {
             length,
             scale,
             bbox: Default::default(),
+            orientation: 0.0,
         });
         self.push_object(
             pos,

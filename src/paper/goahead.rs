@@ -504,6 +504,7 @@ mod tests {
             length: 1.0,
             scale: 1.0,
             bbox: BoundingBox::default(),
+            orientation: 0.0,
         }
     }
 

@@ -4,6 +4,7 @@
 //! (b)–(c).
 
 use super::{contour_box, cubic_range, reparam, Distarray, Mh, PaperPair, Sdirection};
+use crate::shapes::sweep::orientation;
 use crate::types::{Coeff, Fidelity, ObjectRecord, SweepShape, MAXSEGMENTS};
 
 /// M_h (§2.4.1), the Hermite basis matrix as `initM` fills `M1`: with
@@ -209,6 +210,7 @@ pub fn Hermite(int: &PaperPair, t: f64, obj: &mut SweepShape) {
         Fidelity::Listing => int.bbox,
         Fidelity::Thesis => segments_box(int, obj),
     };
+    obj.orientation = orientation(&obj.u, &obj.v);
 }
 
 /// `initM` (unit `paper`, §2.4.1, OCR lines 2689–2743): "initialize the
@@ -348,6 +350,7 @@ pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
         Fidelity::Listing => int.bbox,
         Fidelity::Thesis => segments_box(int, obj),
     };
+    obj.orientation = orientation(&obj.u, &obj.v);
 }
 
 /// The in-between contour of pair `int` at `time`, as the `paper = 1`
@@ -431,6 +434,7 @@ mod tests {
             length: 1.0,
             scale: 1.0,
             bbox: Default::default(),
+            orientation: 0.0,
         };
         let obj = ObjectRecord {
             name: "x".into(),

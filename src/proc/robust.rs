@@ -91,7 +91,7 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
 /// Newton's method on `p` from `start`, kept inside the bracket (x0, x1)
 /// that holds its one root (p(x0) = `f0`, of the other sign than p(x1));
 /// a start outside it becomes the midpoint.
-fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
+pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let mut x = if start > x0 && start < x1 {
         start

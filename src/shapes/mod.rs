@@ -107,57 +107,87 @@ fn sphere_hit(radius: f64, ray: &Ray, tmin: f64) -> Option<LocalHit> {
 
 /// The hit of a ray with a convex solid given as the intersection of
 /// half-spaces n·p ≤ h (n unit, outward): the Cyrus–Beck clip. Blocks and
-/// prisms both use it.
-fn intersect_convex(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f64)>) -> Option<LocalHit> {
-    clip(
-        ray,
-        tmin,
-        planes.map(|(n, h)| (n, n.dot(ray.dir), h - n.dot(ray.origin))),
-    )
-}
-
-/// The clip of [`intersect_convex`], given each plane's normal n, n·d and
-/// h − n·o.
-fn clip(ray: &Ray, tmin: f64, planes: impl Iterator<Item = (DVec3, f64, f64)>) -> Option<LocalHit> {
-    let mut t_enter = f64::NEG_INFINITY;
-    let mut t_exit = f64::INFINITY;
-    let mut n_enter = DVec3::ZERO;
-    let mut n_exit = DVec3::ZERO;
-    for (n, denom, dist) in planes {
-        if denom == 0.0 {
-            // Parallel to the plane: inside its half-space or never.
-            if dist < 0.0 {
-                return None;
-            }
-            continue;
-        }
-        let t = dist / denom;
-        if denom < 0.0 {
-            if t > t_enter {
-                t_enter = t;
-                n_enter = n;
-            }
-        } else if t < t_exit {
-            t_exit = t;
-            n_exit = n;
-        }
-    }
-    if t_enter > t_exit {
-        return None;
-    }
-    let (t, normal) = if t_enter > tmin {
-        (t_enter, n_enter)
-    } else if t_exit > tmin && t_exit.is_finite() {
-        (t_exit, n_exit)
-    } else {
-        return None;
-    };
+/// prisms both use it. `plane(i)` is plane i's (n, h), i < `count`.
+fn intersect_convex(ray: &Ray, tmin: f64, count: usize, plane: impl Fn(usize) -> (DVec3, f64)) -> Option<LocalHit> {
+    let planes = (0..count).map(|i| {
+        let (n, h) = plane(i);
+        (n.dot(ray.dir), h - n.dot(ray.origin))
+    });
+    let (t, i) = clip(tmin, planes)?;
     Some(LocalHit {
         t,
         point: ray.at(t),
-        normal,
+        normal: plane(i).0,
     })
 }
+
+/// The clip of [`intersect_convex`], given each plane's n·d and h − n·o:
+/// the t of the hit beyond `tmin` and the index of its plane.
+fn clip(tmin: f64, planes: impl Iterator<Item = (f64, f64)>) -> Option<(f64, usize)> {
+    let mut c = Clip::new();
+    for (i, (denom, dist)) in planes.enumerate() {
+        if !c.plane(i, denom, dist) {
+            return None;
+        }
+    }
+    c.hit(tmin)
+}
+
+/// The state of a Cyrus–Beck clip: the latest entry and the earliest exit
+/// so far, and their planes.
+struct Clip {
+    t_enter: f64,
+    t_exit: f64,
+    i_enter: usize,
+    i_exit: usize,
+}
+
+impl Clip {
+    fn new() -> Self {
+        Clip {
+            t_enter: f64::NEG_INFINITY,
+            t_exit: f64::INFINITY,
+            i_enter: 0,
+            i_exit: 0,
+        }
+    }
+
+    /// Plane `i` with n·d = `denom` and h − n·o = `dist`; false when the
+    /// ray runs parallel to it outside its half-space (no hit).
+    #[inline(always)]
+    fn plane(&mut self, i: usize, denom: f64, dist: f64) -> bool {
+        if denom == 0.0 {
+            return dist >= 0.0 || dist.is_nan();
+        }
+        let t = dist / denom;
+        if denom < 0.0 {
+            if t > self.t_enter {
+                self.t_enter = t;
+                self.i_enter = i;
+            }
+        } else if t < self.t_exit {
+            self.t_exit = t;
+            self.i_exit = i;
+        }
+        true
+    }
+
+    /// The hit beyond `tmin`: the entry, else the exit.
+    fn hit(&self, tmin: f64) -> Option<(f64, usize)> {
+        if self.t_enter > self.t_exit {
+            None
+        } else if self.t_enter > tmin {
+            Some((self.t_enter, self.i_enter))
+        } else if self.t_exit > tmin && self.t_exit.is_finite() {
+            Some((self.t_exit, self.i_exit))
+        } else {
+            None
+        }
+    }
+}
+
+/// The outward normals of a block's faces, in [`intersect_block`]'s order.
+const BLOCK_NORMALS: [DVec3; 6] = [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
 
 /// A box centred on the local origin with edge lengths `lengths`.
 ///
@@ -172,16 +202,27 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
     let near = Near::of(ray, tmin, DVec3::ZERO, h.length_squared());
     let (ray, tmin) = (&near.ray, near.tmin);
     let (o, d) = (ray.origin, ray.dir);
-    // (normal, n·d, h − n·o) of ±x, ±y, ±z.
+    // (n·d, h − n·o) of ±x, ±y, ±z.
     let planes = [
-        (DVec3::X, d.x, h.x - o.x),
-        (DVec3::NEG_X, -d.x, h.x + o.x),
-        (DVec3::Y, d.y, h.y - o.y),
-        (DVec3::NEG_Y, -d.y, h.y + o.y),
-        (DVec3::Z, d.z, h.z - o.z),
-        (DVec3::NEG_Z, -d.z, h.z + o.z),
+        (d.x, h.x - o.x),
+        (-d.x, h.x + o.x),
+        (d.y, h.y - o.y),
+        (-d.y, h.y + o.y),
+        (d.z, h.z - o.z),
+        (-d.z, h.z + o.z),
     ];
-    near.back(clip(ray, tmin, planes.into_iter()))
+    let mut c = Clip::new();
+    for (i, &(denom, dist)) in planes.iter().enumerate() {
+        if !c.plane(i, denom, dist) {
+            return None;
+        }
+    }
+    let (t, i) = c.hit(tmin)?;
+    near.back(Some(LocalHit {
+        t,
+        point: ray.at(t),
+        normal: BLOCK_NORMALS[i],
+    }))
 }
 
 /// A right prism over the convex, counter-clockwise polygon `vertex` in the
@@ -193,15 +234,20 @@ pub fn intersect_prism(vertex: &[[f64; 2]], height: f64, ray: &Ray, tmin: f64) -
     let reach2 = vertex.iter().fold(0.0f64, |m, &[x, y]| m.max(x * x + y * y));
     let near = Near::of(ray, tmin, DVec3::ZERO, reach2 + height * height);
     let (ray, tmin) = (&near.ray, near.tmin);
-    let sides = (0..n).map(move |i| {
+    let plane = |i: usize| {
+        if i == n {
+            return (DVec3::Z, height);
+        }
+        if i > n {
+            return (DVec3::NEG_Z, 0.0);
+        }
         let [x0, y0] = vertex[i];
         let [x1, y1] = vertex[(i + 1) % n];
         // Outward normal of a counter-clockwise edge: (dy, −dx).
         let normal = DVec3::new(y1 - y0, x0 - x1, 0.0).normalize();
         (normal, normal.x * x0 + normal.y * y0)
-    });
-    let caps = [(DVec3::Z, height), (DVec3::NEG_Z, 0.0)];
-    near.back(intersect_convex(ray, tmin, sides.chain(caps)))
+    };
+    near.back(intersect_convex(ray, tmin, n + 2, plane))
 }
 
 /// A cylinder of radius `cylradius` about local z from `bottom` to `top`,
@@ -449,7 +495,7 @@ mod tests {
             }
             let ray = Ray::new(o, d);
             let near = Near::of(&ray, 1e-9, DVec3::ZERO, h.length_squared());
-            let clip = near.back(intersect_convex(&near.ray, near.tmin, planes.into_iter()));
+            let clip = near.back(intersect_convex(&near.ray, near.tmin, 6, |i| planes[i]));
             let slab = intersect_block(lengths, &ray, 1e-9);
             assert_eq!(clip, slab, "ray {k}: {o} {d}");
             hits += slab.is_some() as usize;

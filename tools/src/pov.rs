@@ -291,6 +291,7 @@ mod tests {
             length: 2.0,
             scale: 0.5,
             bbox: BoundingBox::default(),
+            orientation: 0.0,
         }
     }
 

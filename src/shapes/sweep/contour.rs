@@ -1,9 +1,9 @@
 //! The contour's own geometry: its tangent, orientation and signed area,
 //! and the cap test [`point_in_contour`].
 
-use super::{asc, may_have_root, norm2};
-use crate::proc::robust::real_roots;
-use crate::types::Coeff;
+use super::{asc, may_have_root, norm2, one_crossing, unit_crossings, Crossings};
+use crate::proc::robust::{bernstein_unit, real_roots, RealRoots};
+use crate::types::{Coeff, SweepShape};
 
 /// The contour's curve direction at s of segment (u, v): the derivative;
 /// where it vanishes (a cusp from repeated control points), the limit
@@ -40,11 +40,22 @@ pub fn signed_area(u: &[Coeff], v: &[Coeff]) -> f64 {
 }
 
 /// +1 or −1: which way (V′, −U′) must turn to point out of the contour.
-pub(super) fn orientation(u: &[Coeff], v: &[Coeff]) -> f64 {
+pub fn orientation(u: &[Coeff], v: &[Coeff]) -> f64 {
     if signed_area(u, v) < 0.0 {
         -1.0
     } else {
         1.0
+    }
+}
+
+/// [`orientation`] of the segments `u`, `v` the driver takes from `sw`:
+/// the one filled with them (`sw.orientation`) when they are all of its
+/// segments, else computed.
+pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
+    if sw.orientation != 0.0 && u.len() == sw.u.len() && v.len() == sw.v.len() {
+        sw.orientation
+    } else {
+        orientation(u, v)
     }
 }
 
@@ -85,10 +96,17 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut p = [0.0; 7];
         p[..4].copy_from_slice(&asc(cv));
         p[0] -= y;
-        if !may_have_root(3, &p, 0.0, 1.0) {
-            continue; // V − y keeps one strict sign over the segment (D18)
-        }
-        let r = real_roots(3, &p, 0.0, 1.0);
+        let b = bernstein_unit(3, &p);
+        let r = match unit_crossings(3, &b) {
+            Crossings::None => continue, // V − y keeps one strict sign over the segment
+            Crossings::One => {
+                let mut one = RealRoots::NONE;
+                (one.count, one.x[0], one.multiplicity[0]) = (1, one_crossing(3, &p, &b), 1);
+                one
+            }
+            Crossings::Unknown if !may_have_root(3, &p, 0.0, 1.0) => continue, // (D18)
+            Crossings::Unknown => real_roots(3, &p, 0.0, 1.0),
+        };
         // The sign sequence: joint, (midpoint, root)*, midpoint, joint.
         let mut prev_sign = above(g0);
         let mut prev_at = Some(cu.d);
@@ -134,6 +152,7 @@ mod tests {
             length: 2.0,
             scale: 1.0,
             bbox: BoundingBox::default(),
+            orientation: 0.0,
         };
         let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
         sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);

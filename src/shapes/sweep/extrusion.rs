@@ -1,7 +1,7 @@
 //! Translation and conic sweeps: one cubic a segment from the ray's
 //! central projection into the contour's plane, and the end caps.
 
-use super::contour::{orientation, point_in_contour, tangent};
+use super::contour::{orientation_of, point_in_contour, tangent};
 use super::{asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL};
 use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
 
@@ -179,7 +179,7 @@ pub(super) fn extrusion(
         }
         let found = solve(3, &f, opts);
         for &s0 in &found.s[..found.count] {
-            let s = polish(&f, s0);
+            let s = polish(3, &f, s0);
             let (uu, vv) = (cu.value(s), cv.value(s));
             let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
             let den = ex * ex + ey * ey;
@@ -213,7 +213,7 @@ pub(super) fn extrusion(
     let normal = if b.segment == CAP {
         b.normal
     } else {
-        b.normal * orientation(u, v)
+        b.normal * orientation_of(sw, u, v)
     };
     let normal = normal.try_normalize()?;
     Some(hit(b.t, normal))

@@ -43,11 +43,11 @@ mod extrusion;
 mod prepare;
 mod revolve;
 
-pub use contour::{point_in_contour, signed_area};
+pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::proc::robust::{bernstein, bernstein_unit, real_roots};
+use crate::proc::robust::{bernstein, bernstein_unit, newton_in, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
@@ -81,25 +81,28 @@ pub(super) fn asc(c: &Coeff) -> [f64; 4] {
     [c.d, c.c, c.b, c.a]
 }
 
-/// p(x) and p′(x) of a polynomial of degree ≤ 6 (ascending coefficients).
-pub(super) fn horner(p: &[f64; 7], x: f64) -> (f64, f64) {
-    let (mut f, mut df) = (p[6], 0.0);
-    for k in (0..6).rev() {
+/// p(x) and p′(x) of a polynomial of degree ≤ `n` ≤ 6 (ascending
+/// coefficients; those above n are 0).
+pub(super) fn horner(n: usize, p: &[f64; 7], x: f64) -> (f64, f64) {
+    let n = n.min(6);
+    let (mut f, mut df) = (p[n], 0.0);
+    for k in (0..n).rev() {
         df = df * x + f;
         f = f * x + p[k];
     }
     (f, df)
 }
 
-/// Newton steps on p from s, kept only while |p| falls.
-pub(super) fn polish(p: &[f64; 7], mut s: f64) -> f64 {
-    let (mut f, mut df) = horner(p, s);
+/// Newton steps on the degree-`n` polynomial p from s, kept only while
+/// |p| falls.
+pub(super) fn polish(n: usize, p: &[f64; 7], mut s: f64) -> f64 {
+    let (mut f, mut df) = horner(n, p, s);
     for _ in 0..4 {
         if f == 0.0 || df == 0.0 {
             break;
         }
         let next = s - f / df;
-        let (nf, ndf) = horner(p, next);
+        let (nf, ndf) = horner(n, p, next);
         if nf.is_nan() || nf.abs() >= f.abs() {
             break;
         }
@@ -119,7 +122,19 @@ pub(super) struct Found {
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
-    if (n <= 3 && clearly_one_sign(n, a)) || (opts.solver == Solver::Laguerre && !may_have_root(n, a, lo, hi)) {
+    if n <= 3 {
+        let b = bernstein_unit(n, a);
+        match unit_crossings(n, &b) {
+            Crossings::None => return out,
+            Crossings::One if opts.solver == Solver::Robust => {
+                out.s[0] = one_crossing(n, a, &b);
+                out.count = 1;
+                return out;
+            }
+            _ => {}
+        }
+    }
+    if opts.solver == Solver::Laguerre && !may_have_root(n, a, lo, hi) {
         return out;
     }
     match opts.solver {
@@ -171,24 +186,51 @@ pub(super) fn may_have_root(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> bool {
     false
 }
 
-/// Is the degree-`n` polynomial `a` clearly of one sign on the segment,
-/// joint slack included? Its Bernstein coefficients on [0, 1]
-/// ([`bernstein_unit`], no shift: the cheap half of [`bernstein`]) all beyond 10⁻⁷ of the largest, with
-/// one sign. On [−δ, 1 + δ] (δ = [`JOINT_SLACK`]) p strays from its values
-/// on [0, 1] by at most δ·max|p′| ≤ 2nδ·max|bₖ|, far less, so there is no
-/// root there and the finer tests (`may_have_root`, the robust solver's
-/// count) would find none either: the most common case, a segment whose
-/// box the ray's line crosses and whose curve it does not, decided first.
-/// Asked of the cubics only: a sextic has passed `outrectp` first, after
-/// which the test rejects too few to pay.
-pub(super) fn clearly_one_sign(n: usize, a: &[f64; 7]) -> bool {
-    let n = n.min(6);
-    let b = bernstein_unit(n, a);
+/// What [`unit_crossings`] knows of a cubic's roots on a segment.
+pub(super) enum Crossings {
+    /// No root in [−δ, 1 + δ].
+    None,
+    /// Exactly one, simple, inside (0, 1).
+    One,
+    /// Not known: the solver must say.
+    Unknown,
+}
+
+/// What the Bernstein coefficients on [0, 1] `b[..=n]` ([`bernstein_unit`],
+/// no shift: the cheap half of [`bernstein`]) tell of the roots in
+/// [−δ, 1 + δ] (δ = [`JOINT_SLACK`]) when each is beyond 10⁻⁷ of the
+/// largest. On the slack p strays from its values on [0, 1] by at most
+/// δ·max|p′| ≤ 2nδ·max|bₖ|, far less than that margin, so p keeps the signs
+/// of p(0) = b₀ and p(1) = bₙ there. Of one sign: no root (the finer tests,
+/// `may_have_root` and the robust solver's count, would find none either):
+/// the most common case, a segment whose box the ray's line crosses and
+/// whose curve it does not, decided first. One change of sign: exactly one
+/// root, simple, inside (0, 1) (Descartes' rule in the Bernstein basis
+/// bounds the roots by the changes, with their parity), which the robust
+/// solver takes at once ([`one_crossing`]). Else nothing is known. Asked of
+/// the cubics only: a sextic has passed `outrectp` first, after which the
+/// test rejects too few to pay.
+pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
     let margin = 1e-7 * b[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if !(margin > 0.0 && margin.is_finite()) {
-        return false;
+    if !(margin > 0.0 && margin.is_finite()) || b[..=n].iter().any(|bk| bk.abs() <= margin) {
+        return Crossings::Unknown;
     }
-    b[..=n].iter().all(|&bk| bk > margin) || b[..=n].iter().all(|&bk| bk < -margin)
+    match (1..=n).filter(|&k| (b[k] < 0.0) != (b[k - 1] < 0.0)).count() {
+        0 => Crossings::None,
+        1 => Crossings::One,
+        _ => Crossings::Unknown,
+    }
+}
+
+/// The one root in (0, 1) of p (degree `n`) when [`unit_crossings`] says
+/// [`Crossings::One`] of its Bernstein coefficients `b` on [0, 1]: the
+/// robust solver's bracketed Newton ([`newton_in`]) from where the control
+/// polygon crosses 0, as [`real_roots`] would take it on [−δ, 1 + δ], but
+/// without counting again.
+pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7]) -> f64 {
+    let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
+    let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
+    newton_in(a, n, 0.0, 1.0, b[0], u)
 }
 
 /// Is every coefficient negligible beside `scale`? (A segment that lies
@@ -366,7 +408,7 @@ fn sweep_query(
         shift: near.shift,
     };
     near.back(match class {
-        PrimitiveClass::Rotation => revolve(u, v, size, ray, tmin, opts, query),
+        PrimitiveClass::Rotation => revolve(u, v, sweep, size, ray, tmin, opts, query),
         _ => extrusion(
             u,
             v,

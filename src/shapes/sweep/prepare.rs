@@ -1,6 +1,7 @@
 //! The coefficients and boxes of the sweep objects, from their control
 //! points (`spline`), before any ray.
 
+use super::contour::orientation;
 use crate::proc::sweep::spline;
 use crate::types::{
     BoundingBox, Coeff, CurveKind, DVec3, Fidelity, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
@@ -45,6 +46,7 @@ pub(super) fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> Bound
         sw.u.push(cu);
         sw.v.push(cv);
     }
+    sw.orientation = orientation(&sw.u, &sw.v);
     sbox
 }
 

@@ -1,13 +1,13 @@
 //! Rotation sweeps: one sextic a segment from the ray's hyperbola in the
 //! (radius, height) plane, with `outrectp` as the segment's bounding test.
 
-use super::contour::{orientation, tangent};
+use super::contour::{orientation_of, tangent};
 use super::{
     asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, JOINT_SLACK, PARALLEL_TOL,
     RESIDUAL_TOL,
 };
 use crate::proc::sweep::outrectp;
-use crate::types::{Coeff, DVec3, LocalHit, Options, Ray};
+use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, Solver, SweepShape};
 
 /// U(s), V(s) of segment (u, v), and the 2-D residual (radius, height) of
 /// the ray point at t against that contour point of the rotation sweep.
@@ -18,8 +18,16 @@ pub(super) fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) 
 }
 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
-/// sweep, from (s, t); kept only while the residual falls.
-pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64) -> (f64, f64, f64) {
+/// sweep, from (s, t); kept only while the residual falls. A start whose
+/// residual exceeds `give_up` is returned as it is.
+pub(super) fn polish_revolve(
+    u: &Coeff,
+    v: &Coeff,
+    ray: &Ray,
+    mut s: f64,
+    mut t: f64,
+    give_up: f64,
+) -> (f64, f64, f64) {
     let (o, d) = (ray.origin, ray.dir);
     let (a, b, c) = (
         d.x * d.x + d.y * d.y,
@@ -28,6 +36,9 @@ pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t:
     );
     // U and V kept from each residual for the step from there.
     let (mut uu, mut vv, mut res) = revolve_residual(u, v, ray, s, t);
+    if res > give_up {
+        return (s, t, res);
+    }
     for _ in 0..5 {
         if res == 0.0 {
             break;
@@ -105,6 +116,7 @@ pub(super) fn sextic(cu: &Coeff, cv: &Coeff, ray: &Ray) -> [f64; 7] {
 pub(super) fn revolve(
     u: &[Coeff],
     v: &[Coeff],
+    sw: &SweepShape,
     size: f64,
     ray: &Ray,
     tmin: f64,
@@ -120,13 +132,23 @@ pub(super) fn revolve(
     let along = a.sqrt() <= PARALLEL_TOL * dn;
     let across = d.z.abs() <= PARALLEL_TOL * dn;
     let mut best: Option<Best> = None;
+    // Each root s is tried with three t (its height's, and the circle's two
+    // crossings), of which one is the hit. A root of the robust solver is
+    // the sextic's to rounding, so the others start far from the surface
+    // and cannot polish to a hit of theirs (such a hit would be another
+    // root, tried on its own): they are dropped before the polish. A root
+    // of `laguerre` may be rough, and every start is polished, as before.
+    let give_up = match opts.solver {
+        Solver::Robust => 1e-3 * size,
+        Solver::Laguerre => f64::INFINITY,
+    };
     // Whether the hit polished from (s, t) on segment i is an answer at once.
     let consider = |i: usize, s: f64, t: f64, best: &mut Option<Best>| -> bool {
         if !t.is_finite() {
             return false;
         }
         let (cu, cv) = (&u[i], &v[i]);
-        let (s, t, res) = polish_revolve(cu, cv, ray, s, t);
+        let (s, t, res) = polish_revolve(cu, cv, ray, s, t, give_up);
         if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin, i) {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size);
             *best = Some(Best { t, normal, segment: i });
@@ -210,7 +232,7 @@ pub(super) fn revolve(
             }
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
-                let s = polish(&p, s);
+                let s = polish(3, &p, s);
                 if consider(i, s, (cv.value(s) - o.z) / d.z, &mut best) {
                     return best.map(|h| hit(ray, h));
                 }
@@ -225,7 +247,7 @@ pub(super) fn revolve(
             }
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
-                let s = polish(&p, s);
+                let s = polish(3, &p, s);
                 if let Some((t1, t2)) = circle(cu.value(s)) {
                     if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
                         return best.map(|h| hit(ray, h));
@@ -240,7 +262,7 @@ pub(super) fn revolve(
             }
             let found = solve(6, &p, opts);
             for &s in &found.s[..found.count] {
-                let s = polish(&p, s);
+                let s = polish(6, &p, s);
                 // The better conditioned of the height and the radius
                 // equations: try each, keep what lands on the surface.
                 if consider(i, s, (cv.value(s) - o.z) / dz, &mut best) {
@@ -259,7 +281,7 @@ pub(super) fn revolve(
         return Some(hit(ray, bst)); // the caller needs only its t
     }
     // The contour's orientation turns the normal out: once, for the hit kept.
-    let normal = (bst.normal * orientation(u, v)).try_normalize()?;
+    let normal = (bst.normal * orientation_of(sw, u, v)).try_normalize()?;
     Some(LocalHit {
         t: bst.t,
         point: ray.at(bst.t),
