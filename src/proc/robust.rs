@@ -90,8 +90,17 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
 
 /// Newton's method on `p` from `start`, kept inside the bracket (x0, x1)
 /// that holds its one root (p(x0) = `f0`, of the other sign than p(x1));
-/// a start outside it becomes the midpoint.
+/// a start outside it becomes the midpoint. Stopped when the step is at
+/// rounding level.
 pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
+    newton_until(p, m, x0, x1, f0, start, 0.0)
+}
+
+/// [`newton_in`], stopped also after a Newton step of at most `settle`:
+/// the root is then nearer than the step by its square (times p″/2p′), so
+/// a caller that polishes the root (or needs it only to ~`settle`²) can
+/// spare the last steps.
+pub fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64, settle: f64) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let mut x = if start > x0 && start < x1 {
         start
@@ -117,7 +126,8 @@ pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) 
             0.5 * (lo + hi)
         };
         let scale = x.abs().max(next.abs()).max(f64::MIN_POSITIVE);
-        if (next - x).abs() <= 2.0 * EPS * scale || hi - lo <= 4.0 * EPS * lo.abs().max(hi.abs()) {
+        let step = (next - x).abs();
+        if step <= 2.0 * EPS * scale || step <= settle || hi - lo <= 4.0 * EPS * lo.abs().max(hi.abs()) {
             return next;
         }
         x = next;
@@ -452,9 +462,23 @@ fn bernstein_of<const N: usize>(a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f6
 /// (ascending power coefficients; n ≤ 6): the conversion at the end of
 /// [`bernstein`], without its shift to another interval.
 pub fn bernstein_unit(n: usize, c: &[f64; 7]) -> [f64; 7] {
-    let n = n.min(6);
+    // One body per degree, as in `bernstein`.
+    match n {
+        0 => bernstein_unit_of::<0>(c),
+        1 => bernstein_unit_of::<1>(c),
+        2 => bernstein_unit_of::<2>(c),
+        3 => bernstein_unit_of::<3>(c),
+        4 => bernstein_unit_of::<4>(c),
+        5 => bernstein_unit_of::<5>(c),
+        _ => bernstein_unit_of::<6>(c),
+    }
+}
+
+/// [`bernstein_unit`] of degree `N`.
+#[inline(always)]
+pub fn bernstein_unit_of<const N: usize>(c: &[f64; 7]) -> [f64; 7] {
     let mut b = [0.0; 7];
-    for (k, wk) in BERNSTEIN_WEIGHTS[n].iter().enumerate().take(n + 1) {
+    for (k, wk) in BERNSTEIN_WEIGHTS[N].iter().enumerate().take(N + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j
         b[k] = (0..=k).map(|j| wk[j] * c[j]).sum();
     }

@@ -377,11 +377,15 @@ fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool
     if c <= 0.0 {
         return true; // the ray starts inside
     }
-    // Outside and moving away, or missing.
-    half_b < 0.0 && half_b * half_b - a * c >= 0.0 && {
-        let far = (-half_b + (half_b * half_b - a * c).sqrt()) / a;
-        far > tmin
-    }
+    // Outside and moving away, or missing. Else both crossings lie ahead,
+    // the far one at t ≥ −half_b/a: beyond tmin without its root when
+    // that is twice tmin (the usual case, tmin being a rounding guard).
+    half_b < 0.0
+        && half_b * half_b - a * c >= 0.0
+        && (-half_b > 2.0 * tmin.abs() * a || {
+            let far = (-half_b + (half_b * half_b - a * c).sqrt()) / a;
+            far > tmin
+        })
 }
 
 /// Where a pattern or texture is painted: coordinates on the face hit, in

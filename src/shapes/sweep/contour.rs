@@ -2,7 +2,7 @@
 //! and the cap test [`point_in_contour`].
 
 use super::{asc, may_have_root, norm2, one_crossing, unit_crossings, Crossings};
-use crate::proc::robust::{bernstein_unit, real_roots, RealRoots};
+use crate::proc::robust::{bernstein_unit_of, real_roots, RealRoots};
 use crate::types::{Coeff, SweepShape};
 
 /// The contour's curve direction at s of segment (u, v): the derivative;
@@ -96,7 +96,7 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
         let mut p = [0.0; 7];
         p[..4].copy_from_slice(&asc(cv));
         p[0] -= y;
-        let b = bernstein_unit(3, &p);
+        let b = bernstein_unit_of::<3>(&p);
         let r = match unit_crossings(3, &b) {
             Crossings::None => continue, // V − y keeps one strict sign over the segment
             Crossings::One => {

@@ -109,6 +109,8 @@ pub(super) fn extrusion(
     // Slack on a segment's lower bound: its points may stand 1e-9 of the
     // size outside its box (the joint slack), rounding far less.
     let t_pad = 1e-6 * size / dxy2.sqrt();
+    // A bound needs no exact quotient (its slack is t_pad): a product.
+    let per_dxy2 = 1.0 / dxy2;
     let mut candidates = Candidates::new();
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
@@ -124,7 +126,7 @@ pub(super) fn extrusion(
         } else {
             let x = if d.x > 0.0 { cu.min } else { cu.max };
             let y = if d.y > 0.0 { cv.min } else { cv.max };
-            ((x - o.x) * d.x + (y - o.y) * d.y) / dxy2 - t_pad
+            ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad
         };
         candidates.push(t_lo, i);
     }

@@ -47,7 +47,7 @@ pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::proc::robust::{bernstein, bernstein_unit, newton_in, real_roots};
+use crate::proc::robust::{bernstein, bernstein_unit_of, newton_until, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
@@ -119,12 +119,13 @@ pub(super) struct Found {
 }
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
+#[inline]
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
-    if n <= 3 {
-        let b = bernstein_unit(n, a);
-        match unit_crossings(n, &b) {
+    if n == 3 {
+        let b = bernstein_unit_of::<3>(a);
+        match unit_crossings(3, &b) {
             Crossings::None => return out,
             Crossings::One if opts.solver == Solver::Robust => {
                 out.s[0] = one_crossing(n, a, &b);
@@ -196,7 +197,7 @@ pub(super) enum Crossings {
     Unknown,
 }
 
-/// What the Bernstein coefficients on [0, 1] `b[..=n]` ([`bernstein_unit`],
+/// What the Bernstein coefficients on [0, 1] `b[..=n]` ([`bernstein_unit`](crate::proc::robust::bernstein_unit),
 /// no shift: the cheap half of [`bernstein`]) tell of the roots in
 /// [−δ, 1 + δ] (δ = [`JOINT_SLACK`]) when each is beyond 10⁻⁷ of the
 /// largest. On the slack p strays from its values on [0, 1] by at most
@@ -210,6 +211,7 @@ pub(super) enum Crossings {
 /// solver takes at once ([`one_crossing`]). Else nothing is known. Asked of
 /// the cubics only: a sextic has passed `outrectp` first, after which the
 /// test rejects too few to pay.
+#[inline(always)]
 pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
     let margin = 1e-7 * b[..=n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
     if !(margin > 0.0 && margin.is_finite()) || b[..=n].iter().any(|bk| bk.abs() <= margin) {
@@ -230,7 +232,7 @@ pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
 pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7]) -> f64 {
     let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
     let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
-    newton_in(a, n, 0.0, 1.0, b[0], u)
+    newton_until(a, n, 0.0, 1.0, b[0], u, 1e-8)
 }
 
 /// Is every coefficient negligible beside `scale`? (A segment that lies
@@ -438,18 +440,23 @@ pub(super) fn closer(best: &Option<Best>, t: f64, tmin: f64, segment: usize) -> 
     t > tmin && best.is_none_or(|b| t < b.t || (t == b.t && segment < b.segment))
 }
 
+// A segment's index fits the byte `Candidates` keeps it in.
+const _: () = assert!(MAXSEGMENTS <= u8::MAX as usize + 1);
+
 /// Segments a ray may meet, tried nearest first: each with a lower bound
 /// on the t of its hits (−∞ where none is known).
 pub(super) struct Candidates {
     len: usize,
-    at: [(f64, usize); MAXSEGMENTS],
+    t_lo: [f64; MAXSEGMENTS],
+    segment: [u8; MAXSEGMENTS],
 }
 
 impl Candidates {
     pub(super) fn new() -> Self {
         Candidates {
             len: 0,
-            at: [(0.0, 0); MAXSEGMENTS],
+            t_lo: [0.0; MAXSEGMENTS],
+            segment: [0; MAXSEGMENTS],
         }
     }
 
@@ -461,15 +468,17 @@ impl Candidates {
             return;
         }
         let mut k = self.len;
-        while k > 0 && self.at[k - 1].0 > t_lo {
-            self.at[k] = self.at[k - 1];
+        while k > 0 && self.t_lo[k - 1] > t_lo {
+            self.t_lo[k] = self.t_lo[k - 1];
+            self.segment[k] = self.segment[k - 1];
             k -= 1;
         }
-        self.at[k] = (t_lo, segment);
+        self.t_lo[k] = t_lo;
+        self.segment[k] = segment as u8; // < MAXSEGMENTS = 60
         self.len += 1;
     }
 
     pub(super) fn iter(&self) -> impl Iterator<Item = (f64, usize)> + '_ {
-        self.at[..self.len].iter().copied()
+        (0..self.len).map(|k| (self.t_lo[k], self.segment[k] as usize))
     }
 }
