@@ -467,6 +467,42 @@ mod tests {
         (a - b).length() < 1e-12
     }
 
+    /// The bounding-sphere test without its root answers as the test with
+    /// it: rays from outside and inside, toward and away, grazing, with
+    /// `tmin` from 0 to beyond the sphere.
+    #[test]
+    fn bounding_sphere_test_as_with_its_root() {
+        use crate::drt::hashed_uniform;
+        let with_root = |centre: DVec3, radius: f64, ray: &Ray, tmin: f64| {
+            let r = radius * (1.0 + 1e-6) + 1e-9;
+            let oc = ray.origin - centre;
+            let (a, half_b) = (ray.dir.length_squared(), oc.dot(ray.dir));
+            let c = oc.length_squared() - r * r;
+            c <= 0.0
+                || (half_b < 0.0
+                    && half_b * half_b - a * c >= 0.0
+                    && (-half_b + (half_b * half_b - a * c).sqrt()) / a > tmin)
+        };
+        let (mut yes, mut no) = (0, 0);
+        for k in 0..20_000u64 {
+            let r = |j: u64| 2.0 * hashed_uniform(8 * k + j) - 1.0;
+            let centre = DVec3::new(r(0), r(1), r(2));
+            let radius = 0.5 + r(3).abs();
+            let o = DVec3::new(3.0 * r(4), 3.0 * r(5), 3.0 * r(6));
+            let d = (centre - o + DVec3::new(r(7), r(8), r(1) * r(2)) * radius).normalize();
+            let ray = Ray::new(o, d);
+            let tmin = [1e-9, 0.0, (o - centre).length(), 10.0 * r(3).abs()][(k % 4) as usize];
+            let got = bounding_sphere_hit(centre, radius, &ray, tmin);
+            assert_eq!(got, with_root(centre, radius, &ray, tmin), "ray {k}");
+            if got {
+                yes += 1;
+            } else {
+                no += 1;
+            }
+        }
+        assert!(yes > 2000 && no > 2000, "{yes} {no}");
+    }
+
     /// The block's written-out slab test gives the six-plane convex clip's
     /// hits to the bit: rays from inside, outside, along a face and through
     /// edges, exactly axis-parallel ones included.

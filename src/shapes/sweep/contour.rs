@@ -67,8 +67,10 @@ pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
 /// counts once, since each joint's sign is computed once.
 ///
 /// Reconstructed (the thesis prints no cap test). Its cubics are solved by
-/// the port's [`real_roots`] whatever `Options::solver` says: one missed
-/// crossing turns a whole cap inside out along a line.
+/// the port's robust solver whatever `Options::solver` says (the one root
+/// of a cubic whose Bernstein count is one by [`one_crossing`], the rest by
+/// [`real_roots`]): one missed crossing turns a whole cap inside out along
+/// a line.
 pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
     let n = u.len().min(v.len());
     let mut inside = false;
@@ -101,7 +103,7 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
             Crossings::None => continue, // V − y keeps one strict sign over the segment
             Crossings::One => {
                 let mut one = RealRoots::NONE;
-                (one.count, one.x[0], one.multiplicity[0]) = (1, one_crossing(3, &p, &b), 1);
+                (one.count, one.x[0], one.multiplicity[0]) = (1, one_crossing(3, &p, &b, 0.0), 1);
                 one
             }
             Crossings::Unknown if !may_have_root(3, &p, 0.0, 1.0) => continue, // (D18)

@@ -119,6 +119,9 @@ pub(super) struct Found {
 }
 
 /// The segment's polynomial of degree `n` solved by the chosen method.
+/// A cubic is asked of its Bernstein count first ([`unit_crossings`]):
+/// none there is none for either solver; one is taken at once by the
+/// robust solver (DEVIATIONS D30, D31).
 #[inline]
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
@@ -128,7 +131,7 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
         match unit_crossings(3, &b) {
             Crossings::None => return out,
             Crossings::One if opts.solver == Solver::Robust => {
-                out.s[0] = one_crossing(n, a, &b);
+                out.s[0] = one_crossing(n, a, &b, SIDE_SETTLE);
                 out.count = 1;
                 return out;
             }
@@ -197,12 +200,13 @@ pub(super) enum Crossings {
     Unknown,
 }
 
-/// What the Bernstein coefficients on [0, 1] `b[..=n]` ([`bernstein_unit`](crate::proc::robust::bernstein_unit),
-/// no shift: the cheap half of [`bernstein`]) tell of the roots in
-/// [−δ, 1 + δ] (δ = [`JOINT_SLACK`]) when each is beyond 10⁻⁷ of the
-/// largest. On the slack p strays from its values on [0, 1] by at most
-/// δ·max|p′| ≤ 2nδ·max|bₖ|, far less than that margin, so p keeps the signs
-/// of p(0) = b₀ and p(1) = bₙ there. Of one sign: no root (the finer tests,
+/// What the Bernstein coefficients on [0, 1] `b[..=n]`
+/// ([`bernstein_unit`](crate::proc::robust::bernstein_unit), no shift: the
+/// cheap half of [`bernstein`]) tell of the roots in [−δ, 1 + δ]
+/// (δ = [`JOINT_SLACK`]) when each is beyond 10⁻⁷ of the largest. On the
+/// slack p strays from its values on [0, 1] by at most δ·max|p′| ≤
+/// 2nδ·max|bₖ|, far less than that margin, so p keeps the signs of
+/// p(0) = b₀ and p(1) = bₙ there. Of one sign: no root (the finer tests,
 /// `may_have_root` and the robust solver's count, would find none either):
 /// the most common case, a segment whose box the ray's line crosses and
 /// whose curve it does not, decided first. One change of sign: exactly one
@@ -226,14 +230,19 @@ pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
 
 /// The one root in (0, 1) of p (degree `n`) when [`unit_crossings`] says
 /// [`Crossings::One`] of its Bernstein coefficients `b` on [0, 1]: the
-/// robust solver's bracketed Newton ([`newton_in`]) from where the control
-/// polygon crosses 0, as [`real_roots`] would take it on [−δ, 1 + δ], but
-/// without counting again.
-pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7]) -> f64 {
+/// robust solver's bracketed Newton from where the control polygon
+/// crosses 0, as [`real_roots`] would take it on [−δ, 1 + δ], but without
+/// counting again; stopped after a Newton step of at most `settle`
+/// ([`newton_until`]; 0: at rounding).
+pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7], settle: f64) -> f64 {
     let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
     let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
-    newton_until(a, n, 0.0, 1.0, b[0], u, 1e-8)
+    newton_until(a, n, 0.0, 1.0, b[0], u, settle)
 }
+
+/// The step after which a side root is taken ([`one_crossing`]): the
+/// polish on the hit's polynomial that follows brings it to rounding.
+const SIDE_SETTLE: f64 = 1e-8;
 
 /// Is every coefficient negligible beside `scale`? (A segment that lies
 /// on the ray's projected line, or a polynomial that vanishes everywhere.)
@@ -480,5 +489,54 @@ impl Candidates {
 
     pub(super) fn iter(&self) -> impl Iterator<Item = (f64, usize)> + '_ {
         (0..self.len).map(|k| (self.t_lo[k], self.segment[k] as usize))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drt::hashed_uniform;
+    use crate::proc::robust::poly_from_roots;
+
+    /// What the Bernstein count says of a cubic is what the robust solver
+    /// finds on [−δ, 1 + δ]: no root, or the one root, to 1e-12; on cubics
+    /// built from three roots anywhere in [−1, 2] (a third of them near the
+    /// ends, inside and outside the slack) at scales from 10⁻⁶ to 10⁶.
+    #[test]
+    fn the_bernstein_count_agrees_with_the_robust_solver() {
+        let (mut none, mut one) = (0, 0);
+        for k in 0..20_000u64 {
+            let r = |j: u64| hashed_uniform(8 * k + j);
+            let end = |x: f64, j: u64| match (r(j) * 6.0) as u32 {
+                0 => (r(j + 3) - 0.5) * 4e-9,
+                1 => 1.0 + (r(j + 3) - 0.5) * 4e-9,
+                _ => x,
+            };
+            let roots = [end(3.0 * r(0) - 1.0, 5), end(3.0 * r(1) - 1.0, 6), 3.0 * r(2) - 1.0];
+            let scale = 10f64.powf(12.0 * r(4) - 6.0) * if k % 2 == 0 { 1.0 } else { -1.0 };
+            let p = poly_from_roots(&roots, scale);
+            let b = bernstein_unit_of::<3>(&p);
+            let found = real_roots(3, &p, -JOINT_SLACK, 1.0 + JOINT_SLACK);
+            match unit_crossings(3, &b) {
+                Crossings::None => {
+                    none += 1;
+                    assert_eq!(found.count, 0, "{roots:?}: {:?}", found.roots());
+                }
+                Crossings::One => {
+                    one += 1;
+                    assert_eq!(found.count, 1, "{roots:?}: {:?}", found.roots());
+                    let s = one_crossing(3, &p, &b, 0.0);
+                    let settled = one_crossing(3, &p, &b, SIDE_SETTLE);
+                    assert!((settled - s).abs() < 1e-11, "{roots:?}: {settled} against {s}");
+                    assert!(s > 0.0 && s < 1.0, "{roots:?}: {s}");
+                    assert!((s - found.x[0]).abs() < 1e-12, "{roots:?}: {s} against {}", found.x[0]);
+                }
+                Crossings::Unknown => {}
+            }
+        }
+        assert!(
+            none > 2000 && one > 2000,
+            "both answers are asked: {none} none, {one} one"
+        );
     }
 }

@@ -20,14 +20,7 @@ pub(super) fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
 /// sweep, from (s, t); kept only while the residual falls. A start whose
 /// residual exceeds `give_up` is returned as it is.
-pub(super) fn polish_revolve(
-    u: &Coeff,
-    v: &Coeff,
-    ray: &Ray,
-    mut s: f64,
-    mut t: f64,
-    give_up: f64,
-) -> (f64, f64, f64) {
+pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64, give_up: f64) -> (f64, f64, f64) {
     let (o, d) = (ray.origin, ray.dir);
     let (a, b, c) = (
         d.x * d.x + d.y * d.y,
@@ -314,6 +307,23 @@ mod tests {
             ..Coeff::default()
         };
         (bez([0.15, 0.9, 1.0, 0.95]), bez([1.2, 1.25, 1.9, 2.5]))
+    }
+
+    /// A start farther from the surface than `give_up` comes back as it
+    /// is; the same start with no limit is polished onto the surface.
+    #[test]
+    fn polish_revolve_gives_up_on_far_starts() {
+        let (cu, cv) = bowl();
+        let ray = Ray::new(DVec3::new(3.0, 0.2, 1.9), DVec3::new(-1.0, 0.0, 0.0));
+        // The bowl at height 1.9 has radius about 0.99; start off by 0.05.
+        let (s0, t0) = (0.6, 1.95);
+        let (_, _, r0) = revolve_residual(&cu, &cv, &ray, s0, t0);
+        assert!(r0 > 1e-3 && r0 < 1.0, "{r0}");
+        assert_eq!(polish_revolve(&cu, &cv, &ray, s0, t0, 0.5 * r0), (s0, t0, r0));
+        let (s, t, res) = polish_revolve(&cu, &cv, &ray, s0, t0, f64::INFINITY);
+        assert!(res < 1e-12 && res < r0, "{s} {t} {res}");
+        let (s1, t1, r1) = polish_revolve(&cu, &cv, &ray, s0, t0, r0);
+        assert_eq!((s1, t1, r1), (s, t, res), "a residual at the limit is polished");
     }
 
     /// The sextic of one line of sight, formed from an origin 10 units
