@@ -314,10 +314,7 @@ fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, ha
     match sign_changes(b, n, tiny) {
         Some(0) => {}
         Some(1) => {
-            // Start where the control polygon crosses 0: nearer the root
-            // than the chord's crossing when the curve bends.
-            let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
-            let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
+            let u = polygon_crossing(n, b);
             out.push(newton_in(p, n, x0, x1, b[0], x0 + u * (x1 - x0)), 1);
         }
         Some(_) if halvings > 0 => {
@@ -333,6 +330,15 @@ fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, ha
         }
         _ => derivative_roots(p, n, x0, x1, out),
     }
+}
+
+/// Where, in [0, 1] of its interval, the control polygon of the Bernstein
+/// coefficients `b[..=n]` first crosses 0: Newton's start for the one root
+/// of a count of one, nearer the root than the chord's crossing when the
+/// curve bends, and the root itself where p is linear.
+pub fn polygon_crossing(n: usize, b: &[f64; 7]) -> f64 {
+    let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
+    (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64
 }
 
 /// The Bernstein coefficients of the two halves of the interval of `b`
@@ -529,6 +535,21 @@ mod tests {
             early += (settled != exact) as usize;
         }
         assert!(early > 0, "a step of 1e-2 stops before rounding");
+    }
+
+    /// The control polygon of a line crosses 0 at its root; of a cubic,
+    /// inside the segment whose ends differ in sign.
+    #[test]
+    fn polygon_crossing_of_a_line_is_its_root() {
+        for root in [0.0625, 0.3, 0.5, 0.71, 0.96875] {
+            let b = bernstein_unit(3, &poly_from_roots(&[root], 2.0));
+            assert!((polygon_crossing(3, &b) - root).abs() < 1e-15, "{root}");
+        }
+        // 1, 1, −1, −1 crosses halfway between its second and third points.
+        let b = [1.0, 1.0, -1.0, -1.0, 0.0, 0.0, 0.0];
+        assert_eq!(polygon_crossing(3, &b), 0.5);
+        let b = [-2.0, 1.0, 3.0, 5.0, 0.0, 0.0, 0.0];
+        assert_eq!(polygon_crossing(3, &b), 2.0 / 9.0);
     }
 
     #[test]

@@ -47,7 +47,7 @@ pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::proc::robust::{bernstein, bernstein_unit_of, newton_until, real_roots};
+use crate::proc::robust::{bernstein, bernstein_unit_of, newton_until, polygon_crossing, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
 use crate::types::{
     BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
@@ -235,9 +235,7 @@ pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
 /// counting again; stopped after a Newton step of at most `settle`
 /// ([`newton_until`]; 0: at rounding).
 pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7], settle: f64) -> f64 {
-    let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
-    let u = (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64;
-    newton_until(a, n, 0.0, 1.0, b[0], u, settle)
+    newton_until(a, n, 0.0, 1.0, b[0], polygon_crossing(n, b), settle)
 }
 
 /// The step after which a side root is taken ([`one_crossing`]): the
@@ -538,5 +536,96 @@ mod tests {
             none > 2000 && one > 2000,
             "both answers are asked: {none} none, {one} one"
         );
+    }
+
+    /// `laguerre`'s roots are its own whatever the count says: where the
+    /// count is one, the robust solver takes the one-crossing root, and
+    /// `laguerre` still gives what it finds (the thesis's method, misses
+    /// and all).
+    #[test]
+    fn only_the_robust_solver_takes_the_one_crossing() {
+        let opts = |solver| Options {
+            solver,
+            ..Options::default()
+        };
+        let mut checked = 0;
+        for k in 0..2000u64 {
+            let r = |j: u64| hashed_uniform(8 * k + j);
+            let p = poly_from_roots(&[r(0), 1.5 + r(1), -0.5 - r(2)], 1.0 + r(3));
+            let b = bernstein_unit_of::<3>(&p);
+            if !matches!(unit_crossings(3, &b), Crossings::One) {
+                continue;
+            }
+            checked += 1;
+            let robust = solve(3, &p, &opts(Solver::Robust));
+            assert_eq!(robust.count, 1);
+            assert_eq!(robust.s[0], one_crossing(3, &p, &b, SIDE_SETTLE));
+            let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
+            let mut root = [Root::default(); LAGUERRE_ROOTS];
+            let total = laguerre(3, &p, hi, lo, &mut root, opts(Solver::Laguerre).fidelity);
+            let own: Vec<f64> = root[..total.min(6)].iter().map(|r| r.a).collect();
+            let lag = solve(3, &p, &opts(Solver::Laguerre));
+            assert_eq!(&lag.s[..lag.count], &own[..], "cubic {k}");
+        }
+        assert!(checked > 500, "{checked}");
+    }
+
+    /// A contour's orientation kept with its segments, or computed when it
+    /// is not (0), gives the same hits; `prepare_sweeps` keeps −1 for a
+    /// clockwise contour and +1 for a counter-clockwise one.
+    #[test]
+    fn kept_and_computed_orientation_give_the_same_hits() {
+        use crate::types::{Axis, CurveKind};
+        let ring: Vec<[f64; 2]> = (0..8)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 8.0;
+                let r = if i % 2 == 0 { 1.0 } else { 0.6 };
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        for (turn, want) in [(false, 1.0), (true, -1.0)] {
+            let mut points = ring.clone();
+            if turn {
+                points.reverse();
+            }
+            let sw = SweepShape {
+                orientt: Axis::Z,
+                curve: CurveKind::Bspline,
+                points,
+                segment: 0,
+                u: vec![],
+                v: vec![],
+                length: 1.0,
+                scale: 1.0,
+                bbox: BoundingBox::default(),
+                orientation: 0.0,
+            };
+            let mut sw = sw;
+            let sbox = prepare::fill_segments(PrimitiveClass::Translation, &mut sw);
+            sw.bbox = prepare::own_box(PrimitiveClass::Translation, &sw, &sbox);
+            let kept = &sw;
+            assert_eq!(kept.orientation, want);
+            let unknown = SweepShape {
+                orientation: 0.0,
+                ..kept.clone()
+            };
+            let mut hits = 0;
+            for k in 0..400u64 {
+                let r = |j: u64| 2.0 * hashed_uniform(8 * k + j) - 1.0;
+                let o = DVec3::new(3.0 * r(0), 3.0 * r(1), 0.5 + 2.0 * r(2));
+                let ray = Ray::new(o, (DVec3::new(0.8 * r(3), 0.8 * r(4), 0.5) - o).normalize());
+                for solver in [Solver::Laguerre, Solver::Robust] {
+                    let opts = Options {
+                        solver,
+                        ..Options::default()
+                    };
+                    let a = intersect_sweep(PrimitiveClass::Translation, kept, &ray, 1e-9, &opts);
+                    let b = intersect_sweep(PrimitiveClass::Translation, &unknown, &ray, 1e-9, &opts);
+                    assert_eq!(a, b, "ray {k}");
+                    hits += a.is_some() as usize;
+                }
+            }
+            assert!(hits > 200, "{hits}");
+        }
     }
 }
