@@ -156,18 +156,24 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     let real: Vec<f64> = (0..need.len())
         .map(|i| (lambda * need[i]).clamp(low[i], high[i]))
         .collect();
-    // The whole part of each count: a conversion, as no count is negative
-    // (`floor` is a library call on this target).
+    round_counts(&real, spent + extra, cap)
+}
+
+/// Whole counts from the `real` ones that add up to `total`: the whole
+/// part of each, and the rays that leaves to the largest fractions, ties
+/// to the first pixel; were the fractions not enough (they always are
+/// when λ was solved, which brings the sum within half a ray beyond the
+/// total), the pixels below `cap` without one follow in their order. The
+/// whole parts are conversions, as no count is negative (`floor` is a
+/// library call on this target).
+fn round_counts(real: &[f64], total: u64, cap: f64) -> Vec<u32> {
     let mut out: Vec<u32> = real.iter().map(|&r| r as u32).collect();
     let fraction = |i: usize| real[i] - out[i] as f64;
     let given: u64 = out.iter().map(|&n| n as u64).sum();
-    let left = (spent + extra).saturating_sub(given) as usize;
-    // The rays rounding leaves go to the largest fractions, ties to the
-    // first pixel; only which pixels are among the first `left` matters,
-    // not their order (a selection, not a sort). A pixel with a fraction
-    // is below its cap. The fractions are always enough, as λ brings the
-    // sum to within half a ray beyond the total; were they not, the
-    // pixels below the cap without one would follow in their order.
+    let left = total.saturating_sub(given) as usize;
+    // Only which pixels are among the first `left` matters, not their
+    // order: a selection, not a sort. A pixel with a fraction is below
+    // its cap.
     let mut order: Vec<usize> = (0..out.len()).filter(|&i| fraction(i) > 0.0).collect();
     if left < order.len() {
         if left > 0 {
@@ -721,6 +727,32 @@ mod tests {
         assert_eq!(need[0], top * 1e-3);
         assert_eq!(need[w * h - 1], top * 1e-3);
         assert!(needs(&sums_with(&[], w * h, 4), w).iter().all(|&n| n == 1.0));
+    }
+
+    /// The rounding gives the rays left to the largest fractions (not the
+    /// largest ratios, nor the first pixels), ties to the first, and when
+    /// the fractions are too few, to the whole counts below the cap in
+    /// their order, never past the cap.
+    #[test]
+    fn rounding_follows_the_fractions() {
+        let real = [4.3, 8.5, 2.0, 6.3, 16.0, 1.9, 3.0];
+        // Whole parts 40, fractions 0.3, 0.5, 0, 0.3, 0, 0.9, 0.
+        let want = |more: &[usize]| {
+            let mut w = vec![4, 8, 2, 6, 16, 1, 3];
+            for &i in more {
+                w[i] += 1;
+            }
+            w
+        };
+        assert_eq!(round_counts(&real, 40, 16.0), want(&[]));
+        assert_eq!(round_counts(&real, 41, 16.0), want(&[5]));
+        assert_eq!(round_counts(&real, 42, 16.0), want(&[5, 1]));
+        assert_eq!(round_counts(&real, 43, 16.0), want(&[5, 1, 0]));
+        assert_eq!(round_counts(&real, 44, 16.0), want(&[5, 1, 0, 3]));
+        // Past the fractions: the whole counts below the cap, in order.
+        assert_eq!(round_counts(&real, 45, 16.0), want(&[5, 1, 0, 3, 2]));
+        assert_eq!(round_counts(&real, 46, 16.0), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(&real, 50, 16.0), want(&[5, 1, 0, 3, 2, 6]));
     }
 
     /// λ makes the bounded counts add up to the total, by less than half a
