@@ -28,10 +28,11 @@
 //! counts after a whole pass, never on the order threads finish in: the
 //! image is the same for any number of threads.
 
-use rayon::prelude::*;
+mod sobol;
 
 use crate::drt::hashed_uniform;
 use crate::types::{Fidelity, Intensity, Options, TimeSampler};
+use sobol::{owen_scramble_reversed, sobol_reversed};
 
 /// A sample of a pixel: where in it (`u` across to the right, `v` down,
 /// both in [0, 1)) and when in the shutter (`tau` in [0, 1)).
@@ -54,8 +55,10 @@ pub const NEIGHBOUR: f64 = 0.5;
 
 /// Counts grow as the need to this power: a little less than Neyman's 1,
 /// as scrambled Sobol points converge faster than independent ones where
-/// a pixel is smooth (0.8 measured best of 0.65, 0.8, 1 and 1.25).
-pub const NEED_POWER: f64 = 0.8;
+/// a pixel is smooth (0.8 measured best of 0.65, 0.8, 1 and 1.25; 0.75,
+/// which two square roots compute, within ±0.003 of its error ratios on
+/// every deck of the goal). [`needs`] computes exactly w^¾.
+pub const NEED_POWER: f64 = 0.75;
 
 /// No pixel gets more than this many times the average budget.
 pub const CAP: u32 = 16;
@@ -141,69 +144,97 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64) -> Vec
     if sums.is_empty() || extra == 0 || width == 0 {
         return counts;
     }
-    let height = sums.len() / width;
-    // Each pixel's need on its own, so in parallel (the same numbers for
-    // any number of threads).
-    let spread: Vec<f64> = sums.par_iter().map(PixelSum::spread).collect();
-    // The largest spread of the 3×3 pixels around each: along the row,
-    // then of those along the column.
-    let across: Vec<f64> = (0..sums.len())
-        .into_par_iter()
-        .map(|i| {
-            let x = i % width;
-            let left = if x > 0 { spread[i - 1] } else { 0.0 };
-            let right = if x + 1 < width { spread[i + 1] } else { 0.0 };
-            spread[i].max(left).max(right)
-        })
-        .collect();
-    let need: Vec<f64> = (0..sums.len())
-        .into_par_iter()
-        .map(|i| {
-            let y = i / width;
-            let up = if y > 0 { across[i - width] } else { 0.0 };
-            let down = if y + 1 < height { across[i + width] } else { 0.0 };
-            let around = across[i].max(up).max(down);
-            spread[i].max(NEIGHBOUR * around).powf(NEED_POWER)
-        })
-        .collect();
-    // A floor on the need, so that pixels without spread can take rays
-    // when the others are at the cap (and share them evenly when no pixel
-    // shows any).
-    let top = need.iter().copied().fold(0.0f64, f64::max);
-    let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
-    let need: Vec<f64> = need.into_iter().map(|w| w.max(floor)).collect();
+    let need = needs(sums, width);
     let cap = budget.saturating_mul(CAP).max(1) as f64;
     let spent: u64 = counts.iter().map(|&n| n as u64).sum();
     let room: f64 = counts.iter().map(|&n| cap - (n as f64).min(cap)).sum();
     let total = (spent + extra) as f64;
     let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
     let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
-    let target = |lambda: f64, i: usize| (lambda * need[i]).clamp(low[i], high[i]);
-    let real: Vec<f64> = if room <= extra as f64 {
+    if room <= extra as f64 {
         // More rays than the caps hold: every pixel to its cap.
-        high.clone()
-    } else {
-        let lambda = solve_lambda(&need, &low, &high, total);
-        (0..need.len()).map(|i| target(lambda, i)).collect()
-    };
-    let mut out: Vec<u32> = real.iter().map(|&r| r.floor() as u32).collect();
-    let given: u64 = out.iter().map(|&n| n as u64).sum();
-    let left = (spent + extra).saturating_sub(given);
-    let mut order: Vec<usize> = (0..out.len()).filter(|&i| (out[i] as f64) < cap).collect();
-    let left = (left as usize).min(order.len());
-    if left > 0 && left < order.len() {
-        // Only which pixels are among the first `left` matters, not their
-        // order: a selection, not a sort.
-        order.select_nth_unstable_by(left - 1, |&a, &b| {
-            (real[b] - real[b].floor())
-                .total_cmp(&(real[a] - real[a].floor()))
-                .then(a.cmp(&b))
-        });
+        return high.iter().map(|&h| h as u32).collect();
     }
-    for &i in &order[..left] {
+    let lambda = solve_lambda(&need, &low, &high, total);
+    let real: Vec<f64> = (0..need.len())
+        .map(|i| (lambda * need[i]).clamp(low[i], high[i]))
+        .collect();
+    round_counts(&real, spent + extra, cap)
+}
+
+/// Whole counts from the `real` ones that add up to `total`: the whole
+/// part of each, and the rays that leaves to the largest fractions, ties
+/// to the first pixel; were the fractions not enough (they always are
+/// when λ was solved, which brings the sum within half a ray beyond the
+/// total), the pixels below `cap` without one follow in their order. The
+/// whole parts are conversions, as no count is negative (`floor` is a
+/// library call on this target).
+fn round_counts(real: &[f64], total: u64, cap: f64) -> Vec<u32> {
+    let mut out: Vec<u32> = real.iter().map(|&r| r as u32).collect();
+    let fraction = |i: usize| real[i] - out[i] as f64;
+    let given: u64 = out.iter().map(|&n| n as u64).sum();
+    let left = total.saturating_sub(given) as usize;
+    // Only which pixels are among the first `left` matters, not their
+    // order: a selection, not a sort. A pixel with a fraction is below
+    // its cap.
+    let mut order: Vec<usize> = (0..out.len()).filter(|&i| fraction(i) > 0.0).collect();
+    if left < order.len() {
+        if left > 0 {
+            order.select_nth_unstable_by(left - 1, |&a, &b| fraction(b).total_cmp(&fraction(a)).then(a.cmp(&b)));
+        }
+        order.truncate(left);
+    } else {
+        let rest = left - order.len();
+        order.extend(
+            (0..out.len())
+                .filter(|&i| fraction(i) == 0.0 && (out[i] as f64) < cap)
+                .take(rest),
+        );
+    }
+    for i in order {
         out[i] += 1;
     }
     out
+}
+
+/// Each pixel's need w of [`allocate`]: its spread σ, or [`NEIGHBOUR`]
+/// times the largest spread of the 3×3 pixels around it if that is more,
+/// to the power [`NEED_POWER`]; at least a thousandth of the largest
+/// need, so that pixels without spread can take rays when the others are
+/// at the cap (and share them evenly when no pixel shows any). One loop
+/// on one thread: a few operations a pixel, where the parallel version's
+/// bookkeeping cost more than the work.
+fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
+    let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+    // The largest spread of the 3 pixels of the row around each, row by
+    // row (no division by the width a pixel).
+    let mut across = vec![0.0; sums.len()];
+    for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+        for x in 0..width {
+            let left = if x > 0 { row[x - 1] } else { 0.0 };
+            let right = if x + 1 < width { row[x + 1] } else { 0.0 };
+            out[x] = row[x].max(left).max(right);
+        }
+    }
+    let height = sums.len() / width;
+    let mut need = vec![0.0; sums.len()];
+    for y in 0..height {
+        for x in 0..width {
+            let i = y * width + x;
+            let up = if y > 0 { across[i - width] } else { 0.0 };
+            let down = if y + 1 < height { across[i + width] } else { 0.0 };
+            let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
+            // w^¾ ([`NEED_POWER`]) in two square roots, an instruction
+            // each, where `powf` took a quarter of the allocation's time.
+            need[i] = (w * w.sqrt()).sqrt();
+        }
+    }
+    let top = need.iter().copied().fold(0.0f64, f64::max);
+    let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
+    for w in &mut need {
+        *w = w.max(floor);
+    }
+    need
 }
 
 /// The λ of [`allocate`]: Σ clamp(λ·need, low, high) reaches `total`, by
@@ -305,6 +336,34 @@ pub struct PixelSamples {
 /// a row, and still few instants a pass).
 pub const SHIFT_BLOCK: u32 = 16;
 
+/// The pixels of a row with samples due in a pass, block by block of
+/// [`SHIFT_BLOCK`] instants: for each block that has any (in increasing
+/// order), its number and the pixels (in increasing order) whose samples
+/// `start[x]..counts[x]` reach it. A pixel's sample j = k ⊕ c at instant
+/// k lies in k's block, so an instant need only visit its block's pixels,
+/// not the whole row (visiting all was 6 % of an adaptive render).
+pub fn blocks_due(start: &[u32], counts: &[u32]) -> Vec<(u32, Vec<usize>)> {
+    let block = SHIFT_BLOCK;
+    let span = |x: usize| (start[x] / block, counts[x].div_ceil(block));
+    let due = |x: usize| counts[x] > start[x];
+    let Some(first) = (0..start.len()).filter(|&x| due(x)).map(|x| span(x).0).min() else {
+        return Vec::new();
+    };
+    let last = (0..start.len())
+        .filter(|&x| due(x))
+        .map(|x| span(x).1)
+        .max()
+        .unwrap_or(first);
+    let mut lists = vec![Vec::new(); (last - first) as usize];
+    for x in (0..start.len()).filter(|&x| due(x)) {
+        let (a, b) = span(x);
+        for list in &mut lists[(a - first) as usize..(b - first) as usize] {
+            list.push(x);
+        }
+    }
+    (first..last).zip(lists).filter(|(_, l)| !l.is_empty()).collect()
+}
+
 /// The scramble of dimension `d` for key `key`.
 fn seed(key: u64, d: u64) -> u32 {
     (hashed_uniform((key << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32
@@ -344,7 +403,7 @@ impl PixelSamples {
     }
 
     fn at(&self, j: u32, d: usize) -> f64 {
-        owen_scramble(sobol(j, d), self.seeds[d]) as f64 / 4_294_967_296.0
+        owen_scramble_reversed(sobol_reversed(j, d), self.seeds[d]) as f64 / 4_294_967_296.0
     }
 }
 
@@ -354,126 +413,10 @@ pub fn sample(pixel: usize, width: usize, j: u32) -> Sample {
     PixelSamples::new(pixel, width).sample(j)
 }
 
-/// The Sobol sequence's direction numbers, 32 bits, of dimensions 0–2:
-/// dimension 0 is the van der Corput sequence; dimensions 1 and 2 come
-/// from the primitive polynomials x + 1 and x² + x + 1 with initial
-/// numbers m = (1) and (1, 3) (Joe & Kuo 2008's first two rows).
-const DIRECTIONS: [[u32; 32]; 3] = [van_der_corput(), directions(1, 0, [1, 0]), directions(2, 1, [1, 3])];
-
-const fn van_der_corput() -> [u32; 32] {
-    let mut v = [0u32; 32];
-    let mut k = 0;
-    while k < 32 {
-        v[k] = 1 << (31 - k);
-        k += 1;
-    }
-    v
-}
-
-/// Direction numbers of the polynomial of degree `s` whose inner
-/// coefficients are the bits of `a` (highest first), initial numbers `m`:
-/// v_k = a_1 v_{k−1} ⊕ … ⊕ a_{s−1} v_{k−s+1} ⊕ v_{k−s} ⊕ (v_{k−s} ≫ s).
-const fn directions(s: usize, a: u32, m: [u32; 2]) -> [u32; 32] {
-    let mut v = [0u32; 32];
-    let mut k = 0;
-    while k < 32 {
-        if k < s {
-            v[k] = m[k] << (31 - k);
-        } else {
-            let mut x = v[k - s] ^ (v[k - s] >> s);
-            let mut i = 1;
-            while i < s {
-                if (a >> (s - 1 - i)) & 1 == 1 {
-                    x ^= v[k - i];
-                }
-                i += 1;
-            }
-            v[k] = x;
-        }
-        k += 1;
-    }
-    v
-}
-
-/// Point `j` of Sobol dimension `d`, as 32 bits of [0, 1).
-fn sobol(j: u32, d: usize) -> u32 {
-    let mut x = 0;
-    let mut i = j;
-    let mut k = 0;
-    while i != 0 {
-        if i & 1 == 1 {
-            x ^= DIRECTIONS[d][k];
-        }
-        i >>= 1;
-        k += 1;
-    }
-    x
-}
-
-/// A nested uniform (Owen) scramble of 32 bits by `seed`, after Burley
-/// 2020: on the bits reversed, a hash in which each bit depends only on
-/// the bits below it (adds and products by even numbers carry upward
-/// only), so each digit of the point is flipped by a function of the
-/// digits above it, as Owen's scramble does.
-fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v = v.wrapping_add(seed);
-    v ^= v.wrapping_mul(0x6c50_b47c);
-    v ^= v.wrapping_mul(0xb82f_1e52);
-    v ^= v.wrapping_mul(0xc7af_e638);
-    v ^= v.wrapping_mul(0x8d22_f6e6);
-    v.reverse_bits()
-}
-
 #[cfg(test)]
 mod tests {
+    use super::sobol::sobol;
     use super::*;
-
-    /// How many of the first 2^k points of the dimensions `dims` fall in
-    /// each elementary box with `bits[i]` binary digits along dims[i].
-    fn box_counts(dims: &[usize], bits: &[u32], k: u32) -> Vec<u32> {
-        let total: u32 = bits.iter().sum();
-        let mut counts = vec![0u32; 1 << total];
-        for j in 0..1u32 << k {
-            let mut cell = 0usize;
-            for (&d, &b) in dims.iter().zip(bits) {
-                let digits = if b == 0 { 0 } else { (sobol(j, d) >> (32 - b)) as usize };
-                cell = (cell << b) | digits;
-            }
-            counts[cell] += 1;
-        }
-        counts
-    }
-
-    /// The first 2^k points of the place in the pixel (dimensions 0 and 1)
-    /// are a (0, k, 2)-net in base 2: each elementary box of area 2^−k holds
-    /// exactly one. Each dimension alone, the time too, holds one point in
-    /// each of 2^k strata, and the three together are a (1, k, 3)-net: each
-    /// box of volume 2^(1−k) holds exactly two. So every prefix of a
-    /// pixel's samples is spread in space, in time and in both.
-    #[test]
-    fn sobol_points_are_nets() {
-        for k in 1..=10u32 {
-            for split in 0..=k {
-                assert!(
-                    box_counts(&[0, 1], &[split, k - split], k).iter().all(|&c| c == 1),
-                    "k {k} split {split}"
-                );
-            }
-            for d in 0..3 {
-                assert!(box_counts(&[d], &[k], k).iter().all(|&c| c == 1), "dim {d}, k {k}");
-            }
-            for a in 0..k {
-                for b in 0..k - a {
-                    let bits = [a, b, k - 1 - a - b];
-                    assert!(
-                        box_counts(&[0, 1, 2], &bits, k).iter().all(|&c| c == 2),
-                        "k {k} bits {bits:?}"
-                    );
-                }
-            }
-        }
-    }
 
     /// The scramble keeps the nets (it permutes elementary intervals
     /// within their parents) and changes the points.
@@ -513,6 +456,35 @@ mod tests {
         assert!((1..100).any(|x| first(x) != first(0)));
         assert_ne!(sample(0, 100, 1).tau, sample(100, 100, 1).tau);
         assert_ne!(sample(0, 100, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
+    }
+
+    /// Visiting each block's pixels visits every due sample of a row once,
+    /// in the order of the scan of every instant and pixel it replaces.
+    #[test]
+    fn blocks_due_visit_every_sample_in_scan_order() {
+        let w = 37;
+        let samples: Vec<PixelSamples> = (0..w).map(|x| PixelSamples::new(x, w)).collect();
+        let start: Vec<u32> = (0..w).map(|x| [0, 2, 5, 16, 17, 40][x % 6]).collect();
+        let counts: Vec<u32> = (0..w)
+            .map(|x| start[x] + [0, 1, 3, 14, 15, 16, 31, 70][x % 8])
+            .collect();
+        let due = |k: u32, x: usize| {
+            let j = samples[x].at_instant(k);
+            (j >= start[x] && j < counts[x]).then_some((x, j))
+        };
+        let end = counts.iter().max().copied().unwrap_or(0).div_ceil(SHIFT_BLOCK) * SHIFT_BLOCK;
+        let scan: Vec<(usize, u32)> = (0..end).flat_map(|k| (0..w).filter_map(move |x| due(k, x))).collect();
+        let mut by_block = Vec::new();
+        for (b, pixels) in blocks_due(&start, &counts) {
+            assert!(!pixels.is_empty() && pixels.windows(2).all(|p| p[0] < p[1]));
+            for k in b * SHIFT_BLOCK..(b + 1) * SHIFT_BLOCK {
+                by_block.extend(pixels.iter().filter_map(|&x| due(k, x)));
+            }
+        }
+        assert_eq!(by_block, scan);
+        let total: u32 = (0..w).map(|x| counts[x] - start[x]).sum();
+        assert_eq!(scan.len() as u32, total);
+        assert!(blocks_due(&[3, 3], &[3, 2]).is_empty());
     }
 
     /// Every prefix length, pixel and channel: mean and spread as a
@@ -560,15 +532,63 @@ mod tests {
         let far = out[7 * w + 7];
         assert!(noisy > beside && beside > far, "{noisy} {beside} {far}");
         assert_eq!(far, 4);
-        // Twice the spread, about twice the rays (Neyman).
+        // Twice the spread, 2^NEED_POWER times the rays (Neyman's 2,
+        // tempered).
         let sums = sums_with(&[(0, 0.4), (63, 0.2)], w * h, 4);
         let out = allocate(&sums, w, 16, 100);
         assert!(
-            (out[0] as f64 / out[63] as f64 - 2.0).abs() < 0.2,
+            (out[0] as f64 / out[63] as f64 - 2f64.powf(NEED_POWER)).abs() < 0.1,
             "{} {}",
             out[0],
             out[63]
         );
+    }
+
+    /// The need is the spread, or the neighbour's share of the largest
+    /// spread around, to the power [`NEED_POWER`], with its floor.
+    #[test]
+    fn needs_are_spreads_to_the_power() {
+        let (w, h) = (5, 4);
+        let sums = sums_with(&[(2 * w + 2, 0.3)], w * h, 4);
+        let sigma = sums[2 * w + 2].spread();
+        let need = needs(&sums, w);
+        let top = sigma.powf(NEED_POWER);
+        assert!((need[2 * w + 2] - top).abs() < 1e-12);
+        for i in [w + 1, w + 3, 3 * w + 2, 2 * w + 1] {
+            assert!(
+                (need[i] - (NEIGHBOUR * sigma).powf(NEED_POWER)).abs() < 1e-12,
+                "pixel {i}"
+            );
+        }
+        assert_eq!(need[0], top * 1e-3);
+        assert_eq!(need[w * h - 1], top * 1e-3);
+        assert!(needs(&sums_with(&[], w * h, 4), w).iter().all(|&n| n == 1.0));
+    }
+
+    /// The rounding gives the rays left to the largest fractions (not the
+    /// largest ratios, nor the first pixels), ties to the first, and when
+    /// the fractions are too few, to the whole counts below the cap in
+    /// their order, never past the cap.
+    #[test]
+    fn rounding_follows_the_fractions() {
+        let real = [4.3, 8.5, 2.0, 6.3, 16.0, 1.9, 3.0];
+        // Whole parts 40, fractions 0.3, 0.5, 0, 0.3, 0, 0.9, 0.
+        let want = |more: &[usize]| {
+            let mut w = vec![4, 8, 2, 6, 16, 1, 3];
+            for &i in more {
+                w[i] += 1;
+            }
+            w
+        };
+        assert_eq!(round_counts(&real, 40, 16.0), want(&[]));
+        assert_eq!(round_counts(&real, 41, 16.0), want(&[5]));
+        assert_eq!(round_counts(&real, 42, 16.0), want(&[5, 1]));
+        assert_eq!(round_counts(&real, 43, 16.0), want(&[5, 1, 0]));
+        assert_eq!(round_counts(&real, 44, 16.0), want(&[5, 1, 0, 3]));
+        // Past the fractions: the whole counts below the cap, in order.
+        assert_eq!(round_counts(&real, 45, 16.0), want(&[5, 1, 0, 3, 2]));
+        assert_eq!(round_counts(&real, 46, 16.0), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(&real, 50, 16.0), want(&[5, 1, 0, 3, 2, 6]));
     }
 
     /// λ makes the bounded counts add up to the total, by less than half a
@@ -600,7 +620,7 @@ mod tests {
         assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), 200 + 1000);
     }
 
-    /// The passes deal out exactly the budget; the first pass is a quarter
+    /// The passes deal out exactly the budget; the first pass is an eighth
     /// of it within 2..=8.
     #[test]
     fn passes_spend_the_budget() {

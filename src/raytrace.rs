@@ -575,25 +575,25 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                 // each, every pixel whose sample k ⊕ c is due, with the
                 // scene posed once (`PixelSamples`).
                 let block = adaptive::SHIFT_BLOCK;
-                let from = start.iter().copied().min().unwrap_or(0) / block * block;
-                let to = counts.iter().copied().max().unwrap_or(0).div_ceil(block) * block;
-                for k in from..to {
-                    let mut posed = false;
-                    for x in 0..w {
-                        let j = samples[x].at_instant(k);
-                        if j < start[x] || j >= counts[x] {
-                            continue;
+                for (b, pixels) in adaptive::blocks_due(&start, counts) {
+                    for k in b * block..(b + 1) * block {
+                        let mut posed = false;
+                        for &x in &pixels {
+                            let j = samples[x].at_instant(k);
+                            if j < start[x] || j >= counts[x] {
+                                continue;
+                            }
+                            if shared.timed && !posed {
+                                tracer.at(shared, samples[x].tau(j));
+                                posed = true;
+                            }
+                            let (u, v) = samples[x].place(j);
+                            // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
+                            let scancol = (x as f64 + u) * m + 0.5;
+                            let scanline = (row as f64 + v) * m + 0.5;
+                            let aray = camera.ray(scancol, scanline, 0.0, 0.0);
+                            sums[x].add(tracer.shoot(shared, &aray));
                         }
-                        if shared.timed && !posed {
-                            tracer.at(shared, samples[x].tau(j));
-                            posed = true;
-                        }
-                        let (u, v) = samples[x].place(j);
-                        // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
-                        let scancol = (x as f64 + u) * m + 0.5;
-                        let scanline = (row as f64 + v) * m + 0.5;
-                        let aray = camera.ray(scancol, scanline, 0.0, 0.0);
-                        sums[x].add(tracer.shoot(shared, &aray));
                     }
                 }
                 if last {
