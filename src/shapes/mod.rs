@@ -41,13 +41,17 @@ impl Near {
     /// point of the object is within `radius` plus the ray's offset.
     pub fn of(ray: &Ray, tmin: f64, centre: DVec3, radius2: f64) -> Near {
         let oc = ray.origin - centre;
+        let unchanged = Near {
+            ray: *ray,
+            tmin,
+            shift: 0.0,
+        };
+        if oc.length_squared() <= radius2 {
+            return unchanged;
+        }
         let shift = -oc.dot(ray.dir) / ray.dir.length_squared();
-        if oc.length_squared() <= radius2 || !(shift > 0.0 && shift.is_finite()) {
-            return Near {
-                ray: *ray,
-                tmin,
-                shift: 0.0,
-            };
+        if !(shift > 0.0 && shift.is_finite()) {
+            return unchanged;
         }
         Near {
             ray: Ray::new(ray.at(shift), ray.dir),

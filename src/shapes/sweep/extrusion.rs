@@ -135,6 +135,10 @@ pub(super) fn extrusion(
     // sides lie between the caps' planes), so when it is hit it is the
     // nearest hit but for a side at the rim, and the sides beyond it are
     // skipped. Whatever the order, the hit kept is the least (t, segment).
+    // The box holds the contour (at z = 0, where a conic's is unscaled).
+    let b = &sw.bbox;
+    let boxed = b.xmin < b.xmax && b.ymin < b.ymax;
+    let pad = 1e-9 * size;
     let cap = |zc: f64, nz: f64, best: &mut Option<Best>| -> bool {
         let k = 1.0 + kappa * zc;
         if k == 0.0 {
@@ -145,7 +149,13 @@ pub(super) fn extrusion(
             return false;
         }
         let p = o + d * t;
-        if !point_in_contour(u, v, p.x / k, p.y / k) {
+        let (x, y) = (p.x / k, p.y / k);
+        // Outside the contour's box the contour test answers no (every
+        // segment is skipped, or crossed an even number of times): asked
+        // only inside it.
+        if (boxed && (x < b.xmin - pad || x > b.xmax + pad || y < b.ymin - pad || y > b.ymax + pad))
+            || !point_in_contour(u, v, x, y)
+        {
             return false;
         }
         *best = Some(Best {
