@@ -215,13 +215,7 @@ pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit>
         (d.z, h.z - o.z),
         (-d.z, h.z + o.z),
     ];
-    let mut c = Clip::new();
-    for (i, &(denom, dist)) in planes.iter().enumerate() {
-        if !c.plane(i, denom, dist) {
-            return None;
-        }
-    }
-    let (t, i) = c.hit(tmin)?;
+    let (t, i) = clip(tmin, planes.into_iter())?;
     near.back(Some(LocalHit {
         t,
         point: ray.at(t),

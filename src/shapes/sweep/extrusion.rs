@@ -136,8 +136,8 @@ pub(super) fn extrusion(
     // nearest hit but for a side at the rim, and the sides beyond it are
     // skipped. Whatever the order, the hit kept is the least (t, segment).
     // The box holds the contour (at z = 0, where a conic's is unscaled).
-    let b = &sw.bbox;
-    let boxed = b.xmin < b.xmax && b.ymin < b.ymax;
+    let cbox = &sw.bbox;
+    let boxed = cbox.xmin < cbox.xmax && cbox.ymin < cbox.ymax;
     let pad = 1e-9 * size;
     let cap = |zc: f64, nz: f64, best: &mut Option<Best>| -> bool {
         let k = 1.0 + kappa * zc;
@@ -153,7 +153,7 @@ pub(super) fn extrusion(
         // Outside the contour's box the contour test answers no (every
         // segment is skipped, or crossed an even number of times): asked
         // only inside it.
-        if (boxed && (x < b.xmin - pad || x > b.xmax + pad || y < b.ymin - pad || y > b.ymax + pad))
+        if (boxed && (x < cbox.xmin - pad || x > cbox.xmax + pad || y < cbox.ymin - pad || y > cbox.ymax + pad))
             || !point_in_contour(u, v, x, y)
         {
             return false;

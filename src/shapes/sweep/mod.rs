@@ -571,8 +571,9 @@ mod tests {
     }
 
     /// A contour's orientation kept with its segments, or computed when it
-    /// is not (0), gives the same hits; `prepare_sweeps` keeps −1 for a
-    /// clockwise contour and +1 for a counter-clockwise one.
+    /// is not (0), gives the same hits; the filling of `prepare_sweeps`
+    /// (`fill_segments`) keeps −1 for a clockwise contour and +1 for a
+    /// counter-clockwise one.
     #[test]
     fn kept_and_computed_orientation_give_the_same_hits() {
         use crate::types::{Axis, CurveKind};
@@ -588,7 +589,7 @@ mod tests {
             if turn {
                 points.reverse();
             }
-            let sw = SweepShape {
+            let mut sw = SweepShape {
                 orientt: Axis::Z,
                 curve: CurveKind::Bspline,
                 points,
@@ -600,7 +601,6 @@ mod tests {
                 bbox: BoundingBox::default(),
                 orientation: 0.0,
             };
-            let mut sw = sw;
             let sbox = prepare::fill_segments(PrimitiveClass::Translation, &mut sw);
             sw.bbox = prepare::own_box(PrimitiveClass::Translation, &sw, &sbox);
             let kept = &sw;
