@@ -372,6 +372,27 @@ fn do34_and_hermite_agree_at_the_ends_in_thesis_fidelity() {
     }
 }
 
+/// `Hermite` and `do34` keep the in-between contour's orientation with its
+/// segments (DEVIATIONS D31): the sign of its signed area, whatever the
+/// scratch record held before.
+#[test]
+fn hermite_and_do34_keep_the_contours_orientation() {
+    for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+        for (name, pair) in end_pairs(fidelity) {
+            for t in [0.0, 0.3, 1.0] {
+                let (mut a, mut b) = (pair.scratch(), pair.scratch());
+                (a.orientation, b.orientation) = (0.0, 0.0);
+                Hermite(&pair, t, &mut a);
+                do34(t, &pair, &mut b);
+                for (who, c) in [("Hermite", &a), ("do34", &b)] {
+                    let want = raytrace::shapes::sweep::orientation(&c.u, &c.v);
+                    assert_eq!(c.orientation, want, "{name} {fidelity:?} {who}({t})");
+                }
+            }
+        }
+    }
+}
+
 /// Erratum 18: the listing's patches reproduce the key shapes only where
 /// no segment was cut and the contour has no corner.
 #[test]
