@@ -3,7 +3,7 @@
 
 use super::contour::{orientation_of, point_in_contour, tangent};
 use super::{asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, SweepShape};
+use crate::types::{Coeff, DVec3, Fidelity, LocalHit, Options, Ray, SweepShape};
 
 /// The "segment" of a cap hit: after every side segment, so a side hit at
 /// the same t stays the nearest, as when the caps were tried last.
@@ -111,13 +111,38 @@ pub(super) fn extrusion(
     let t_pad = 1e-6 * size / dxy2.sqrt();
     // A bound needs no exact quotient (its slack is t_pad): a product.
     let per_dxy2 = 1.0 / dxy2;
+    // The t where a side hit may lie: beyond tmin, and where the ray's z is
+    // within the sides' (the hits keep 10⁻¹² of the size beyond the caps;
+    // a thousand times that here, far above rounding).
+    let slab = {
+        let zpad = 1e-9 * size;
+        let (za, zb) = if d.z == 0.0 {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            let (a, b) = ((-zpad - o.z) / d.z, (len + zpad - o.z) / d.z);
+            (a.min(b), a.max(b))
+        };
+        (za.max(tmin), zb)
+    };
+    // Thesis: each segment's box is its extrema, so it bounds the hits'
+    // t. Listing (erratum 9): an in-between segment's box is the first
+    // key's widened by 2, which the segment can leave, so it only orders
+    // the segments, as before.
+    let boxes_hold = opts.fidelity == Fidelity::Thesis;
     let mut candidates = Candidates::new();
+    let gpad = 1e-12 * fscale;
+    // The box's corners where α X + β Y is least and most: rounding keeps
+    // a product's order, so α·min ≤ α·max when α > 0 (the lesser of the
+    // two products, as a `min` of both would pick), and the choice is the
+    // ray's, made once instead of per segment.
+    let (a_pos, b_pos) = (alpha > 0.0, beta > 0.0);
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         // The segment's box against the line α X + β Y + γ = 0.
-        let gmin = gamma + (alpha * cu.min).min(alpha * cu.max) + (beta * cv.min).min(beta * cv.max);
-        let gmax = gamma + (alpha * cu.min).max(alpha * cu.max) + (beta * cv.min).max(beta * cv.max);
-        let gpad = 1e-12 * fscale;
+        let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
+        let (y_lo, y_hi) = if b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
+        let gmin = gamma + alpha * x_lo + beta * y_lo;
+        let gmax = gamma + alpha * x_hi + beta * y_hi;
         if gmin > gpad || gmax < -gpad {
             continue;
         }
@@ -126,7 +151,17 @@ pub(super) fn extrusion(
         } else {
             let x = if d.x > 0.0 { cu.min } else { cu.max };
             let y = if d.y > 0.0 { cv.min } else { cv.max };
-            ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad
+            let t_lo = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad;
+            // The box's far corner bounds the hits' t from above: a segment
+            // whose hits all lie at or before tmin, or outside the span of
+            // t where the ray is between the caps, has none to keep (D32).
+            let x = if d.x > 0.0 { cu.max } else { cu.min };
+            let y = if d.y > 0.0 { cv.max } else { cv.min };
+            let t_hi = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 + t_pad;
+            if boxes_hold && (t_hi < slab.0 || t_lo > slab.1) {
+                continue;
+            }
+            t_lo
         };
         candidates.push(t_lo, i);
     }
