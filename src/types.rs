@@ -292,6 +292,12 @@ pub struct SweepShape {
     /// the contour per ray (the port's; the thesis keeps no such field).
     /// 0 where not known: computed from `u` and `v` when needed.
     pub orientation: f64,
+    /// The cells of the contour's box that lie wholly inside or outside it
+    /// ([`CapGrid`](crate::shapes::sweep::CapGrid)), made with `u` and `v`
+    /// for a contour that keeps its shape, so a cap test there takes no
+    /// root (the port's; DEVIATIONS D32). `None` where not made (the
+    /// in-between contours of key frames): every cap test is solved.
+    pub cap_grid: Option<std::sync::Arc<crate::shapes::sweep::CapGrid>>,
 }
 
 /// The variant part of `objectrecord`, in local coordinates (the local

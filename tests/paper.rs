@@ -53,6 +53,7 @@ fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
         scale: 1.0,
         bbox,
         orientation: 0.0,
+        cap_grid: None,
     }
 }
 

@@ -507,6 +507,7 @@ impl Builder<'_> {
             scale,
             bbox: Default::default(),
             orientation: 0.0,
+            cap_grid: None,
         });
         self.push_object(
             pos,

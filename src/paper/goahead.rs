@@ -505,6 +505,7 @@ mod tests {
             scale: 1.0,
             bbox: BoundingBox::default(),
             orientation: 0.0,
+            cap_grid: None,
         }
     }
 

@@ -211,6 +211,7 @@ pub fn Hermite(int: &PaperPair, t: f64, obj: &mut SweepShape) {
         Fidelity::Thesis => segments_box(int, obj),
     };
     obj.orientation = orientation(&obj.u, &obj.v);
+    obj.cap_grid = None; // a contour of the moment: its caps are solved
 }
 
 /// `initM` (unit `paper`, §2.4.1, OCR lines 2689–2743): "initialize the
@@ -351,6 +352,7 @@ pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
         Fidelity::Thesis => segments_box(int, obj),
     };
     obj.orientation = orientation(&obj.u, &obj.v);
+    obj.cap_grid = None; // a contour of the moment: its caps are solved
 }
 
 /// The in-between contour of pair `int` at `time`, as the `paper = 1`
@@ -435,6 +437,7 @@ mod tests {
             scale: 1.0,
             bbox: Default::default(),
             orientation: 0.0,
+            cap_grid: None,
         };
         let obj = ObjectRecord {
             name: "x".into(),

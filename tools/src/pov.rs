@@ -292,6 +292,7 @@ mod tests {
             scale: 0.5,
             bbox: BoundingBox::default(),
             orientation: 0.0,
+            cap_grid: None,
         }
     }
 

@@ -59,6 +59,17 @@ pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
     }
 }
 
+/// [`point_in_contour`] of the segments `u`, `v` the driver takes from
+/// `sw`: answered by the grid made with them ([`SweepShape::cap_grid`])
+/// where it knows and they are all of its segments, else solved.
+pub(super) fn inside_contour(sw: &SweepShape, u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
+    let whole = u.len() == sw.u.len() && v.len() == sw.v.len();
+    match sw.cap_grid.as_ref().filter(|_| whole).and_then(|g| g.answer(x, y)) {
+        Some(inside) => inside,
+        None => point_in_contour(u, v, x, y),
+    }
+}
+
 /// Is (x, y) inside the contour? Even–odd rule along the ray from (x, y)
 /// toward +U: the sign of V(s) − y is followed round the whole contour
 /// (at each joint, at the roots of V(s) = y inside each segment, and
@@ -155,6 +166,7 @@ mod tests {
             scale: 1.0,
             bbox: BoundingBox::default(),
             orientation: 0.0,
+            cap_grid: None,
         };
         let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
         sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);

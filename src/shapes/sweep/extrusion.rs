@@ -1,7 +1,7 @@
 //! Translation and conic sweeps: one cubic a segment from the ray's
 //! central projection into the contour's plane, and the end caps.
 
-use super::contour::{orientation_of, point_in_contour, tangent};
+use super::contour::{inside_contour, orientation_of, tangent};
 use super::{asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL};
 use crate::types::{Coeff, DVec3, Fidelity, LocalHit, Options, Ray, SweepShape};
 
@@ -86,7 +86,7 @@ pub(super) fn extrusion(
         }
         let t0 = -o.z / d.z;
         let (px, py) = (o.x + t0 * d.x, o.y + t0 * d.y);
-        let inside = point_in_contour(u, v, px, py);
+        let inside = inside_contour(sw, u, v, px, py);
         let mut best: Option<Best> = None;
         for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
             let t = (zc - o.z) / d.z;
@@ -189,7 +189,7 @@ pub(super) fn extrusion(
         // segment is skipped, or crossed an even number of times): asked
         // only inside it.
         if (boxed && (x < cbox.xmin - pad || x > cbox.xmax + pad || y < cbox.ymin - pad || y > cbox.ymax + pad))
-            || !point_in_contour(u, v, x, y)
+            || !inside_contour(sw, u, v, x, y)
         {
             return false;
         }

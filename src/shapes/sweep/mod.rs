@@ -38,11 +38,13 @@
 //! `contour` the contour's own geometry (the cap test, orientation,
 //! tangents); `prepare` the coefficients and boxes from the control points.
 
+mod cap_grid;
 mod contour;
 mod extrusion;
 mod prepare;
 mod revolve;
 
+pub use cap_grid::CapGrid;
 pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
@@ -600,6 +602,7 @@ mod tests {
                 scale: 1.0,
                 bbox: BoundingBox::default(),
                 orientation: 0.0,
+                cap_grid: None,
             };
             let sbox = prepare::fill_segments(PrimitiveClass::Translation, &mut sw);
             sw.bbox = prepare::own_box(PrimitiveClass::Translation, &sw, &sbox);
@@ -607,6 +610,7 @@ mod tests {
             assert_eq!(kept.orientation, want);
             let unknown = SweepShape {
                 orientation: 0.0,
+                cap_grid: None,
                 ..kept.clone()
             };
             let mut hits = 0;

@@ -1,6 +1,7 @@
 //! The coefficients and boxes of the sweep objects, from their control
 //! points (`spline`), before any ray.
 
+use super::cap_grid::CapGrid;
 use super::contour::orientation;
 use crate::proc::sweep::spline;
 use crate::types::{
@@ -47,6 +48,7 @@ pub(super) fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> Bound
         sw.v.push(cv);
     }
     sw.orientation = orientation(&sw.u, &sw.v);
+    sw.cap_grid = CapGrid::new(&sw.u, &sw.v).map(std::sync::Arc::new);
     sbox
 }
 

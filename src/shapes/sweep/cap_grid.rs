@@ -1,0 +1,189 @@
+//! The cap test's answer where no segment passes: a grid over the
+//! contour's box whose cells the contour does not enter are marked inside
+//! or outside once, when the contour is made, so that a ray reaching a cap
+//! there needs no root (the port's; the thesis prints no cap test,
+//! DEVIATIONS D32).
+//!
+//! A cell the contour does not enter lies wholly on one side of it, so the
+//! answer at its centre, from [`point_in_contour`], is the answer at every
+//! point of it. Which cells the contour enters is found from the segments'
+//! Bézier control polygons, which hold their curves on [0, 1] (the convex
+//! hull property), halved (de Casteljau) until a piece's box is about a
+//! cell, and padded: a cell counts as entered when a padded piece's box
+//! overlaps it, so a point in a cell left clean is farther from the curve
+//! than the pad, far beyond the rounding of the cell's index.
+
+use super::contour::point_in_contour;
+use crate::types::Coeff;
+
+/// Cells along each side of the grid.
+const CELLS: usize = 64;
+
+/// Halvings of a segment at most (a piece of a segment is 2⁻¹⁶ of it).
+const MAX_DEPTH: u32 = 16;
+
+/// What a cell of the grid knows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cell {
+    /// The contour may enter it: ask [`point_in_contour`].
+    Near,
+    Inside,
+    Outside,
+}
+
+/// See the module doc. Built by [`CapGrid::new`] from the contour's
+/// segments; answers [`CapGrid::answer`].
+#[derive(Clone, PartialEq)]
+pub struct CapGrid {
+    x0: f64,
+    y0: f64,
+    /// Cells per unit of U and of V.
+    per_x: f64,
+    per_y: f64,
+    cells: Vec<Cell>,
+}
+
+/// A summary: the cells are too many to print with every scene.
+impl std::fmt::Debug for CapGrid {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let count = |c: Cell| self.cells.iter().filter(|&&k| k == c).count();
+        write!(
+            f,
+            "CapGrid {{ {CELLS}×{CELLS} from ({}, {}): {} near, {} inside, {} outside }}",
+            self.x0,
+            self.y0,
+            count(Cell::Near),
+            count(Cell::Inside),
+            count(Cell::Outside)
+        )
+    }
+}
+
+/// The Bézier control points of segment (u, v) on [0, 1], from its
+/// power coefficients: d, d + c/3, d + (2c + b)/3, d + c + b + a.
+fn control_points(u: &Coeff, v: &Coeff) -> [[f64; 2]; 4] {
+    let p = |c: &Coeff| {
+        [
+            c.d,
+            c.d + c.c / 3.0,
+            c.d + (2.0 * c.c + c.b) / 3.0,
+            c.d + c.c + c.b + c.a,
+        ]
+    };
+    let (pu, pv) = (p(u), p(v));
+    std::array::from_fn(|k| [pu[k], pv[k]])
+}
+
+/// The box of four points: (min x, max x, min y, max y).
+fn points_box(p: &[[f64; 2]; 4]) -> (f64, f64, f64, f64) {
+    p.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), q| (a.min(q[0]), b.max(q[0]), c.min(q[1]), d.max(q[1])),
+    )
+}
+
+/// The two halves of a cubic Bézier's control polygon (de Casteljau at ½).
+fn halve(p: &[[f64; 2]; 4]) -> ([[f64; 2]; 4], [[f64; 2]; 4]) {
+    let mid = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let (p01, p12, p23) = (mid(p[0], p[1]), mid(p[1], p[2]), mid(p[2], p[3]));
+    let (p012, p123) = (mid(p01, p12), mid(p12, p23));
+    let m = mid(p012, p123);
+    ([p[0], p01, p012, m], [m, p123, p23, p[3]])
+}
+
+impl CapGrid {
+    /// The grid of the closed contour (u, v); `None` when its box is
+    /// degenerate or not finite (the cap test then always asks
+    /// [`point_in_contour`]).
+    pub fn new(u: &[Coeff], v: &[Coeff]) -> Option<CapGrid> {
+        let n = u.len().min(v.len());
+        if n == 0 {
+            return None;
+        }
+        let polygons: Vec<[[f64; 2]; 4]> = (0..n).map(|i| control_points(&u[i], &v[i])).collect();
+        let (mut xmin, mut xmax, mut ymin, mut ymax) =
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for p in &polygons {
+            let (a, b, c, d) = points_box(p);
+            (xmin, xmax, ymin, ymax) = (xmin.min(a), xmax.max(b), ymin.min(c), ymax.max(d));
+        }
+        let size = [xmin, xmax, ymin, ymax].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if !(size.is_finite() && xmax > xmin && ymax > ymin) {
+            return None;
+        }
+        // Far above the rounding of the control points and of a cell's
+        // index, far below a cell.
+        let pad = 1e-9 * size;
+        let (x0, y0) = (xmin - pad, ymin - pad);
+        let per_x = CELLS as f64 / (xmax - xmin + 2.0 * pad);
+        let per_y = CELLS as f64 / (ymax - ymin + 2.0 * pad);
+        let mut grid = CapGrid {
+            x0,
+            y0,
+            per_x,
+            per_y,
+            cells: vec![Cell::Outside; CELLS * CELLS],
+        };
+        let mut entered = vec![false; CELLS * CELLS];
+        let (cell_w, cell_h) = (1.0 / per_x, 1.0 / per_y);
+        let mut stack: Vec<([[f64; 2]; 4], u32)> = polygons.iter().map(|&p| (p, 0)).collect();
+        while let Some((p, depth)) = stack.pop() {
+            let (a, b, c, d) = points_box(&p);
+            if depth < MAX_DEPTH && (b - a > cell_w || d - c > cell_h) {
+                let (l, r) = halve(&p);
+                stack.push((l, depth + 1));
+                stack.push((r, depth + 1));
+                continue;
+            }
+            let (i0, i1) = (grid.column(a - pad), grid.column(b + pad));
+            let (j0, j1) = (grid.row(c - pad), grid.row(d + pad));
+            for j in j0..=j1 {
+                for i in i0..=i1 {
+                    entered[j * CELLS + i] = true;
+                }
+            }
+        }
+        for j in 0..CELLS {
+            for i in 0..CELLS {
+                let k = j * CELLS + i;
+                grid.cells[k] = if entered[k] {
+                    Cell::Near
+                } else {
+                    let x = x0 + (i as f64 + 0.5) * cell_w;
+                    let y = y0 + (j as f64 + 0.5) * cell_h;
+                    if point_in_contour(u, v, x, y) {
+                        Cell::Inside
+                    } else {
+                        Cell::Outside
+                    }
+                };
+            }
+        }
+        Some(grid)
+    }
+
+    /// The column of U = x, clamped into the grid.
+    fn column(&self, x: f64) -> usize {
+        (((x - self.x0) * self.per_x).max(0.0) as usize).min(CELLS - 1)
+    }
+
+    /// The row of V = y, clamped into the grid.
+    fn row(&self, y: f64) -> usize {
+        (((y - self.y0) * self.per_y).max(0.0) as usize).min(CELLS - 1)
+    }
+
+    /// Is (x, y) inside the contour, where the grid knows: `None` in a cell
+    /// the contour may enter, and outside the grid.
+    pub fn answer(&self, x: f64, y: f64) -> Option<bool> {
+        let (fx, fy) = ((x - self.x0) * self.per_x, (y - self.y0) * self.per_y);
+        // Also false for NaN.
+        if !(fx >= 0.0 && fx < CELLS as f64 && fy >= 0.0 && fy < CELLS as f64) {
+            return None;
+        }
+        match self.cells[fy as usize * CELLS + fx as usize] {
+            Cell::Near => None,
+            Cell::Inside => Some(true),
+            Cell::Outside => Some(false),
+        }
+    }
+}
