@@ -64,6 +64,7 @@ impl RealRoots {
 
 /// p(x), p′(x), and a bound on the rounding error of evaluating p(x) by
 /// Horner's rule (with a margin): |p(x)| below it counts as 0.
+#[inline(always)]
 fn eval3(p: &[f64; 7], m: usize, x: f64) -> (f64, f64, f64) {
     let ax = x.abs();
     let (mut f, mut df, mut s) = (p[m], 0.0, p[m].abs());
@@ -101,6 +102,24 @@ pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) 
 /// (times p″/2p′), so a caller that polishes the root can spare the last
 /// steps.
 pub fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64, settle: f64) -> f64 {
+    // The sweeps' cubics by a body of their own, whose evaluations unroll
+    // (the same operations).
+    match m {
+        3 => newton_steps(|x| eval3(p, 3, x), x0, x1, f0, start, settle),
+        _ => newton_steps(|x| eval3(p, m, x), x0, x1, f0, start, settle),
+    }
+}
+
+/// The steps of [`newton_until`], with `eval` the polynomial's [`eval3`].
+#[inline(always)]
+fn newton_steps(
+    eval: impl Fn(f64) -> (f64, f64, f64),
+    x0: f64,
+    x1: f64,
+    f0: f64,
+    start: f64,
+    settle: f64,
+) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let mut x = if start > x0 && start < x1 {
         start
@@ -108,7 +127,7 @@ pub fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f6
         0.5 * (x0 + x1)
     };
     for _ in 0..200 {
-        let (fx, dfx, _) = eval3(p, m, x);
+        let (fx, dfx, _) = eval(x);
         if fx == 0.0 {
             return x;
         }
