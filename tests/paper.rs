@@ -394,6 +394,29 @@ fn hermite_and_do34_keep_the_contours_orientation() {
     }
 }
 
+/// The in-between contour is a contour of the moment: `Hermite` and `do34`
+/// leave no cap grid (which a scratch record may carry from the key shape
+/// it was cloned from), so its caps are solved, not looked up in the
+/// grid of another shape.
+#[test]
+fn hermite_and_do34_leave_no_cap_grid() {
+    let (_, star) = common::deck_sweep("fig5_6.deck");
+    let stale = raytrace::shapes::sweep::CapGrid::new(&star.u, &star.v).map(std::sync::Arc::new);
+    assert!(stale.is_some());
+    for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+        for (name, pair) in end_pairs(fidelity) {
+            for t in [0.0, 0.3, 1.0] {
+                let (mut a, mut b) = (pair.scratch(), pair.scratch());
+                (a.cap_grid, b.cap_grid) = (stale.clone(), stale.clone());
+                Hermite(&pair, t, &mut a);
+                do34(t, &pair, &mut b);
+                assert!(a.cap_grid.is_none(), "{name} {fidelity:?} Hermite({t})");
+                assert!(b.cap_grid.is_none(), "{name} {fidelity:?} do34({t})");
+            }
+        }
+    }
+}
+
 /// Erratum 18: the listing's patches reproduce the key shapes only where
 /// no segment was cut and the contour has no corner.
 #[test]

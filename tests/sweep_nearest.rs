@@ -170,3 +170,67 @@ fn shadow_query_is_the_nearest_hit_before_the_light() {
         }
     }
 }
+
+/// Thesis fidelity skips a translation sweep's segments whose hits lie
+/// before tmin or where the ray is not between the caps (their boxes bound
+/// the hits' t); listing fidelity, whose boxes need not hold their
+/// segments, tries them all. The robust solver is the same in both, so the
+/// hits must be the same to the bit: for slanted rays from afar, and for
+/// rays that start inside the box (as a shadow ray leaves a surface), where
+/// the segments behind the start are skipped.
+#[test]
+fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
+    let (class, sw) = common::deck_sweep("fig5_6.deck");
+    let thesis = opts(Solver::Robust);
+    let listing = Options {
+        fidelity: Fidelity::Listing,
+        ..thesis
+    };
+    let (lo, hi) = common::sweep_box(class, &sw);
+    let (mut hits, mut inside_starts) = (0, 0);
+    for k in 0..3000 {
+        let mut ray = ray(class, &sw, k, false);
+        if k % 3 == 0 {
+            // Started at a point of the box, toward the same target.
+            let r = |j: u64| hashed_uniform(9_000_000 + 8 * k + j);
+            let start = lo + (hi - lo) * DVec3::new(r(0), r(1), r(2));
+            ray = Ray::new(start, ray.dir);
+            inside_starts += 1;
+        }
+        let a = intersect_sweep(class, &sw, &ray, 1e-9, &thesis);
+        let b = intersect_sweep(class, &sw, &ray, 1e-9, &listing);
+        assert_eq!(a, b, "ray {k}");
+        hits += a.is_some() as usize;
+    }
+    assert!(hits > 600 && inside_starts == 1000, "{hits} hits");
+}
+
+/// A segment whose box does not hold it (as the listing's in-between boxes
+/// need not, erratum 9) is still solved in listing fidelity: its box only
+/// orders the segments there. Here the star's first segment, alone, keeps
+/// a box behind the ray's start, which thesis fidelity would take as the
+/// bound of the segment's hits and skip.
+#[test]
+fn listing_boxes_only_order_the_segments() {
+    let (class, sw) = common::deck_sweep("fig5_6.deck");
+    let sw = single(&sw, 0);
+    let listing = Options {
+        fidelity: Fidelity::Listing,
+        ..opts(Solver::Robust)
+    };
+    // A horizontal ray at mid height through the middle of the segment.
+    let (cu, cv) = (sw.u[0], sw.v[0]);
+    let target = DVec3::new(cu.value(0.5), cv.value(0.5), 0.5 * sw.length);
+    let origin = target - DVec3::new(4.0, 0.3, 0.0);
+    let ray = Ray::new(origin, (target - origin).normalize());
+    let want = intersect_sweep(class, &sw, &ray, 1e-9, &listing).expect("the ray meets the segment");
+    // Its box moved to just behind the ray's start, still across its line.
+    let mut moved = sw.clone();
+    let back = origin - ray.dir * 0.5;
+    (moved.u[0].min, moved.u[0].max) = (back.x - 0.1, back.x + 0.1);
+    (moved.v[0].min, moved.v[0].max) = (back.y - 0.1, back.y + 0.1);
+    let got = intersect_sweep(class, &moved, &ray, 1e-9, &listing);
+    assert_eq!(got.map(|h| h.t), Some(want.t));
+    // Thesis fidelity trusts the box, which holds no hit.
+    assert_eq!(intersect_sweep(class, &moved, &ray, 1e-9, &opts(Solver::Robust)), None);
+}

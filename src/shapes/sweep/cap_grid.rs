@@ -101,6 +101,9 @@ impl CapGrid {
             return None;
         }
         let polygons: Vec<[[f64; 2]; 4]> = (0..n).map(|i| control_points(&u[i], &v[i])).collect();
+        if !polygons.iter().flatten().flatten().all(|c| c.is_finite()) {
+            return None;
+        }
         let (mut xmin, mut xmax, mut ymin, mut ymax) =
             (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
         for p in &polygons {
@@ -129,7 +132,8 @@ impl CapGrid {
         let mut stack: Vec<([[f64; 2]; 4], u32)> = polygons.iter().map(|&p| (p, 0)).collect();
         while let Some((p, depth)) = stack.pop() {
             let (a, b, c, d) = points_box(&p);
-            if depth < MAX_DEPTH && (b - a > cell_w || d - c > cell_h) {
+            // Pieces of half a cell: each marks one to four cells.
+            if depth < MAX_DEPTH && (b - a > 0.5 * cell_w || d - c > 0.5 * cell_h) {
                 let (l, r) = halve(&p);
                 stack.push((l, depth + 1));
                 stack.push((r, depth + 1));
@@ -173,17 +177,130 @@ impl CapGrid {
     }
 
     /// Is (x, y) inside the contour, where the grid knows: `None` in a cell
-    /// the contour may enter, and outside the grid.
+    /// the contour may enter (and for NaN). Outside the grid, no: the grid
+    /// holds the control polygons, and so the curve, with the pad to spare.
     pub fn answer(&self, x: f64, y: f64) -> Option<bool> {
         let (fx, fy) = ((x - self.x0) * self.per_x, (y - self.y0) * self.per_y);
-        // Also false for NaN.
-        if !(fx >= 0.0 && fx < CELLS as f64 && fy >= 0.0 && fy < CELLS as f64) {
+        if fx.is_nan() || fy.is_nan() {
             return None;
+        }
+        if !(fx >= 0.0 && fx < CELLS as f64 && fy >= 0.0 && fy < CELLS as f64) {
+            return Some(false);
         }
         match self.cells[fy as usize * CELLS + fx as usize] {
             Cell::Near => None,
             Cell::Inside => Some(true),
             Cell::Outside => Some(false),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drt::hashed_uniform;
+    use crate::shapes::sweep::prepare::fill_segments;
+    use crate::types::{Axis, BoundingBox, CurveKind, PrimitiveClass, SweepShape};
+
+    /// A contour through `points` (closed uniform B-spline or Bézier).
+    fn contour(points: Vec<[f64; 2]>, curve: CurveKind) -> SweepShape {
+        let mut sw = SweepShape {
+            orientt: Axis::Z,
+            curve,
+            points,
+            segment: 0,
+            u: vec![],
+            v: vec![],
+            length: 1.0,
+            scale: 1.0,
+            bbox: BoundingBox::default(),
+            orientation: 0.0,
+            cap_grid: None,
+        };
+        fill_segments(PrimitiveClass::Translation, &mut sw);
+        sw
+    }
+
+    /// fig5_6's wavy star (16 points at radii 1.4 and 0.7), either way
+    /// round; a Bézier square with a pinched side.
+    fn contours() -> Vec<SweepShape> {
+        let star: Vec<[f64; 2]> = (0..16)
+            .map(|k| {
+                let (r, a) = (if k % 2 == 0 { 1.4 } else { 0.7 }, k as f64 * std::f64::consts::TAU / 16.0);
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        let clockwise: Vec<[f64; 2]> = star.iter().rev().copied().collect();
+        let square = vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 1.0],
+            [3.0, 2.0],
+            [3.0, 3.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [0.0, 3.0],
+            [0.0, 2.0],
+            [0.0, 1.0],
+        ];
+        vec![
+            contour(star, CurveKind::Bspline),
+            contour(clockwise, CurveKind::Bspline),
+            contour(square, CurveKind::Bezier),
+        ]
+    }
+
+    /// Where the grid answers, it answers as `point_in_contour`: at points
+    /// spread over (and around) the contour's box, and at points a hair
+    /// off the curve on either side, where only a grid that marked its
+    /// cells wrongly would answer. And it answers most of the box.
+    #[test]
+    fn the_grid_answers_as_point_in_contour() {
+        for (c, sw) in contours().iter().enumerate() {
+            let grid = sw.cap_grid.as_deref().expect("a grid is made with the segments");
+            let (xmin, xmax, ymin, ymax) = sw.u.iter().zip(&sw.v).fold(
+                (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+                |(a, b, p, q), (cu, cv)| (a.min(cu.min), b.max(cu.max), p.min(cv.min), q.max(cv.max)),
+            );
+            let (mut known, mut asked) = (0, 0);
+            for k in 0..20_000u64 {
+                let r = |j: u64| hashed_uniform(4 * k + j + 1_000_000 * c as u64);
+                let (x, y) = if k % 2 == 0 {
+                    // Over the box and a tenth beyond it.
+                    let (w, h) = (xmax - xmin, ymax - ymin);
+                    (xmin - 0.1 * w + 1.2 * w * r(0), ymin - 0.1 * h + 1.2 * h * r(1))
+                } else {
+                    // A hair off the curve, across it.
+                    let i = (r(0) * sw.u.len() as f64) as usize % sw.u.len();
+                    let s = r(1);
+                    let (cu, cv) = (&sw.u[i], &sw.v[i]);
+                    let (du, dv) = (cu.slope(s), cv.slope(s));
+                    let off = [1e-7, 1e-4, 1e-2][k as usize % 3] * if r(2) < 0.5 { -1.0 } else { 1.0 };
+                    let len = (du * du + dv * dv).sqrt().max(1e-300);
+                    (cu.value(s) + off * dv / len, cv.value(s) - off * du / len)
+                };
+                let want = point_in_contour(&sw.u, &sw.v, x, y);
+                if let Some(got) = grid.answer(x, y) {
+                    assert_eq!(got, want, "contour {c}: ({x}, {y})");
+                    known += (k % 2 == 0) as usize;
+                }
+                asked += (k % 2 == 0) as usize;
+            }
+            assert!(known * 10 > asked * 8, "contour {c}: the grid knows {known} of {asked}");
+        }
+    }
+
+    /// No grid where the contour has no area to lay one over, or is not
+    /// finite: every cap test is then solved.
+    #[test]
+    fn no_grid_for_a_flat_or_broken_contour() {
+        let flat = contour((0..8).map(|k| [k as f64, 2.0]).collect(), CurveKind::Bspline);
+        assert!(flat.cap_grid.is_none());
+        let mut broken = contours().remove(0);
+        broken.v[3].c = f64::NAN;
+        assert!(CapGrid::new(&broken.u, &broken.v).is_none());
+        assert!(CapGrid::new(&[], &[]).is_none());
     }
 }
