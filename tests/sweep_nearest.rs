@@ -187,22 +187,32 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
         ..thesis
     };
     let (lo, hi) = common::sweep_box(class, &sw);
-    let (mut hits, mut inside_starts) = (0, 0);
+    let (mut hits, mut sides, mut inside_starts) = (0, 0, 0);
     for k in 0..3000 {
         let mut ray = ray(class, &sw, k, false);
+        let r = |j: u64| hashed_uniform(9_000_000 + 8 * k + j);
         if k % 3 == 0 {
             // Started at a point of the box, toward the same target.
-            let r = |j: u64| hashed_uniform(9_000_000 + 8 * k + j);
             let start = lo + (hi - lo) * DVec3::new(r(0), r(1), r(2));
             ray = Ray::new(start, ray.dir);
             inside_starts += 1;
+        } else if k % 3 == 1 {
+            // Toward a point of a side a hair from a cap's plane, where the
+            // span between the caps' planes ends.
+            let i = (r(0) * sw.segment as f64) as usize % sw.segment;
+            let s = r(1);
+            let z = if r(2) < 0.5 { 1e-7 * r(3) } else { sw.length * (1.0 - 1e-7 * r(3)) };
+            let target = DVec3::new(sw.u[i].value(s), sw.v[i].value(s), z);
+            ray = Ray::new(ray.origin, (target - ray.origin).normalize());
         }
         let a = intersect_sweep(class, &sw, &ray, 1e-9, &thesis);
         let b = intersect_sweep(class, &sw, &ray, 1e-9, &listing);
         assert_eq!(a, b, "ray {k}");
         hits += a.is_some() as usize;
+        sides += a.is_some_and(|h| h.normal.z == 0.0) as usize;
     }
-    assert!(hits > 600 && inside_starts == 1000, "{hits} hits");
+    // Most on the sides, which a test that skipped every segment would lose.
+    assert!(hits > 600 && sides > 500 && inside_starts == 1000, "{hits} hits, {sides} on the sides");
 }
 
 /// A segment whose box does not hold it (as the listing's in-between boxes
