@@ -201,7 +201,11 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
             // span between the caps' planes ends.
             let i = (r(0) * sw.segment as f64) as usize % sw.segment;
             let s = r(1);
-            let z = if r(2) < 0.5 { 1e-7 * r(3) } else { sw.length * (1.0 - 1e-7 * r(3)) };
+            let z = if r(2) < 0.5 {
+                1e-7 * r(3)
+            } else {
+                sw.length * (1.0 - 1e-7 * r(3))
+            };
             let target = DVec3::new(sw.u[i].value(s), sw.v[i].value(s), z);
             ray = Ray::new(ray.origin, (target - ray.origin).normalize());
         }
@@ -212,7 +216,10 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
         sides += a.is_some_and(|h| h.normal.z == 0.0) as usize;
     }
     // Most on the sides, which a test that skipped every segment would lose.
-    assert!(hits > 600 && sides > 500 && inside_starts == 1000, "{hits} hits, {sides} on the sides");
+    assert!(
+        hits > 600 && sides > 500 && inside_starts == 1000,
+        "{hits} hits, {sides} on the sides"
+    );
 }
 
 /// A segment whose box does not hold it (as the listing's in-between boxes

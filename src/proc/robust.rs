@@ -112,14 +112,7 @@ pub fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f6
 
 /// The steps of [`newton_until`], with `eval` the polynomial's [`eval3`].
 #[inline(always)]
-fn newton_steps(
-    eval: impl Fn(f64) -> (f64, f64, f64),
-    x0: f64,
-    x1: f64,
-    f0: f64,
-    start: f64,
-    settle: f64,
-) -> f64 {
+fn newton_steps(eval: impl Fn(f64) -> (f64, f64, f64), x0: f64, x1: f64, f0: f64, start: f64, settle: f64) -> f64 {
     let (mut a, mut b, mut fa) = (x0, x1, f0);
     let mut x = if start > x0 && start < x1 {
         start

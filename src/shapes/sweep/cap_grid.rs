@@ -226,7 +226,10 @@ mod tests {
     fn contours() -> Vec<SweepShape> {
         let star: Vec<[f64; 2]> = (0..16)
             .map(|k| {
-                let (r, a) = (if k % 2 == 0 { 1.4 } else { 0.7 }, k as f64 * std::f64::consts::TAU / 16.0);
+                let (r, a) = (
+                    if k % 2 == 0 { 1.4 } else { 0.7 },
+                    k as f64 * std::f64::consts::TAU / 16.0,
+                );
                 [r * a.cos(), r * a.sin()]
             })
             .collect();

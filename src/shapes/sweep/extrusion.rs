@@ -140,18 +140,18 @@ pub(super) fn extrusion(
     // piece of the line from A to B: a segment whose box keeps away from
     // that piece's box has no hit to keep (D32; a thousand times the
     // bound's slack t_pad).
-    let span = if boxes_hold && !conic && slab.0.is_finite() && slab.1.is_finite() {
+    let span = (boxes_hold && !conic && slab.0.is_finite() && slab.1.is_finite()).then(|| {
         let (ax, ay) = (o.x + slab.0 * d.x, o.y + slab.0 * d.y);
         let (bx, by) = (o.x + slab.1 * d.x, o.y + slab.1 * d.y);
         let p = 1e-6 * size;
         [ax.min(bx) - p, ax.max(bx) + p, ay.min(by) - p, ay.max(by) + p]
-    } else {
-        [f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY]
-    };
+    });
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
-        if cu.max < span[0] || cu.min > span[1] || cv.max < span[2] || cv.min > span[3] {
-            continue;
+        if let Some(span) = &span {
+            if cu.max < span[0] || cu.min > span[1] || cv.max < span[2] || cv.min > span[3] {
+                continue;
+            }
         }
         // The segment's box against the line α X + β Y + γ = 0.
         let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
