@@ -124,11 +124,16 @@ pub(super) fn extrusion(
         };
         (za.max(tmin), zb)
     };
-    // Thesis: each segment's box is its extrema, so it bounds the hits'
-    // t. Listing (erratum 9): an in-between segment's box is the first
-    // key's widened by 2, which the segment can leave, so it only orders
-    // the segments, as before.
-    let boxes_hold = opts.fidelity == Fidelity::Thesis;
+    // Do the segments' boxes hold their segments, so that they bound the
+    // hits' t (D32)?
+    let boxes_hold = match opts.fidelity {
+        // Listing (erratum 9): an in-between segment's box is the first
+        // key's widened by 2, which the segment can leave: the boxes only
+        // order the segments, as before D32.
+        Fidelity::Listing => false,
+        // Thesis: each segment's box is its extrema.
+        Fidelity::Thesis => true,
+    };
     let mut candidates = Candidates::new();
     let gpad = 1e-12 * fscale;
     // The box's corners where α X + β Y is least and most: rounding keeps

@@ -302,7 +302,12 @@ pub(super) fn box_size(b: &BoundingBox) -> f64 {
 /// lower bound on their hits' t (translation: from the segment's box along
 /// the ray's projection; rotation: from its height range), and the rest
 /// skipped once the bound passes the nearest hit so far: the same nearest
-/// hit as trying them all (of two at one t, the lower segment's).
+/// hit as trying them all (of two at one t, the lower segment's). In
+/// thesis fidelity, where the boxes hold their segments, a translation
+/// sweep's segments whose boxes put every hit before `tmin` or outside the
+/// span of the ray between the caps' planes are not tried at all (D32).
+/// The caps of a contour that keeps its shape are answered by its
+/// [`CapGrid`] where no segment passes.
 ///
 /// Each root gives its hit from the better conditioned equation, is
 /// polished, and is rejected unless the hit lies on the surface (within
