@@ -206,16 +206,25 @@ fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -
         .collect();
     let given: u64 = out.iter().map(|&n| n as u64).sum();
     let mut left = total.saturating_sub(given);
-    let mut candidates: Vec<usize> = (0..out.len()).filter(|&i| next[i] <= cap).collect();
+    // The candidates with a fraction, and those without (most: the
+    // pixels that keep their count), which come after them in their order.
+    let (mut candidates, without): (Vec<usize>, Vec<usize>) =
+        (0..out.len()).filter(|&i| next[i] <= cap).partition(|&i| fraction[i] > 0.0);
+    let mut without = without.into_iter();
     // The first k candidates in the order of the largest fraction: only
     // which pixels they are matters, not their order, so a selection,
     // not a sort.
     let mut first = |k: u64| -> Vec<usize> {
-        let k = (k as usize).min(candidates.len());
-        if k > 0 && k < candidates.len() {
-            candidates.select_nth_unstable_by(k - 1, |&a, &b| fraction[b].total_cmp(&fraction[a]).then(a.cmp(&b)));
+        let k = k as usize;
+        if k < candidates.len() {
+            if k > 0 {
+                candidates.select_nth_unstable_by(k - 1, |&a, &b| fraction[b].total_cmp(&fraction[a]).then(a.cmp(&b)));
+            }
+            return candidates.drain(..k).collect();
         }
-        candidates.drain(..k).collect()
+        let mut all = std::mem::take(&mut candidates);
+        all.extend(without.by_ref().take(k - all.len()));
+        all
     };
     // Each step is at most a quantum, so left / quantum of them fit.
     let mut up = first(left / q as u64);
