@@ -12,7 +12,13 @@
 //!   passes deal out the rest, each a share of what is left, by need
 //!   ([`allocate`]): a pixel's need is the spread of its samples so far
 //!   (space and time together: a sample varies in both), widened to its
-//!   neighbours so an edge the first rays missed is still found.
+//!   neighbours so an edge the first rays missed is still found. A
+//!   pixel's count after a pass is its first pass's or a multiple of the
+//!   [`quantum`] (M², or the power of two below it, at most
+//!   [`MAX_QUANTUM`]): its samples are then whole blocks of the Sobol
+//!   sequence, each block evenly spread in place and time, where a count
+//!   in between leaves a block part-filled and the pixel's mean less
+//!   accurate than its count says.
 //! - Sample j of a pixel is point j of a 3-D Sobol sequence (pixel x,
 //!   pixel y, shutter time τ), Owen-scrambled (Burley 2020, *Practical
 //!   hash-based Owen scrambling*): every prefix is well spread in all
@@ -196,9 +202,7 @@ pub fn quantum(budget: u32) -> u32 {
 /// count is negative (`floor` is a library call on this target).
 fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
     let q = quantum.max(1);
-    let mut out: Vec<u32> = (0..real.len())
-        .map(|i| (real[i] as u32 / q * q).max(low[i]))
-        .collect();
+    let mut out: Vec<u32> = (0..real.len()).map(|i| (real[i] as u32 / q * q).max(low[i])).collect();
     // The level above each (a candidate if not beyond the cap).
     let next: Vec<u32> = out.iter().map(|&f| (f / q + 1) * q).collect();
     let fraction: Vec<f64> = (0..out.len())
@@ -208,8 +212,9 @@ fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -
     let mut left = total.saturating_sub(given);
     // The candidates with a fraction, and those without (most: the
     // pixels that keep their count), which come after them in their order.
-    let (mut candidates, without): (Vec<usize>, Vec<usize>) =
-        (0..out.len()).filter(|&i| next[i] <= cap).partition(|&i| fraction[i] > 0.0);
+    let (mut candidates, without): (Vec<usize>, Vec<usize>) = (0..out.len())
+        .filter(|&i| next[i] <= cap)
+        .partition(|&i| fraction[i] > 0.0);
     let mut without = without.into_iter();
     // The first k candidates in the order of the largest fraction: only
     // which pixels they are matters, not their order, so a selection,
@@ -466,13 +471,15 @@ mod tests {
     /// within their parents) and changes the points.
     #[test]
     fn scrambled_samples_keep_their_strata() {
+        // Every aligned block of 2^k samples, not only the first: the
+        // counts come in such blocks ([`quantum`]).
         for pixel in [0usize, 7, 12345] {
-            for k in [2u32, 4, 6] {
+            for (k, block) in [2u32, 4, 6].into_iter().flat_map(|k| [(k, 0u32), (k, 1), (k, 3)]) {
                 let n = 1u32 << k;
                 let mut times = vec![false; n as usize];
                 let mut cells = vec![false; n as usize];
                 let half = k / 2;
-                for j in 0..n {
+                for j in block * n..(block + 1) * n {
                     let s = sample(pixel, 100, j);
                     assert!((0.0..1.0).contains(&s.u) && (0.0..1.0).contains(&s.v) && (0.0..1.0).contains(&s.tau));
                     let t = (s.tau * n as f64) as usize;
@@ -672,7 +679,7 @@ mod tests {
         assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), (w * h) as u64 * 7);
         let odd = out.iter().filter(|&&n| n != 2 && n % 16 != 0).count();
         assert!(odd < 16, "{odd} pixels off the levels: {out:?}");
-        assert!(out.iter().any(|&n| n >= 32) && out.iter().any(|&n| n == 2));
+        assert!(out.iter().any(|&n| n >= 32) && out.contains(&2));
     }
 
     /// λ makes the bounded counts add up to the total, by less than half a
