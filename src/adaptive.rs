@@ -663,6 +663,9 @@ mod tests {
         assert_eq!(round_counts(&real, &[2; 8], 48, 64, 8), vec![8, 8, 8, 8, 8, 3, 3, 2]);
         // None beyond the cap.
         assert_eq!(round_counts(&[16.0, 15.0], &[2, 2], 40, 16, 8), vec![16, 16]);
+        // The fraction is of the step: 4.5 of the 6 from 2 to 8 (0.75)
+        // before 5 of the 8 from 8 to 16 (0.625), though 5 rays are more.
+        assert_eq!(round_counts(&[6.5, 13.0], &[2, 8], 18, 64, 8), vec![8, 9]);
     }
 
     /// The quantum is the budget's power of two at or below it, at most
@@ -711,6 +714,11 @@ mod tests {
         assert_eq!(allocate(&sums, 5, 4, 25, 4), vec![8, 5, 4, 4, 4, 4, 4, 4, 4, 4]);
         let sums = sums_with(&[(0, 0.4)], 100, 2);
         let out = allocate(&sums, 10, 4, 1000, 4);
+        // The noisy pixel at the cap, 16 budgets, in quanta of 4; with a
+        // budget of 49 in quanta of 32, the cap of 16 · 49 = 784 rounded
+        // down to whole quanta, 768.
+        assert_eq!(out[0], 64);
+        assert_eq!(allocate(&sums, 10, 49, 20_000, 32)[0], 768);
         assert!(out.iter().all(|&n| n <= 64));
         assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), 200 + 1000);
     }
