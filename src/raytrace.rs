@@ -560,7 +560,7 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
     let mut per_row = Vec::new();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = adaptive::allocate(&sums, w, budget, extra);
+            counts = adaptive::allocate(&sums, w, budget, extra, adaptive::quantum(budget));
         }
         let last = pass + 1 == passes.len();
         let rows: Vec<(TraceStats, u64)> = sums
