@@ -134,11 +134,14 @@ fn newton_steps(eval: impl Fn(f64) -> (f64, f64, f64), x0: f64, x1: f64, f0: f64
         let newton = x - fx / dfx;
         let inside = newton > lo && newton < hi;
         let next = if inside { newton } else { 0.5 * (lo + hi) };
-        let scale = x.abs().max(next.abs()).max(f64::MIN_POSITIVE);
+        // x, next, lo and hi lie in the bracket, finite: the larger of two
+        // by a comparison (`f64::max`'s care for NaN is not needed).
+        let larger = |p: f64, q: f64| if p > q { p } else { q };
+        let scale = larger(larger(x.abs(), next.abs()), f64::MIN_POSITIVE);
         let step = (next - x).abs();
         // A bisection's step says nothing of the error: only Newton's settles.
         let settled = inside && step <= settle;
-        if step <= 2.0 * EPS * scale || settled || hi - lo <= 4.0 * EPS * lo.abs().max(hi.abs()) {
+        if step <= 2.0 * EPS * scale || settled || hi - lo <= 4.0 * EPS * larger(lo.abs(), hi.abs()) {
             return next;
         }
         x = next;

@@ -264,6 +264,10 @@ pub(super) fn ray_meets_box(ray: &Ray, tmin: f64, lo: DVec3, hi: DVec3) -> bool 
             let (a, b) = if a < b { (a, b) } else { (b, a) };
             t0 = t0.max(a);
             t1 = t1.min(b);
+            // t0 only grows and t1 only shrinks: a miss now is a miss.
+            if t0 > t1 {
+                return false;
+            }
         }
     }
     t0 <= t1
