@@ -295,6 +295,25 @@ mod tests {
         }
     }
 
+    /// NaN is not answered (the cap test asks `point_in_contour`), in
+    /// either coordinate; the grid's far edges and corner, where the cell
+    /// index reaches the count, are beyond it: outside.
+    #[test]
+    fn nan_is_not_answered_and_the_far_edges_are_outside() {
+        let sw = contours().remove(0);
+        let grid = sw.cap_grid.as_deref().expect("a grid");
+        assert_eq!(grid.answer(f64::NAN, 0.0), None);
+        assert_eq!(grid.answer(0.0, f64::NAN), None);
+        assert_eq!(grid.answer(0.0, 0.0), Some(true));
+        let far_x = grid.x0 + CELLS as f64 / grid.per_x;
+        let far_y = grid.y0 + CELLS as f64 / grid.per_y;
+        assert_eq!((far_x - grid.x0) * grid.per_x, CELLS as f64);
+        assert_eq!((far_y - grid.y0) * grid.per_y, CELLS as f64);
+        for (x, y) in [(far_x, 0.0), (0.0, far_y), (far_x, far_y)] {
+            assert_eq!(grid.answer(x, y), Some(false), "({x}, {y})");
+        }
+    }
+
     /// No grid where the contour has no area to lay one over, or is not
     /// finite: every cap test is then solved.
     #[test]

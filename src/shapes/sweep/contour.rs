@@ -173,6 +173,42 @@ mod tests {
         sw
     }
 
+    /// The grid answers for the whole contour it was made with only: given
+    /// fewer segments of either coordinate (as a record whose `segment` is
+    /// less than its lists), `inside_contour` solves that open contour as
+    /// `point_in_contour` does.
+    #[test]
+    fn inside_contour_asks_the_grid_for_the_whole_contour_only() {
+        let pts: Vec<[f64; 2]> = (0..12)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 12.0;
+                let r = if k % 2 == 0 { 2.0 } else { 1.0 };
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect();
+        let sw = square(&pts, CurveKind::Bspline);
+        assert!(sw.cap_grid.is_some());
+        let n = sw.u.len();
+        let (mut differ, mut asked) = (0, 0);
+        for k in 0..4000u64 {
+            let x = -2.0 + 4.0 * crate::drt::hashed_uniform(2 * k);
+            let y = -2.0 + 4.0 * crate::drt::hashed_uniform(2 * k + 1);
+            let whole = point_in_contour(&sw.u, &sw.v, x, y);
+            assert_eq!(inside_contour(&sw, &sw.u, &sw.v, x, y), whole);
+            for (u, v) in [
+                (&sw.u[..n - 1], &sw.v[..n - 1]),
+                (&sw.u[..], &sw.v[..n - 1]),
+                (&sw.u[..n - 1], &sw.v[..]),
+            ] {
+                let open = point_in_contour(u, v, x, y);
+                assert_eq!(inside_contour(&sw, u, v, x, y), open, "({x}, {y})");
+                differ += (open != whole) as usize;
+                asked += 1;
+            }
+        }
+        assert!(differ > 100, "the open contours differ at {differ} of {asked}");
+    }
+
     #[test]
     fn point_in_contour_square_bezier() {
         // A square with straight Bezier sides, counter-clockwise.
