@@ -199,40 +199,18 @@ impl CapGrid {
 mod tests {
     use super::*;
     use crate::drt::hashed_uniform;
-    use crate::shapes::sweep::prepare::fill_segments;
-    use crate::types::{Axis, BoundingBox, CurveKind, PrimitiveClass, SweepShape};
+    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
+    use crate::types::{CurveKind, SweepShape};
 
     /// A contour through `points` (closed uniform B-spline or Bézier).
     fn contour(points: Vec<[f64; 2]>, curve: CurveKind) -> SweepShape {
-        let mut sw = SweepShape {
-            orientt: Axis::Z,
-            curve,
-            points,
-            segment: 0,
-            u: vec![],
-            v: vec![],
-            length: 1.0,
-            scale: 1.0,
-            bbox: BoundingBox::default(),
-            orientation: 0.0,
-            cap_grid: None,
-        };
-        fill_segments(PrimitiveClass::Translation, &mut sw);
-        sw
+        translation_sweep(points, curve, 1.0)
     }
 
     /// fig5_6's wavy star (16 points at radii 1.4 and 0.7), either way
     /// round; a Bézier square with a pinched side.
     fn contours() -> Vec<SweepShape> {
-        let star: Vec<[f64; 2]> = (0..16)
-            .map(|k| {
-                let (r, a) = (
-                    if k % 2 == 0 { 1.4 } else { 0.7 },
-                    k as f64 * std::f64::consts::TAU / 16.0,
-                );
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect();
+        let star = star_points(16, 1.4, 0.7);
         let clockwise: Vec<[f64; 2]> = star.iter().rev().copied().collect();
         let square = vec![
             [0.0, 0.0],

@@ -151,26 +151,11 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::sweep::prepare::{fill_segments, own_box};
-    use crate::types::{BoundingBox, CurveKind, PrimitiveClass, SweepShape};
+    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
+    use crate::types::{CurveKind, SweepShape};
 
     fn square(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
-        let mut sw = SweepShape {
-            orientt: crate::types::Axis::Z,
-            curve,
-            points: points.to_vec(),
-            segment: 0,
-            u: vec![],
-            v: vec![],
-            length: 2.0,
-            scale: 1.0,
-            bbox: BoundingBox::default(),
-            orientation: 0.0,
-            cap_grid: None,
-        };
-        let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
-        sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);
-        sw
+        translation_sweep(points.to_vec(), curve, 2.0)
     }
 
     /// The grid answers for the whole contour it was made with only: given
@@ -179,13 +164,7 @@ mod tests {
     /// `point_in_contour` does.
     #[test]
     fn inside_contour_asks_the_grid_for_the_whole_contour_only() {
-        let pts: Vec<[f64; 2]> = (0..12)
-            .map(|k| {
-                let a = k as f64 * std::f64::consts::TAU / 12.0;
-                let r = if k % 2 == 0 { 2.0 } else { 1.0 };
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect();
+        let pts = star_points(12, 2.0, 1.0);
         let sw = square(&pts, CurveKind::Bspline);
         assert!(sw.cap_grid.is_some());
         let n = sw.u.len();

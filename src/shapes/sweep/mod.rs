@@ -587,34 +587,14 @@ mod tests {
     /// counter-clockwise one.
     #[test]
     fn kept_and_computed_orientation_give_the_same_hits() {
-        use crate::types::{Axis, CurveKind};
-        let ring: Vec<[f64; 2]> = (0..8)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 8.0;
-                let r = if i % 2 == 0 { 1.0 } else { 0.6 };
-                [r * a.cos(), r * a.sin()]
-            })
-            .collect();
+        use crate::types::CurveKind;
+        let ring = prepare::star_points(8, 1.0, 0.6);
         for (turn, want) in [(false, 1.0), (true, -1.0)] {
             let mut points = ring.clone();
             if turn {
                 points.reverse();
             }
-            let mut sw = SweepShape {
-                orientt: Axis::Z,
-                curve: CurveKind::Bspline,
-                points,
-                segment: 0,
-                u: vec![],
-                v: vec![],
-                length: 1.0,
-                scale: 1.0,
-                bbox: BoundingBox::default(),
-                orientation: 0.0,
-                cap_grid: None,
-            };
-            let sbox = prepare::fill_segments(PrimitiveClass::Translation, &mut sw);
-            sw.bbox = prepare::own_box(PrimitiveClass::Translation, &sw, &sbox);
+            let sw = prepare::translation_sweep(points, CurveKind::Bspline, 1.0);
             let kept = &sw;
             assert_eq!(kept.orientation, want);
             let unknown = SweepShape {
