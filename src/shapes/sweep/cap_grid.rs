@@ -127,7 +127,6 @@ impl CapGrid {
             per_y,
             cells: vec![Cell::Outside; CELLS * CELLS],
         };
-        let mut entered = vec![false; CELLS * CELLS];
         let (cell_w, cell_h) = (1.0 / per_x, 1.0 / per_y);
         let mut stack: Vec<([[f64; 2]; 4], u32)> = polygons.iter().map(|&p| (p, 0)).collect();
         while let Some((p, depth)) = stack.pop() {
@@ -143,24 +142,21 @@ impl CapGrid {
             let (j0, j1) = (grid.row(c - pad), grid.row(d + pad));
             for j in j0..=j1 {
                 for i in i0..=i1 {
-                    entered[j * CELLS + i] = true;
+                    grid.cells[j * CELLS + i] = Cell::Near;
                 }
             }
         }
+        // Every other cell as its centre.
         for j in 0..CELLS {
             for i in 0..CELLS {
-                let k = j * CELLS + i;
-                grid.cells[k] = if entered[k] {
-                    Cell::Near
-                } else {
+                let cell = &mut grid.cells[j * CELLS + i];
+                if *cell != Cell::Near {
                     let x = x0 + (i as f64 + 0.5) * cell_w;
                     let y = y0 + (j as f64 + 0.5) * cell_h;
                     if point_in_contour(u, v, x, y) {
-                        Cell::Inside
-                    } else {
-                        Cell::Outside
+                        *cell = Cell::Inside;
                     }
-                };
+                }
             }
         }
         Some(grid)
@@ -293,7 +289,7 @@ mod tests {
     }
 
     /// No grid where the contour has no area to lay one over, or is not
-    /// finite: every cap test is then solved.
+    /// finite (every cap test is then solved), nor for a rotation sweep.
     #[test]
     fn no_grid_for_a_flat_or_broken_contour() {
         let flat = contour((0..8).map(|k| [k as f64, 2.0]).collect(), CurveKind::Bspline);
@@ -302,5 +298,9 @@ mod tests {
         broken.v[3].c = f64::NAN;
         assert!(CapGrid::new(&broken.u, &broken.v).is_none());
         assert!(CapGrid::new(&[], &[]).is_none());
+        // A rotation sweep's contour closes no cap: no grid is made for it.
+        let mut goblet = contours().remove(0);
+        crate::shapes::sweep::prepare::fill_segments(crate::types::PrimitiveClass::Rotation, &mut goblet);
+        assert!(goblet.cap_grid.is_none());
     }
 }

@@ -48,11 +48,17 @@ pub fn orientation(u: &[Coeff], v: &[Coeff]) -> f64 {
     }
 }
 
+/// Are the segments `u`, `v` the driver takes from `sw` all of its
+/// segments, those its kept orientation and cap grid were made with?
+fn all_segments(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> bool {
+    u.len() == sw.u.len() && v.len() == sw.v.len()
+}
+
 /// [`orientation`] of the segments `u`, `v` the driver takes from `sw`:
 /// the one filled with them (`sw.orientation`) when they are all of its
 /// segments, else computed.
 pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
-    if sw.orientation != 0.0 && u.len() == sw.u.len() && v.len() == sw.v.len() {
+    if sw.orientation != 0.0 && all_segments(sw, u, v) {
         sw.orientation
     } else {
         orientation(u, v)
@@ -63,7 +69,7 @@ pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
 /// `sw`: answered by the grid made with them ([`SweepShape::cap_grid`])
 /// where it knows and they are all of its segments, else solved.
 pub(super) fn inside_contour(sw: &SweepShape, u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
-    let whole = u.len() == sw.u.len() && v.len() == sw.v.len();
+    let whole = all_segments(sw, u, v);
     match sw.cap_grid.as_ref().filter(|_| whole).and_then(|g| g.answer(x, y)) {
         Some(inside) => inside,
         None => point_in_contour(u, v, x, y),

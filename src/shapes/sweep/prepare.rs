@@ -48,7 +48,11 @@ pub(super) fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> Bound
         sw.v.push(cv);
     }
     sw.orientation = orientation(&sw.u, &sw.v);
-    sw.cap_grid = CapGrid::new(&sw.u, &sw.v).map(std::sync::Arc::new);
+    sw.cap_grid = match class {
+        // The (radius, height) contour of a rotation sweep closes no cap.
+        PrimitiveClass::Rotation => None,
+        _ => CapGrid::new(&sw.u, &sw.v).map(std::sync::Arc::new),
+    };
     sbox
 }
 
