@@ -298,6 +298,11 @@ pub struct SweepShape {
     /// root (the port's; DEVIATIONS D32). `None` where not made (the
     /// in-between contours of key frames): every cap test is solved.
     pub cap_grid: Option<std::sync::Arc<crate::shapes::sweep::CapGrid>>,
+    /// What the intersection takes from `bbox` for every ray
+    /// ([`QueryBounds`](crate::shapes::sweep::QueryBounds)), made once the
+    /// box is final; kept with the box it was made from, so a box changed
+    /// since (an in-between contour's) is not answered by it (the port's).
+    pub bounds: Option<crate::shapes::sweep::QueryBounds>,
 }
 
 /// The variant part of `objectrecord`, in local coordinates (the local

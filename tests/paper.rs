@@ -54,6 +54,7 @@ fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
         bbox,
         orientation: 0.0,
         cap_grid: None,
+        bounds: None,
     }
 }
 

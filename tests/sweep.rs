@@ -110,6 +110,7 @@ fn raw(curve: CurveKind, points: Vec<[f64; 2]>, length: f64, scale: f64) -> Swee
         bbox: BoundingBox::default(),
         orientation: 0.0,
         cap_grid: None,
+        bounds: None,
     }
 }
 

@@ -508,6 +508,7 @@ impl Builder<'_> {
             bbox: Default::default(),
             orientation: 0.0,
             cap_grid: None,
+            bounds: None,
         });
         self.push_object(
             pos,

@@ -506,6 +506,7 @@ mod tests {
             bbox: BoundingBox::default(),
             orientation: 0.0,
             cap_grid: None,
+            bounds: None,
         }
     }
 

@@ -438,6 +438,7 @@ mod tests {
             bbox: Default::default(),
             orientation: 0.0,
             cap_grid: None,
+            bounds: None,
         };
         let obj = ObjectRecord {
             name: "x".into(),

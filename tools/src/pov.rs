@@ -293,6 +293,7 @@ mod tests {
             bbox: BoundingBox::default(),
             orientation: 0.0,
             cap_grid: None,
+            bounds: None,
         }
     }
 

@@ -154,7 +154,8 @@ pub(super) fn extrusion(
     for i in 0..u.len() {
         let (cu, cv) = (&u[i], &v[i]);
         if let Some(span) = &span {
-            if cu.max < span[0] || cu.min > span[1] || cv.max < span[2] || cv.min > span[3] {
+            // The four sides at once (`|`, not `||`): one branch, not four.
+            if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
                 continue;
             }
         }

@@ -124,22 +124,32 @@ pub(super) struct Found {
 /// A cubic is asked of its Bernstein count first ([`unit_crossings`]):
 /// none there is none for either solver; one is taken at once by the
 /// robust solver (DEVIATIONS D30, D31).
-#[inline]
+///
+/// The cubic's count is made where the call is (most segments end
+/// there); the rest of the work is [`solve_further`].
+#[inline(always)]
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
-    let mut out = Found { count: 0, s: [0.0; 6] };
-    let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     if n == 3 {
         let b = bernstein_unit_of::<3>(a);
         match unit_crossings(3, &b) {
-            Crossings::None => return out,
+            Crossings::None => return Found { count: 0, s: [0.0; 6] },
             Crossings::One if opts.solver == Solver::Robust => {
+                let mut out = Found { count: 1, s: [0.0; 6] };
                 out.s[0] = one_crossing(n, a, &b, SIDE_SETTLE);
-                out.count = 1;
                 return out;
             }
             _ => {}
         }
     }
+    solve_further(n, a, opts)
+}
+
+/// [`solve`] past the cubic's count: `laguerre` behind its Bernstein
+/// pre-test, or the robust solver.
+#[inline(never)]
+fn solve_further(n: usize, a: &[f64; 7], opts: &Options) -> Found {
+    let mut out = Found { count: 0, s: [0.0; 6] };
+    let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     if opts.solver == Solver::Laguerre && !may_have_root(n, a, lo, hi) {
         return out;
     }
@@ -388,39 +398,19 @@ fn sweep_query(
         return None;
     }
     let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
-    let mut size = box_size(&sweep.bbox);
-    if !(size > 0.0 && size.is_finite()) {
-        size = u
-            .iter()
-            .chain(v)
-            .fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
-        size = size.max(sweep.length.abs());
-    }
-    if !(size > 0.0 && size.is_finite()) {
-        return None;
-    }
-    let b = &sweep.bbox;
-    let pad = 1e-9 * size;
-    let boxed = b.xmin < b.xmax && b.zmin < b.zmax;
-    let (lo, hi) = match class {
-        PrimitiveClass::Translation | PrimitiveClass::Conic => (
-            DVec3::new(b.xmin, b.ymin, b.zmin) - pad,
-            DVec3::new(b.xmax, b.ymax, b.zmax) + pad,
-        ),
-        PrimitiveClass::Rotation => {
-            let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
-            (DVec3::new(-r, -r, b.zmin) - pad, DVec3::new(r, r, b.zmax) + pad)
+    let computed;
+    let bounds = match &sweep.bounds {
+        Some(b) if b.holds(class, &sweep.bbox) => b,
+        _ => {
+            computed = QueryBounds::of(class, sweep, u, v)?;
+            &computed
         }
-        _ => return None,
     };
+    let (size, lo, hi) = (bounds.size, bounds.lo, bounds.hi);
     // Every polynomial below is formed from the ray near the object.
-    let near = if boxed {
-        Near::of(ray, tmin, 0.5 * (lo + hi), 0.25 * (hi - lo).length_squared())
-    } else {
-        Near::of(ray, tmin, DVec3::ZERO, 4.0 * size * size)
-    };
+    let near = Near::of(ray, tmin, bounds.centre, bounds.radius2);
     let (ray, tmin) = (&near.ray, near.tmin);
-    if boxed && !ray_meets_box(ray, tmin, lo, hi) {
+    if bounds.boxed && !ray_meets_box(ray, tmin, lo, hi) {
         return None;
     }
     let query = Query {
@@ -441,6 +431,85 @@ fn sweep_query(
             query,
         ),
     })
+}
+
+/// What [`sweep_query`] takes from an object's box for every ray: the
+/// size its tolerances are relative to, the padded box a ray must meet,
+/// and the sphere about it that [`Near`] re-bases the ray on. Made once
+/// for an object at rest ([`prepare_sweeps`]) and kept in
+/// [`SweepShape::bounds`] with the box and class it was made from; a ray
+/// of an object whose box has changed since (an in-between contour's)
+/// makes its own (the port's; the same values either way).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QueryBounds {
+    class: PrimitiveClass,
+    bbox: BoundingBox,
+    size: f64,
+    boxed: bool,
+    lo: DVec3,
+    hi: DVec3,
+    centre: DVec3,
+    radius2: f64,
+}
+
+impl QueryBounds {
+    /// The bounds of `sweep` (segments `u`, `v`) as an object of `class`;
+    /// `None` for a class that is not a sweep's or a sweep of no size.
+    pub(super) fn of(class: PrimitiveClass, sweep: &SweepShape, u: &[Coeff], v: &[Coeff]) -> Option<QueryBounds> {
+        let mut size = box_size(&sweep.bbox);
+        if !(size > 0.0 && size.is_finite()) {
+            size = u
+                .iter()
+                .chain(v)
+                .fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
+            size = size.max(sweep.length.abs());
+        }
+        if !(size > 0.0 && size.is_finite()) {
+            return None;
+        }
+        let b = &sweep.bbox;
+        let pad = 1e-9 * size;
+        let boxed = b.xmin < b.xmax && b.zmin < b.zmax;
+        let (lo, hi) = match class {
+            PrimitiveClass::Translation | PrimitiveClass::Conic => (
+                DVec3::new(b.xmin, b.ymin, b.zmin) - pad,
+                DVec3::new(b.xmax, b.ymax, b.zmax) + pad,
+            ),
+            PrimitiveClass::Rotation => {
+                let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
+                (DVec3::new(-r, -r, b.zmin) - pad, DVec3::new(r, r, b.zmax) + pad)
+            }
+            _ => return None,
+        };
+        let (centre, radius2) = if boxed {
+            (0.5 * (lo + hi), 0.25 * (hi - lo).length_squared())
+        } else {
+            (DVec3::ZERO, 4.0 * size * size)
+        };
+        Some(QueryBounds {
+            class,
+            bbox: *b,
+            size,
+            boxed,
+            lo,
+            hi,
+            centre,
+            radius2,
+        })
+    }
+
+    /// The bounds to keep for `sweep` as an object of `class`: those of a
+    /// box, which depend on the box alone (a sweep without one takes its
+    /// size from its segments, which may change under the same box).
+    pub fn kept(class: PrimitiveClass, sweep: &SweepShape) -> Option<QueryBounds> {
+        let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
+        QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n]).filter(|b| b.boxed && b.size == box_size(&b.bbox))
+    }
+
+    /// Were these bounds made from this box, for this class?
+    fn holds(&self, class: PrimitiveClass, bbox: &BoundingBox) -> bool {
+        self.class == class && self.bbox == *bbox
+    }
 }
 
 /// The nearest hit so far, and the segment it is on.
@@ -600,6 +669,7 @@ mod tests {
             let unknown = SweepShape {
                 orientation: 0.0,
                 cap_grid: None,
+                bounds: None,
                 ..kept.clone()
             };
             let mut hits = 0;

@@ -3,6 +3,7 @@
 
 use super::cap_grid::CapGrid;
 use super::contour::orientation;
+use super::QueryBounds;
 use crate::proc::sweep::spline;
 use crate::types::{
     BoundingBox, Coeff, CurveKind, DVec3, Fidelity, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
@@ -86,6 +87,7 @@ pub(super) fn translation_sweep(points: Vec<[f64; 2]>, curve: CurveKind, length:
         bbox: BoundingBox::default(),
         orientation: 0.0,
         cap_grid: None,
+        bounds: None,
     };
     let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
     sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);
@@ -204,5 +206,15 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         // Thesis (§3.3): "the bounding box of each picture" — each
         // object keeps its own.
         Fidelity::Thesis => {}
+    }
+    // The boxes are final: what every ray takes from them, made once.
+    for obj in objects
+        .iter_mut()
+        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
+    {
+        let class = obj.class;
+        if let Shape::Sweep(sw) = &mut obj.shape {
+            sw.bounds = QueryBounds::kept(class, sw);
+        }
     }
 }
