@@ -39,6 +39,7 @@ impl Near {
     /// surface keeps its own bits. The closest approach is a well-
     /// conditioned product (no difference of squares), and from it every
     /// point of the object is within `radius` plus the ray's offset.
+    #[inline(always)]
     pub fn of(ray: &Ray, tmin: f64, centre: DVec3, radius2: f64) -> Near {
         let oc = ray.origin - centre;
         let unchanged = Near {
@@ -201,6 +202,7 @@ const BLOCK_NORMALS: [DVec3; 6] = [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_
 /// [`intersect_convex`] would take them, with its dot products written out:
 /// n·d and n·o of an axis normal are ±d_k and ±o_k exactly, so the hits are
 /// the same to the bit, without the products by zero.
+#[inline(always)]
 pub fn intersect_block(lengths: DVec3, ray: &Ray, tmin: f64) -> Option<LocalHit> {
     let h = lengths * 0.5;
     let near = Near::of(ray, tmin, DVec3::ZERO, h.length_squared());

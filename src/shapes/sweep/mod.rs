@@ -261,6 +261,7 @@ pub(super) fn negligible(p: &[f64; 7], scale: f64) -> bool {
 }
 
 /// Does the ray meet the box [lo, hi] at some t > tmin?
+#[inline(always)]
 pub(super) fn ray_meets_box(ray: &Ray, tmin: f64, lo: DVec3, hi: DVec3) -> bool {
     let (mut t0, mut t1) = (tmin, f64::INFINITY);
     for k in 0..3 {
@@ -327,6 +328,7 @@ pub(super) fn box_size(b: &BoundingBox) -> f64 {
 /// polished, and is rejected unless the hit lies on the surface (within
 /// 1e-9 of the object's size); so a spurious root of either solver (the
 /// listing's `laguerre` can return one, erratum 7) never becomes a hit.
+#[inline(always)]
 pub fn intersect_sweep(
     class: PrimitiveClass,
     sweep: &SweepShape,
@@ -341,6 +343,7 @@ pub fn intersect_sweep(
 /// The shadow ray's question (a light `tmax` away): the answer of
 /// [`intersect_sweep`] (its nearest hit lies before `tmax`), reached by
 /// stopping at the first hit before `tmax` instead of the nearest.
+#[inline(always)]
 pub fn sweep_blocks(
     class: PrimitiveClass,
     sweep: &SweepShape,
@@ -385,6 +388,7 @@ impl Query {
     }
 }
 
+#[inline(always)]
 fn sweep_query(
     class: PrimitiveClass,
     sweep: &SweepShape,
