@@ -205,7 +205,8 @@ pub(super) fn extrusion(
             return false;
         }
         let p = o + d * t;
-        let (x, y) = (p.x / k, p.y / k);
+        // A translation sweep's k is 1: x / 1 is x, without the division.
+        let (x, y) = if conic { (p.x / k, p.y / k) } else { (p.x, p.y) };
         // Outside the contour's box the contour test answers no (every
         // segment is skipped, or crossed an even number of times): asked
         // only inside it.
