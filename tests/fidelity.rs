@@ -8,6 +8,7 @@ mod common;
 
 use raytrace::drt::{default_pattern, TimeTable};
 use raytrace::paper::{do34, widen_tbox, Hermite, PaperChain};
+use raytrace::shapes::sweep::QueryBounds;
 use raytrace::raytrace::{debug_log, key_frame_chains, prepare, render, still_at, Camera};
 use raytrace::types::*;
 
@@ -141,6 +142,14 @@ fn erratum_9_tbox_widened_by_2_for_every_pair() {
         sweep_box(&again.objects[0]).xmax,
         sweep_box(&listing.objects[0]).xmax + 6.0
     );
+    // The bounds every ray takes from the box are made again for the new
+    // box (a kept one for the old box would be passed over, not used).
+    for obj in &again.objects {
+        if let Shape::Sweep(sw) = &obj.shape {
+            assert!(sw.bounds.is_some(), "{}", obj.name);
+            assert_eq!(sw.bounds, QueryBounds::kept(obj.class, sw), "{}", obj.name);
+        }
+    }
 
     let chains = key_frame_chains(&listing, Fidelity::Listing).unwrap();
     assert_eq!(chains.len(), 3);

@@ -300,6 +300,8 @@ pub fn widen_tbox(scene: &mut Scene, fidelity: Fidelity) {
                 sw.bbox.xmin -= by;
                 sw.bbox.ymax += by;
                 sw.bbox.ymin -= by;
+                // What a ray takes from the box, made again for the new one.
+                sw.bounds = crate::shapes::sweep::QueryBounds::kept(obj.class, sw);
             }
         }
     }
