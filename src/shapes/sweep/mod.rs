@@ -123,12 +123,15 @@ pub(super) struct Found {
 /// The segment's polynomial of degree `n` solved by the chosen method.
 /// A cubic is asked of its Bernstein count first ([`unit_crossings`]):
 /// none there is none for either solver; one is taken at once by the
-/// robust solver (DEVIATIONS D30, D31).
+/// robust solver (DEVIATIONS D30, D31), and given to `laguerre` without
+/// its pre-test [`may_have_root`], which a count of one always passes (p
+/// keeps the signs of b₀ and bₙ on the slack, which differ).
 ///
 /// The cubic's count is made where the call is (most segments end
 /// there); the rest of the work is [`solve_further`].
 #[inline(always)]
 pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
+    let mut crosses = false;
     if n == 3 {
         let b = bernstein_unit_of::<3>(a);
         match unit_crossings(3, &b) {
@@ -138,19 +141,21 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
                 out.s[0] = one_crossing(n, a, &b, SIDE_SETTLE);
                 return out;
             }
-            _ => {}
+            Crossings::One => crosses = true,
+            Crossings::Unknown => {}
         }
     }
-    solve_further(n, a, opts)
+    solve_further(n, a, crosses, opts)
 }
 
 /// [`solve`] past the cubic's count: `laguerre` behind its Bernstein
-/// pre-test, or the robust solver.
+/// pre-test (unless the polynomial is known to `cross` [−δ, 1 + δ]), or
+/// the robust solver.
 #[inline(never)]
-fn solve_further(n: usize, a: &[f64; 7], opts: &Options) -> Found {
+fn solve_further(n: usize, a: &[f64; 7], crosses: bool, opts: &Options) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
-    if opts.solver == Solver::Laguerre && !may_have_root(n, a, lo, hi) {
+    if opts.solver == Solver::Laguerre && !crosses && !may_have_root(n, a, lo, hi) {
         return out;
     }
     match opts.solver {
@@ -607,6 +612,8 @@ mod tests {
                 Crossings::One => {
                     one += 1;
                     assert_eq!(found.count, 1, "{roots:?}: {:?}", found.roots());
+                    // Why `solve` gives it to `laguerre` without the pre-test.
+                    assert!(may_have_root(3, &p, -JOINT_SLACK, 1.0 + JOINT_SLACK), "{roots:?}");
                     let s = one_crossing(3, &p, &b, 0.0);
                     let settled = one_crossing(3, &p, &b, SIDE_SETTLE);
                     assert!((settled - s).abs() < 1e-11, "{roots:?}: {settled} against {s}");
