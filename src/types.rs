@@ -302,7 +302,7 @@ pub struct SweepShape {
     /// ([`QueryBounds`](crate::shapes::sweep::QueryBounds)), made once the
     /// box is final; kept with the box it was made from, so a box changed
     /// since (an in-between contour's) is not answered by it (the port's).
-    pub bounds: Option<crate::shapes::sweep::QueryBounds>,
+    pub bounds: Option<std::sync::Arc<crate::shapes::sweep::QueryBounds>>,
 }
 
 /// The variant part of `objectrecord`, in local coordinates (the local

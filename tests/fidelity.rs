@@ -8,8 +8,8 @@ mod common;
 
 use raytrace::drt::{default_pattern, TimeTable};
 use raytrace::paper::{do34, widen_tbox, Hermite, PaperChain};
-use raytrace::shapes::sweep::QueryBounds;
 use raytrace::raytrace::{debug_log, key_frame_chains, prepare, render, still_at, Camera};
+use raytrace::shapes::sweep::QueryBounds;
 use raytrace::types::*;
 
 fn opts(fidelity: Fidelity) -> Options {
