@@ -3,6 +3,8 @@
 
 use raytrace::types::*;
 
+pub mod sweeps;
+
 pub fn surface(kind: SurfaceAttribute, color: [f64; 3], ka: f64, kd: f64, ks: f64, kt: f64) -> SurfaceRecord {
     SurfaceRecord {
         name: "s".into(),
