@@ -704,4 +704,43 @@ mod tests {
             assert!(hits > 200, "{hits}");
         }
     }
+
+    /// A sweep whose box was never filled (all zeros) takes its size from
+    /// its segments and is still met; one with no segments at all is not.
+    #[test]
+    fn a_sweep_without_a_box_takes_its_size_from_its_segments() {
+        let filled =
+            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
+        let boxless = SweepShape {
+            bbox: BoundingBox::default(),
+            bounds: None,
+            ..filled.clone()
+        };
+        let b = QueryBounds::of(PrimitiveClass::Translation, &boxless, &boxless.u, &boxless.v).expect("a size");
+        assert_eq!(
+            b.size, 1.0,
+            "the largest |coordinate| of the segments' ranges and the length"
+        );
+        assert!(!b.boxed);
+        assert_eq!(
+            QueryBounds::kept(PrimitiveClass::Translation, &boxless),
+            None,
+            "no box, nothing kept"
+        );
+        let ray = Ray::new(DVec3::new(0.0, -5.0, 0.5), DVec3::Y);
+        let opts = Options::default();
+        let hit = intersect_sweep(PrimitiveClass::Translation, &boxless, &ray, 1e-9, &opts).expect("met");
+        let want = intersect_sweep(PrimitiveClass::Translation, &filled, &ray, 1e-9, &opts).expect("met");
+        assert!((hit.t - want.t).abs() < 1e-9, "{} {}", hit.t, want.t);
+        let empty = SweepShape {
+            u: vec![],
+            v: vec![],
+            segment: 0,
+            ..boxless
+        };
+        assert_eq!(
+            intersect_sweep(PrimitiveClass::Translation, &empty, &ray, 1e-9, &opts),
+            None
+        );
+    }
 }
