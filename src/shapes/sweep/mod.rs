@@ -743,4 +743,41 @@ mod tests {
             None
         );
     }
+
+    /// What a ray takes from a box, pinned on one box for each kind: the
+    /// size, the box padded by 10⁻⁹ of it, the sphere about its centre;
+    /// a box flat in x or z is not a box.
+    #[test]
+    fn query_bounds_of_a_box() {
+        let mut sw =
+            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
+        sw.bbox = BoundingBox {
+            xmin: -1.0,
+            xmax: 2.0,
+            ymin: -3.0,
+            ymax: 1.0,
+            zmin: 0.5,
+            zmax: 4.0,
+        };
+        let (u, v) = (sw.u.clone(), sw.v.clone());
+        let pad = 4e-9;
+        let t = QueryBounds::of(PrimitiveClass::Translation, &sw, &u, &v).unwrap();
+        assert_eq!((t.size, t.boxed), (4.0, true));
+        assert_eq!(t.lo, DVec3::new(-1.0, -3.0, 0.5) - pad);
+        assert_eq!(t.hi, DVec3::new(2.0, 1.0, 4.0) + pad);
+        assert_eq!(t.centre, 0.5 * (t.lo + t.hi));
+        assert_eq!(t.radius2, 0.25 * (t.hi - t.lo).length_squared());
+        assert!((t.radius2 - 0.25 * (9.0 + 16.0 + 12.25)).abs() < 1e-7);
+        let r = QueryBounds::of(PrimitiveClass::Rotation, &sw, &u, &v).unwrap();
+        assert_eq!(r.lo, DVec3::new(-3.0, -3.0, 0.5) - pad);
+        assert_eq!(r.hi, DVec3::new(3.0, 3.0, 4.0) + pad);
+        assert_eq!(QueryBounds::of(PrimitiveClass::Sphere, &sw, &u, &v), None);
+        for flat in [(1.0, 1.0, 0.5, 4.0), (-1.0, 2.0, 4.0, 4.0)] {
+            let mut f = sw.clone();
+            (f.bbox.xmin, f.bbox.xmax, f.bbox.zmin, f.bbox.zmax) = flat;
+            let b = QueryBounds::of(PrimitiveClass::Translation, &f, &u, &v).unwrap();
+            assert!(!b.boxed, "{flat:?}");
+            assert_eq!((b.centre, b.radius2), (DVec3::ZERO, 4.0 * b.size * b.size), "{flat:?}");
+        }
+    }
 }
