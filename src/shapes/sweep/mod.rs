@@ -38,12 +38,14 @@
 //! `contour` the contour's own geometry (the cap test, orientation,
 //! tangents); `prepare` the coefficients and boxes from the control points.
 
+mod bounds;
 mod cap_grid;
 mod contour;
 mod extrusion;
 mod prepare;
 mod revolve;
 
+pub use bounds::QueryBounds;
 pub use cap_grid::CapGrid;
 pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
@@ -442,87 +444,6 @@ fn sweep_query(
     })
 }
 
-/// What [`sweep_query`] takes from an object's box for every ray: the
-/// size its tolerances are relative to, the padded box a ray must meet,
-/// and the sphere about it that [`Near`] re-bases the ray on. Made once
-/// for an object at rest ([`prepare_sweeps`]) and kept in
-/// [`SweepShape::bounds`] with the box and class it was made from; a ray
-/// of an object whose box has changed since (an in-between contour's)
-/// makes its own (the port's; the same values either way).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct QueryBounds {
-    class: PrimitiveClass,
-    bbox: BoundingBox,
-    size: f64,
-    boxed: bool,
-    lo: DVec3,
-    hi: DVec3,
-    centre: DVec3,
-    radius2: f64,
-}
-
-impl QueryBounds {
-    /// The bounds of `sweep` (segments `u`, `v`) as an object of `class`;
-    /// `None` for a class that is not a sweep's or a sweep of no size.
-    pub(super) fn of(class: PrimitiveClass, sweep: &SweepShape, u: &[Coeff], v: &[Coeff]) -> Option<QueryBounds> {
-        let mut size = box_size(&sweep.bbox);
-        if !(size > 0.0 && size.is_finite()) {
-            size = u
-                .iter()
-                .chain(v)
-                .fold(0.0f64, |m, c| m.max(c.min.abs()).max(c.max.abs()));
-            size = size.max(sweep.length.abs());
-        }
-        if !(size > 0.0 && size.is_finite()) {
-            return None;
-        }
-        let b = &sweep.bbox;
-        let pad = 1e-9 * size;
-        let boxed = b.xmin < b.xmax && b.zmin < b.zmax;
-        let (lo, hi) = match class {
-            PrimitiveClass::Translation | PrimitiveClass::Conic => (
-                DVec3::new(b.xmin, b.ymin, b.zmin) - pad,
-                DVec3::new(b.xmax, b.ymax, b.zmax) + pad,
-            ),
-            PrimitiveClass::Rotation => {
-                let r = b.xmin.abs().max(b.xmax.abs()).max(b.ymin.abs()).max(b.ymax.abs());
-                (DVec3::new(-r, -r, b.zmin) - pad, DVec3::new(r, r, b.zmax) + pad)
-            }
-            _ => return None,
-        };
-        let (centre, radius2) = if boxed {
-            (0.5 * (lo + hi), 0.25 * (hi - lo).length_squared())
-        } else {
-            (DVec3::ZERO, 4.0 * size * size)
-        };
-        Some(QueryBounds {
-            class,
-            bbox: *b,
-            size,
-            boxed,
-            lo,
-            hi,
-            centre,
-            radius2,
-        })
-    }
-
-    /// The bounds to keep for `sweep` as an object of `class`: those of a
-    /// box, which depend on the box alone (a sweep without one takes its
-    /// size from its segments, which may change under the same box).
-    pub fn kept(class: PrimitiveClass, sweep: &SweepShape) -> Option<std::sync::Arc<QueryBounds>> {
-        let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
-        QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n])
-            .filter(|b| b.boxed && b.size == box_size(&b.bbox))
-            .map(std::sync::Arc::new)
-    }
-
-    /// Were these bounds made from this box, for this class?
-    fn holds(&self, class: PrimitiveClass, bbox: &BoundingBox) -> bool {
-        self.class == class && self.bbox == *bbox
-    }
-}
-
 /// The nearest hit so far, and the segment it is on.
 #[derive(Clone, Copy)]
 pub(super) struct Best {
@@ -702,82 +623,6 @@ mod tests {
                 }
             }
             assert!(hits > 200, "{hits}");
-        }
-    }
-
-    /// A sweep whose box was never filled (all zeros) takes its size from
-    /// its segments and is still met; one with no segments at all is not.
-    #[test]
-    fn a_sweep_without_a_box_takes_its_size_from_its_segments() {
-        let filled =
-            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
-        let boxless = SweepShape {
-            bbox: BoundingBox::default(),
-            bounds: None,
-            ..filled.clone()
-        };
-        let b = QueryBounds::of(PrimitiveClass::Translation, &boxless, &boxless.u, &boxless.v).expect("a size");
-        assert_eq!(
-            b.size, 1.0,
-            "the largest |coordinate| of the segments' ranges and the length"
-        );
-        assert!(!b.boxed);
-        assert_eq!(
-            QueryBounds::kept(PrimitiveClass::Translation, &boxless),
-            None,
-            "no box, nothing kept"
-        );
-        let ray = Ray::new(DVec3::new(0.0, -5.0, 0.5), DVec3::Y);
-        let opts = Options::default();
-        let hit = intersect_sweep(PrimitiveClass::Translation, &boxless, &ray, 1e-9, &opts).expect("met");
-        let want = intersect_sweep(PrimitiveClass::Translation, &filled, &ray, 1e-9, &opts).expect("met");
-        assert!((hit.t - want.t).abs() < 1e-9, "{} {}", hit.t, want.t);
-        let empty = SweepShape {
-            u: vec![],
-            v: vec![],
-            segment: 0,
-            ..boxless
-        };
-        assert_eq!(
-            intersect_sweep(PrimitiveClass::Translation, &empty, &ray, 1e-9, &opts),
-            None
-        );
-    }
-
-    /// What a ray takes from a box, pinned on one box for each kind: the
-    /// size, the box padded by 10⁻⁹ of it, the sphere about its centre;
-    /// a box flat in x or z is not a box.
-    #[test]
-    fn query_bounds_of_a_box() {
-        let mut sw =
-            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
-        sw.bbox = BoundingBox {
-            xmin: -1.0,
-            xmax: 2.0,
-            ymin: -3.0,
-            ymax: 1.0,
-            zmin: 0.5,
-            zmax: 4.0,
-        };
-        let (u, v) = (sw.u.clone(), sw.v.clone());
-        let pad = 4e-9;
-        let t = QueryBounds::of(PrimitiveClass::Translation, &sw, &u, &v).unwrap();
-        assert_eq!((t.size, t.boxed), (4.0, true));
-        assert_eq!(t.lo, DVec3::new(-1.0, -3.0, 0.5) - pad);
-        assert_eq!(t.hi, DVec3::new(2.0, 1.0, 4.0) + pad);
-        assert_eq!(t.centre, 0.5 * (t.lo + t.hi));
-        assert_eq!(t.radius2, 0.25 * (t.hi - t.lo).length_squared());
-        assert!((t.radius2 - 0.25 * (9.0 + 16.0 + 12.25)).abs() < 1e-7);
-        let r = QueryBounds::of(PrimitiveClass::Rotation, &sw, &u, &v).unwrap();
-        assert_eq!(r.lo, DVec3::new(-3.0, -3.0, 0.5) - pad);
-        assert_eq!(r.hi, DVec3::new(3.0, 3.0, 4.0) + pad);
-        assert_eq!(QueryBounds::of(PrimitiveClass::Sphere, &sw, &u, &v), None);
-        for flat in [(1.0, 1.0, 0.5, 4.0), (-1.0, 2.0, 4.0, 4.0)] {
-            let mut f = sw.clone();
-            (f.bbox.xmin, f.bbox.xmax, f.bbox.zmin, f.bbox.zmax) = flat;
-            let b = QueryBounds::of(PrimitiveClass::Translation, &f, &u, &v).unwrap();
-            assert!(!b.boxed, "{flat:?}");
-            assert_eq!((b.centre, b.radius2), (DVec3::ZERO, 4.0 * b.size * b.size), "{flat:?}");
         }
     }
 }
