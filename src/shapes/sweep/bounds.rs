@@ -70,13 +70,14 @@ impl QueryBounds {
         })
     }
 
-    /// The bounds to keep for `sweep` as an object of `class`: those of a
-    /// box, which depend on the box alone (a sweep without one takes its
-    /// size from its segments, which may change under the same box).
+    /// The bounds to keep for `sweep` as an object of `class`: those whose
+    /// size is its box's, which then depend on the box alone (a sweep
+    /// without one takes its size from its segments, which may change
+    /// under the same box).
     pub fn kept(class: PrimitiveClass, sweep: &SweepShape) -> Option<std::sync::Arc<QueryBounds>> {
         let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
         QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n])
-            .filter(|b| b.boxed && b.size == box_size(&b.bbox))
+            .filter(|b| b.size == box_size(&b.bbox))
             .map(std::sync::Arc::new)
     }
 
