@@ -512,6 +512,9 @@ pub struct FaceCoords {
 }
 
 /// See [`FaceCoords`].
+// Inlined for the reason `intersect_block` is: its caller reads the
+// coordinates back at once, two at a time.
+#[inline(always)]
 pub fn face_coords(obj: &ObjectRecord, local: DVec3, local_normal: DVec3) -> FaceCoords {
     match &obj.shape {
         Shape::Block { lengths } => {
