@@ -422,27 +422,6 @@ impl<'s> Tracer<'s> {
         }
     }
 
-    /// The scene as it stood at an instant kept by [`Tracer::kept`].
-    fn again(&mut self, p: &Posed) {
-        self.poses.copy_from_slice(&p.poses);
-        for (d, contour) in self.deforming.iter().zip(&p.contours) {
-            match contour {
-                Some(c) => d.again(p.time, c),
-                None => d.at(p.time),
-            }
-        }
-    }
-
-    /// The scene now, at film time `time`, with the contours its rays have
-    /// made, to be posed [`Tracer::again`].
-    fn kept(&self, time: f64) -> Posed {
-        Posed {
-            time,
-            poses: self.poses.clone(),
-            contours: self.deforming.iter().map(|d| d.made().map(|c| c.clone())).collect(),
-        }
-    }
-
     /// `raytrace` of the primary ray `aray` with the scene as the last
     /// [`Tracer::at`] left it.
     fn shoot(&mut self, shared: &Shared, aray: &Ray) -> Intensity {
@@ -455,23 +434,6 @@ impl<'s> Tracer<'s> {
         raytrace(&snap, aray, 1.0, false, 1, shared.opts, &mut self.stats)
     }
 }
-
-/// The scene at one instant of a row of the adaptive sampler, as
-/// [`Tracer::at`] posed it, with the in-between contours its rays made:
-/// kept for the row's later passes, which come back to the same instants
-/// (a row's time at instant k is the same in every pass, `PixelSamples`),
-/// and posed then by a copy instead of `motionblur` and `Hermite` again
-/// (the same poses and contours: they depend on the time alone).
-struct Posed {
-    time: f64,
-    poses: Vec<crate::types::Pose>,
-    contours: Vec<Option<crate::types::Shape>>,
-}
-
-/// The instants of a row kept as [`Posed`]: the first blocks, which every
-/// pass comes back to (the counts past them are the few pixels near the
-/// cap, whose instants would take memory for little).
-const KEPT_INSTANTS: u32 = 4 * adaptive::SHIFT_BLOCK;
 
 /// The scanline loop: the colour of every pixel, the counts, the primary rays.
 fn render_rows(scene: &Scene, opts: &Options, frame: Frame, progress: &(dyn Fn() + Sync)) -> Traced {
@@ -595,7 +557,6 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
             .filter(|&e| e > 0),
     );
     let samples: Vec<_> = (0..sums.len()).map(|i| adaptive::PixelSamples::new(i, w)).collect();
-    let mut kept: Vec<Vec<Option<Posed>>> = (0..img.height).map(|_| Vec::new()).collect();
     let mut per_row = Vec::new();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
@@ -606,9 +567,8 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
             .par_chunks_mut(w)
             .zip(counts.par_chunks(w))
             .zip(samples.par_chunks(w))
-            .zip(kept.par_iter_mut())
             .enumerate()
-            .map(|(row, (((sums, counts), samples), kept))| {
+            .map(|(row, ((sums, counts), samples))| {
                 let mut tracer = Tracer::new(shared);
                 let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
                 // The row's instants k in the blocks its samples reach: at
@@ -617,19 +577,15 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                 let block = adaptive::SHIFT_BLOCK;
                 for (b, pixels) in adaptive::blocks_due(&start, counts) {
                     for k in b * block..(b + 1) * block {
-                        let mut posed = None;
+                        let mut posed = false;
                         for &x in &pixels {
                             let j = samples[x].at_instant(k);
                             if j < start[x] || j >= counts[x] {
                                 continue;
                             }
-                            if shared.timed && posed.is_none() {
-                                let time = shared.frame.time(samples[x].tau(j));
-                                match kept.get(k as usize) {
-                                    Some(Some(p)) => tracer.again(p),
-                                    _ => tracer.at(shared, samples[x].tau(j)),
-                                }
-                                posed = Some(time);
+                            if shared.timed && !posed {
+                                tracer.at(shared, samples[x].tau(j));
+                                posed = true;
                             }
                             let (u, v) = samples[x].place(j);
                             // Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M).
@@ -637,23 +593,6 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                             let scanline = (row as f64 + v) * m + 0.5;
                             let aray = camera.ray(scancol, scanline, 0.0, 0.0);
                             sums[x].add(tracer.shoot(shared, &aray));
-                        }
-                        // Keep the instant the first time, and again when
-                        // its rays have made a contour it was kept without.
-                        if let (Some(time), true) = (posed, k < KEPT_INSTANTS) {
-                            let k = k as usize;
-                            if kept.len() <= k {
-                                kept.resize_with(k + 1, || None);
-                            }
-                            let stale = kept[k].as_ref().is_none_or(|p| {
-                                p.contours
-                                    .iter()
-                                    .zip(&tracer.deforming)
-                                    .any(|(c, d)| c.is_none() && d.made().is_some())
-                            });
-                            if stale {
-                                kept[k] = Some(tracer.kept(time));
-                            }
                         }
                     }
                 }

@@ -75,21 +75,6 @@ impl<'a> Deforming<'a> {
         self.ready.set(false);
     }
 
-    /// The contour if a ray of this instant has made it, to be kept for
-    /// another visit of the instant.
-    pub fn made(&self) -> Option<Ref<'_, Shape>> {
-        self.ready.get().then(|| self.contour.borrow())
-    }
-
-    /// The instant `time` again, with the contour made at it before: what
-    /// [`Deforming::contour`] would make again, as it depends on the time
-    /// alone.
-    pub fn again(&self, time: f64, contour: &Shape) {
-        self.time.set(time);
-        self.contour.borrow_mut().clone_from(contour);
-        self.ready.set(true);
-    }
-
     /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
     /// (`PaperChain::inbetween`), on first use.
     pub fn contour(&self) -> Ref<'_, Shape> {
