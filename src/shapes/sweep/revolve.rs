@@ -20,82 +20,23 @@ pub(super) fn revolve_residual(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64) 
 /// Newton's method on the pair r(t)² = U(s)², z(t) = V(s) of a rotation
 /// sweep, from (s, t); kept only while the residual falls. A start whose
 /// residual exceeds `give_up` is returned as it is.
-#[cfg(test)]
-pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, s: f64, t: f64, give_up: f64) -> (f64, f64, f64) {
-    polish_revolve_at(u, v, ray, &RayCircle::of(ray), &AtS::of(u, v, s), t, give_up)
-}
-
-/// A, B, C of the ray's r(t)² = A t² + B t + C ([`revolve`]), once a ray
-/// for each of its starts' polishes.
-pub(super) struct RayCircle {
-    a: f64,
-    b: f64,
-    c: f64,
-}
-
-impl RayCircle {
-    pub(super) fn of(ray: &Ray) -> Self {
-        let (o, d) = (ray.origin, ray.dir);
-        RayCircle {
-            a: d.x * d.x + d.y * d.y,
-            b: 2.0 * (o.x * d.x + o.y * d.y),
-            c: o.x * o.x + o.y * o.y,
-        }
-    }
-}
-
-/// U, V and their slopes at a root s, once for the root's three starts
-/// (the same values each start's polish would compute first).
-pub(super) struct AtS {
-    s: f64,
-    uu: f64,
-    vv: f64,
-    du: f64,
-    dv: f64,
-}
-
-impl AtS {
-    pub(super) fn of(u: &Coeff, v: &Coeff, s: f64) -> Self {
-        AtS {
-            s,
-            uu: u.value(s),
-            vv: v.value(s),
-            du: u.slope(s),
-            dv: v.slope(s),
-        }
-    }
-}
-
-/// [`polish_revolve`] from (`at.s`, t), with the ray's A, B, C and the
-/// contour's values at s given: the same steps, the same result.
-fn polish_revolve_at(
-    u: &Coeff,
-    v: &Coeff,
-    ray: &Ray,
-    k: &RayCircle,
-    at: &AtS,
-    mut t: f64,
-    give_up: f64,
-) -> (f64, f64, f64) {
+pub(super) fn polish_revolve(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64, give_up: f64) -> (f64, f64, f64) {
     let (o, d) = (ray.origin, ray.dir);
-    let (a, b, c) = (k.a, k.b, k.c);
-    let mut s = at.s;
-    // U and V kept from each residual for the step from there
-    // ([`revolve_residual`] at the start, from `at`).
-    let (mut uu, mut vv) = (at.uu, at.vv);
-    let mut res = {
-        let p = ray.at(t);
-        norm2(norm2(p.x, p.y) - uu, p.z - vv)
-    };
+    let (a, b, c) = (
+        d.x * d.x + d.y * d.y,
+        2.0 * (o.x * d.x + o.y * d.y),
+        o.x * o.x + o.y * o.y,
+    );
+    // U and V kept from each residual for the step from there.
+    let (mut uu, mut vv, mut res) = revolve_residual(u, v, ray, s, t);
     if res > give_up {
         return (s, t, res);
     }
-    let mut slopes = Some((at.du, at.dv));
     for _ in 0..5 {
         if res == 0.0 {
             break;
         }
-        let (du, dv) = slopes.take().unwrap_or_else(|| (u.slope(s), v.slope(s)));
+        let (du, dv) = (u.slope(s), v.slope(s));
         let g1 = (a * t + b) * t + c - uu * uu;
         let g2 = o.z + t * d.z - vv;
         // J = [[2at + b, −2U U′], [d_z, −V′]] in (t, s).
@@ -195,13 +136,12 @@ pub(super) fn revolve(
         Solver::Laguerre => f64::INFINITY,
     };
     // Whether the hit polished from (s, t) on segment i is an answer at once.
-    let k = RayCircle::of(ray);
-    let consider = |i: usize, at: &AtS, t: f64, best: &mut Option<Best>| -> bool {
+    let consider = |i: usize, s: f64, t: f64, best: &mut Option<Best>| -> bool {
         if !t.is_finite() {
             return false;
         }
         let (cu, cv) = (&u[i], &v[i]);
-        let (s, t, res) = polish_revolve_at(cu, cv, ray, &k, at, t, give_up);
+        let (s, t, res) = polish_revolve(cu, cv, ray, s, t, give_up);
         if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin, i) {
             let normal = revolve_normal(cu, cv, s, ray.at(t), size);
             *best = Some(Best { t, normal, segment: i });
@@ -285,8 +225,8 @@ pub(super) fn revolve(
             }
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
-                let at = AtS::of(cu, cv, polish(3, &p, s));
-                if consider(i, &at, (at.vv - o.z) / d.z, &mut best) {
+                let s = polish(3, &p, s);
+                if consider(i, s, (cv.value(s) - o.z) / d.z, &mut best) {
                     return best.map(|h| hit(ray, h));
                 }
             }
@@ -300,9 +240,9 @@ pub(super) fn revolve(
             }
             let found = solve(3, &p, opts);
             for &s in &found.s[..found.count] {
-                let at = AtS::of(cu, cv, polish(3, &p, s));
-                if let Some((t1, t2)) = circle(at.uu) {
-                    if consider(i, &at, t1, &mut best) || consider(i, &at, t2, &mut best) {
+                let s = polish(3, &p, s);
+                if let Some((t1, t2)) = circle(cu.value(s)) {
+                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
                         return best.map(|h| hit(ray, h));
                     }
                 }
@@ -315,14 +255,14 @@ pub(super) fn revolve(
             }
             let found = solve(6, &p, opts);
             for &s in &found.s[..found.count] {
-                let at = AtS::of(cu, cv, polish(6, &p, s));
+                let s = polish(6, &p, s);
                 // The better conditioned of the height and the radius
                 // equations: try each, keep what lands on the surface.
-                if consider(i, &at, (at.vv - o.z) / dz, &mut best) {
+                if consider(i, s, (cv.value(s) - o.z) / dz, &mut best) {
                     return best.map(|h| hit(ray, h));
                 }
-                if let Some((t1, t2)) = circle(at.uu) {
-                    if consider(i, &at, t1, &mut best) || consider(i, &at, t2, &mut best) {
+                if let Some((t1, t2)) = circle(cu.value(s)) {
+                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
                         return best.map(|h| hit(ray, h));
                     }
                 }
@@ -384,75 +324,6 @@ mod tests {
         assert!(res < 1e-12 && res < r0, "{s} {t} {res}");
         let (s1, t1, r1) = polish_revolve(&cu, &cv, &ray, s0, t0, r0);
         assert_eq!((s1, t1, r1), (s, t, res), "a residual at the limit is polished");
-    }
-
-    /// The polish from values kept for a root's starts gives what the
-    /// polish computing them itself gave (its first form, below), to the
-    /// bit: starts on and off the bowl, near and far, with no limit and
-    /// with one.
-    #[test]
-    fn polish_from_kept_values_as_before() {
-        use crate::drt::hashed_uniform;
-        let (cu, cv) = bowl();
-        let mut polished = 0;
-        for k in 0..3000u64 {
-            let r = |j: u64| hashed_uniform(8 * k + j);
-            let o = DVec3::new(3.0 * (r(0) - 0.5), 3.0 * (r(1) - 0.5), 1.0 + 2.0 * r(2));
-            let ray = Ray::new(o, (DVec3::new(0.9, 0.1, 1.5 + r(3)) - o).normalize());
-            let (s, t) = (r(4), 4.0 * r(5));
-            let give_up = [f64::INFINITY, 1e-3, 0.3][(k % 3) as usize];
-            let kept = polish_revolve_at(&cu, &cv, &ray, &RayCircle::of(&ray), &AtS::of(&cu, &cv, s), t, give_up);
-            let bits = |(a, b, c): (f64, f64, f64)| [a.to_bits(), b.to_bits(), c.to_bits()];
-            assert_eq!(
-                bits(kept),
-                bits(plain_polish(&cu, &cv, &ray, s, t, give_up)),
-                "start {k}"
-            );
-            assert_eq!(
-                bits(kept),
-                bits(polish_revolve(&cu, &cv, &ray, s, t, give_up)),
-                "start {k}"
-            );
-            polished += (kept.2 < 1e-9) as usize;
-        }
-        assert!(polished > 300, "{polished}");
-    }
-
-    fn plain_polish(u: &Coeff, v: &Coeff, ray: &Ray, mut s: f64, mut t: f64, give_up: f64) -> (f64, f64, f64) {
-        let (o, d) = (ray.origin, ray.dir);
-        let (a, b, c) = (
-            d.x * d.x + d.y * d.y,
-            2.0 * (o.x * d.x + o.y * d.y),
-            o.x * o.x + o.y * o.y,
-        );
-        // U and V kept from each residual for the step from there.
-        let (mut uu, mut vv, mut res) = revolve_residual(u, v, ray, s, t);
-        if res > give_up {
-            return (s, t, res);
-        }
-        for _ in 0..5 {
-            if res == 0.0 {
-                break;
-            }
-            let (du, dv) = (u.slope(s), v.slope(s));
-            let g1 = (a * t + b) * t + c - uu * uu;
-            let g2 = o.z + t * d.z - vv;
-            // J = [[2at + b, −2U U′], [d_z, −V′]] in (t, s).
-            let (j11, j12, j21, j22) = (2.0 * a * t + b, -2.0 * uu * du, d.z, -dv);
-            let det = j11 * j22 - j12 * j21;
-            if det == 0.0 || !det.is_finite() {
-                break;
-            }
-            let dt = (-g1 * j22 + g2 * j12) / det;
-            let ds = (-g2 * j11 + g1 * j21) / det;
-            let (ns, nt) = (s + ds, t + dt);
-            let (nu, nv, nres) = revolve_residual(u, v, ray, ns, nt);
-            if nres.is_nan() || nres >= res {
-                break;
-            }
-            (s, t, uu, vv, res) = (ns, nt, nu, nv, nres);
-        }
-        (s, t, res)
     }
 
     /// The sextic of one line of sight, formed from an origin 10 units
