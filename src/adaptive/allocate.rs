@@ -1,0 +1,611 @@
+//! The adaptive sampler's allocation: how many rays each pixel should
+//! have after a pass ([`allocate`]), from the spreads of its samples so
+//! far. Between the passes, on one thread: a few loops over the pixels,
+//! each fusing what separate collections did. (The first form of this
+//! code, kept in the tests as the reference the counts must equal, took
+//! 5.3 % of the instructions of an adaptive render of fig5_3 at 96²
+//! pixels and 16 rays a pixel, this one 5.0 % (21 and 19 million); 1 % less
+//! CPU time on the whole render, fig5_3 and fig5_12 alike.)
+
+use super::{PixelSum, CAP, NEIGHBOUR};
+
+/// The counts every pixel of a `width`×`height` image should have after
+/// the next pass, `spent` + its share of `extra` more rays in all.
+///
+/// A pixel's need w is its spread σ, or [`NEIGHBOUR`] times the largest
+/// spread around it if that is more, to the power [`NEED_POWER`](super::NEED_POWER). To make
+/// the summed error Σ σ²/n smallest for a fixed total, counts grow with σ
+/// (Neyman allocation): the new counts are max(n, λ·w), at most [`CAP`] times the
+/// average `budget`, with λ found so they add up to the total; then
+/// rounded to whole counts of n or multiples of `quantum` (the render's
+/// is [`quantum`](super::quantum) of the budget), by the largest fractions of the way to
+/// the next (ties to the first pixel; [`round_counts`]). When no pixel
+/// shows any spread, the rays go evenly, to within a quantum.
+pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
+    let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();
+    if sums.is_empty() || extra == 0 || width == 0 {
+        return counts;
+    }
+    let need = needs(sums, width);
+    // The cap a whole number of quanta, so that every level below it is
+    // one quantum from the next.
+    let q = quantum.max(1);
+    let cap = (budget.saturating_mul(CAP).max(1) / q * q).max(q) as f64;
+    let (mut spent, mut room) = (0u64, 0.0f64);
+    for &n in &counts {
+        spent += n as u64;
+        room += cap - (n as f64).min(cap);
+    }
+    let total = (spent + extra) as f64;
+    if room <= extra as f64 {
+        // More rays than the caps hold: every pixel to its cap.
+        return counts.iter().map(|&n| cap.max(n as f64) as u32).collect();
+    }
+    let lambda = solve_lambda(&need, &counts, cap, total);
+    let real: Vec<f64> = need
+        .iter()
+        .zip(&counts)
+        .map(|(&w, &n)| {
+            let low = n as f64;
+            (lambda * w).clamp(low, cap.max(low))
+        })
+        .collect();
+    round_counts(&real, &counts, spent + extra, cap as u32, quantum)
+}
+
+/// Whole counts from the `real` ones (each at least the pixel's count
+/// `low` so far) that add up to `total`: each pixel keeps `low` or takes
+/// a multiple of `quantum` above it, at most `cap` (a multiple of
+/// `quantum`). Each starts at the level at or below its real count; then,
+/// by the largest fraction of the way to its next level (ties to the
+/// first pixel), pixels step up to that level while the steps fit in the
+/// rays left; the last rays, fewer than `quantum`, go one each in the same
+/// order. With a quantum of 1 this is the whole part of each and a ray
+/// more to the largest fractions. The whole parts are conversions, as no
+/// count is negative (`floor` is a library call on this target).
+pub(super) fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
+    let q = quantum.max(1);
+    let mut out = Vec::with_capacity(real.len());
+    let mut given = 0u64;
+    // The pixels that may step up to their next level (not beyond the
+    // cap): those with a fraction of the way there, with it, and those
+    // without (most: the pixels that keep their count), which come after
+    // them in their order. A pixel steps once at most, so its next level
+    // is always the one above its first.
+    let (mut candidates, mut without) = (Vec::new(), Vec::new());
+    for (i, (&r, &n)) in real.iter().zip(low).enumerate() {
+        let f = (r as u32 / q * q).max(n);
+        let next = (f / q + 1) * q;
+        if next <= cap {
+            let fraction = (r - f as f64) / (next - f) as f64;
+            if fraction > 0.0 {
+                candidates.push((fraction, i as u32));
+            } else {
+                without.push(i as u32);
+            }
+        }
+        given += f as u64;
+        out.push(f);
+    }
+    let next = |f: u32| (f / q + 1) * q;
+    let mut left = total.saturating_sub(given);
+    let mut without = without.into_iter();
+    // The first k candidates in the order of the largest fraction: only
+    // which pixels they are matters, not their order, so a selection,
+    // not a sort.
+    let mut first = |k: u64| -> Vec<u32> {
+        let k = k as usize;
+        if k < candidates.len() {
+            if k > 0 {
+                candidates.select_nth_unstable_by(k - 1, |a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            }
+            return candidates.drain(..k).map(|(_, i)| i).collect();
+        }
+        let mut all: Vec<u32> = candidates.drain(..).map(|(_, i)| i).collect();
+        all.extend(without.by_ref().take(k - all.len()));
+        all
+    };
+    // Each step is at most a quantum, so left / quantum of them fit.
+    let mut up = first(left / q as u64);
+    while !up.is_empty() {
+        for &i in &up {
+            let f = &mut out[i as usize];
+            left -= (next(*f) - *f) as u64;
+            *f = next(*f);
+        }
+        up = first(left / q as u64);
+    }
+    for i in first(left) {
+        out[i as usize] += 1;
+    }
+    out
+}
+
+/// Each pixel's need w of [`allocate`]: its spread σ, or [`NEIGHBOUR`]
+/// times the largest spread of the 3×3 pixels around it if that is more,
+/// to the power [`NEED_POWER`](super::NEED_POWER); at least a thousandth of the largest
+/// need, so that pixels without spread can take rays when the others are
+/// at the cap (and share them evenly when no pixel shows any). One loop
+/// on one thread: a few operations a pixel, where the parallel version's
+/// bookkeeping cost more than the work.
+pub(super) fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
+    let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+    // The largest spread of the 3 pixels of the row around each, row by
+    // row (no division by the width a pixel).
+    let mut across = vec![0.0; sums.len()];
+    for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+        for x in 0..width {
+            let left = if x > 0 { row[x - 1] } else { 0.0 };
+            let right = if x + 1 < width { row[x + 1] } else { 0.0 };
+            out[x] = row[x].max(left).max(right);
+        }
+    }
+    let height = sums.len() / width;
+    let mut need = vec![0.0; sums.len()];
+    let mut top = 0.0f64;
+    for y in 0..height {
+        for x in 0..width {
+            let i = y * width + x;
+            let up = if y > 0 { across[i - width] } else { 0.0 };
+            let down = if y + 1 < height { across[i + width] } else { 0.0 };
+            let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
+            // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an instruction
+            // each, where `powf` took a quarter of the allocation's time.
+            need[i] = (w * w.sqrt()).sqrt();
+            top = top.max(need[i]);
+        }
+    }
+    let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
+    for w in &mut need {
+        *w = w.max(floor);
+    }
+    need
+}
+
+/// The λ of [`allocate`]: Σ clamp(λ·need, low, high) reaches `total`, by
+/// less than half a ray beyond it (the rounding then hands out the rest
+/// exactly), where a pixel's low is its count so far and its high that
+/// or `cap`, whichever is more. The sum is piecewise linear and grows with λ; Newton's steps
+/// on it, kept inside a bracket that halves when a step would leave it,
+/// take a handful of sums where bisection takes twenty or more. `total`
+/// must lie between Σ low and Σ high.
+pub(super) fn solve_lambda(need: &[f64], counts: &[u32], cap: f64, total: f64) -> f64 {
+    // The sum and its slope at λ (the needs of the pixels not at a bound).
+    let sum_at = |l: f64| {
+        let (mut sum, mut slope) = (0.0, 0.0);
+        for (&w, &n) in need.iter().zip(counts) {
+            let (low, t) = (n as f64, l * w);
+            let high = cap.max(low);
+            if t <= low {
+                sum += low;
+            } else if t >= high {
+                sum += high;
+            } else {
+                sum += t;
+                slope += w;
+            }
+        }
+        (sum, slope)
+    };
+    // The start: λ where the counts would add up without their bounds.
+    let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
+    let mut at = sum_at(hi);
+    while at.0 < total {
+        (lo, hi) = (hi, hi * 2.0);
+        at = sum_at(hi);
+    }
+    let mut lambda = hi;
+    for _ in 0..100 {
+        let (sum, slope) = at;
+        if sum >= total {
+            hi = lambda;
+            if sum - total < 0.5 {
+                return hi;
+            }
+        } else {
+            lo = lambda;
+        }
+        let step = if slope > 0.0 {
+            lambda + (total - sum) / slope
+        } else {
+            f64::NAN
+        };
+        // Aim a little beyond the total, so that a step from below lands
+        // above it rather than just short.
+        let step = if sum < total && slope > 0.0 {
+            step + 0.25 / slope
+        } else {
+            step
+        };
+        lambda = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+        at = sum_at(lambda);
+    }
+    hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{quantum, Intensity, NEED_POWER};
+    use super::*;
+    use crate::drt::hashed_uniform;
+
+    /// The allocation as it was first written (separate collections), the
+    /// reference the fused loops must give the same counts as.
+    mod plain {
+        use super::super::super::{PixelSum, CAP, NEIGHBOUR};
+
+        pub(super) fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
+            let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();
+            if sums.is_empty() || extra == 0 || width == 0 {
+                return counts;
+            }
+            let need = needs(sums, width);
+            // The cap a whole number of quanta, so that every level below it is
+            // one quantum from the next.
+            let q = quantum.max(1);
+            let cap = (budget.saturating_mul(CAP).max(1) / q * q).max(q) as f64;
+            let spent: u64 = counts.iter().map(|&n| n as u64).sum();
+            let room: f64 = counts.iter().map(|&n| cap - (n as f64).min(cap)).sum();
+            let total = (spent + extra) as f64;
+            let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
+            let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
+            if room <= extra as f64 {
+                // More rays than the caps hold: every pixel to its cap.
+                return high.iter().map(|&h| h as u32).collect();
+            }
+            let lambda = solve_lambda(&need, &low, &high, total);
+            let real: Vec<f64> = (0..need.len())
+                .map(|i| (lambda * need[i]).clamp(low[i], high[i]))
+                .collect();
+            round_counts(&real, &counts, spent + extra, cap as u32, quantum)
+        }
+
+        fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
+            let q = quantum.max(1);
+            let mut out: Vec<u32> = (0..real.len()).map(|i| (real[i] as u32 / q * q).max(low[i])).collect();
+            // The level above each (a candidate if not beyond the cap).
+            let next: Vec<u32> = out.iter().map(|&f| (f / q + 1) * q).collect();
+            let fraction: Vec<f64> = (0..out.len())
+                .map(|i| (real[i] - out[i] as f64) / (next[i] - out[i]) as f64)
+                .collect();
+            let given: u64 = out.iter().map(|&n| n as u64).sum();
+            let mut left = total.saturating_sub(given);
+            // The candidates with a fraction, and those without (most: the
+            // pixels that keep their count), which come after them in their order.
+            let (mut candidates, without): (Vec<usize>, Vec<usize>) = (0..out.len())
+                .filter(|&i| next[i] <= cap)
+                .partition(|&i| fraction[i] > 0.0);
+            let mut without = without.into_iter();
+            // The first k candidates in the order of the largest fraction: only
+            // which pixels they are matters, not their order, so a selection,
+            // not a sort.
+            let mut first = |k: u64| -> Vec<usize> {
+                let k = k as usize;
+                if k < candidates.len() {
+                    if k > 0 {
+                        candidates.select_nth_unstable_by(k - 1, |&a, &b| {
+                            fraction[b].total_cmp(&fraction[a]).then(a.cmp(&b))
+                        });
+                    }
+                    return candidates.drain(..k).collect();
+                }
+                let mut all = std::mem::take(&mut candidates);
+                all.extend(without.by_ref().take(k - all.len()));
+                all
+            };
+            // Each step is at most a quantum, so left / quantum of them fit.
+            let mut up = first(left / q as u64);
+            while !up.is_empty() {
+                for &i in &up {
+                    left -= (next[i] - out[i]) as u64;
+                    out[i] = next[i];
+                }
+                up = first(left / q as u64);
+            }
+            for i in first(left) {
+                out[i] += 1;
+            }
+            out
+        }
+
+        fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
+            let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+            // The largest spread of the 3 pixels of the row around each, row by
+            // row (no division by the width a pixel).
+            let mut across = vec![0.0; sums.len()];
+            for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+                for x in 0..width {
+                    let left = if x > 0 { row[x - 1] } else { 0.0 };
+                    let right = if x + 1 < width { row[x + 1] } else { 0.0 };
+                    out[x] = row[x].max(left).max(right);
+                }
+            }
+            let height = sums.len() / width;
+            let mut need = vec![0.0; sums.len()];
+            for y in 0..height {
+                for x in 0..width {
+                    let i = y * width + x;
+                    let up = if y > 0 { across[i - width] } else { 0.0 };
+                    let down = if y + 1 < height { across[i + width] } else { 0.0 };
+                    let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
+                    // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an instruction
+                    // each, where `powf` took a quarter of the allocation's time.
+                    need[i] = (w * w.sqrt()).sqrt();
+                }
+            }
+            let top = need.iter().copied().fold(0.0f64, f64::max);
+            let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
+            for w in &mut need {
+                *w = w.max(floor);
+            }
+            need
+        }
+
+        fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
+            // The sum and its slope at λ (the needs of the pixels not at a bound).
+            let sum_at = |l: f64| {
+                let (mut sum, mut slope) = (0.0, 0.0);
+                for i in 0..need.len() {
+                    let t = l * need[i];
+                    if t <= low[i] {
+                        sum += low[i];
+                    } else if t >= high[i] {
+                        sum += high[i];
+                    } else {
+                        sum += t;
+                        slope += need[i];
+                    }
+                }
+                (sum, slope)
+            };
+            // The start: λ where the counts would add up without their bounds.
+            let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
+            let mut at = sum_at(hi);
+            while at.0 < total {
+                (lo, hi) = (hi, hi * 2.0);
+                at = sum_at(hi);
+            }
+            let mut lambda = hi;
+            for _ in 0..100 {
+                let (sum, slope) = at;
+                if sum >= total {
+                    hi = lambda;
+                    if sum - total < 0.5 {
+                        return hi;
+                    }
+                } else {
+                    lo = lambda;
+                }
+                let step = if slope > 0.0 {
+                    lambda + (total - sum) / slope
+                } else {
+                    f64::NAN
+                };
+                // Aim a little beyond the total, so that a step from below lands
+                // above it rather than just short.
+                let step = if sum < total && slope > 0.0 {
+                    step + 0.25 / slope
+                } else {
+                    step
+                };
+                lambda = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+                at = sum_at(lambda);
+            }
+            hi
+        }
+    }
+
+    /// The fused allocation gives the counts of the plain one, to the ray:
+    /// on images of noise of every kind (none, a few noisy pixels, noise
+    /// everywhere, with NaN spreads), with counts from the first pass's to
+    /// the cap, every quantum, and totals from a ray to past the caps.
+    #[test]
+    fn the_same_counts_as_the_plain_allocation() {
+        let mut checked = 0;
+        for k in 0..400u64 {
+            let r = |j: u64| hashed_uniform(64 * k + j);
+            let w = 1 + (r(0) * 23.0) as usize;
+            let h = 1 + (r(1) * 17.0) as usize;
+            let budget = [1u32, 4, 16, 64, 9][(k % 5) as usize];
+            let q = quantum(budget);
+            let mut sums = vec![PixelSum::default(); w * h];
+            for (i, s) in sums.iter_mut().enumerate() {
+                let n = match k % 4 {
+                    0 => 2,
+                    1 => 2 + (hashed_uniform(7 * i as u64 + k) * 40.0) as u32 / q * q,
+                    _ => 1 + (hashed_uniform(7 * i as u64 + k) * 6.0) as u32,
+                };
+                let noisy = match k % 3 {
+                    0 => false,
+                    1 => hashed_uniform(11 * i as u64 + k) < 0.05,
+                    _ => true,
+                };
+                for j in 0..n {
+                    let x = hashed_uniform(13 * (i as u64 * 64 + j as u64) + k);
+                    let c = if noisy { x } else { 0.5 };
+                    s.add(Intensity::new(c, 0.5, c * c));
+                }
+                if k % 29 == 0 && i == 0 {
+                    s.add(Intensity::splat(f64::NAN));
+                }
+            }
+            let pixels = (w * h) as u64;
+            let extra = [1, pixels, pixels * budget as u64 / 3, pixels * budget as u64 * 20][(k / 5 % 4) as usize];
+            let fused = allocate(&sums, w, budget, extra, q);
+            assert_eq!(fused, plain::allocate(&sums, w, budget, extra, q), "image {k}: {w}×{h}");
+            checked += 1;
+        }
+        assert_eq!(checked, 400);
+    }
+
+    fn sums_with(spreads: &[(usize, f64)], len: usize, n: u32) -> Vec<PixelSum> {
+        let mut sums = vec![PixelSum::default(); len];
+        for s in sums.iter_mut() {
+            for _ in 0..n {
+                s.add(Intensity::splat(0.5));
+            }
+        }
+        for &(i, d) in spreads {
+            sums[i] = PixelSum::default();
+            for j in 0..n {
+                sums[i].add(Intensity::splat(if j % 2 == 0 { 0.5 - d } else { 0.5 + d }));
+            }
+        }
+        sums
+    }
+
+    /// The rays go to the noisy pixel and its neighbours, they add up to
+    /// the total, and no count shrinks or passes the cap.
+    #[test]
+    fn allocation_follows_the_spread() {
+        let (w, h) = (8, 8);
+        let sums = sums_with(&[(3 * w + 3, 0.4)], w * h, 4);
+        let out = allocate(&sums, w, 16, 200, 1);
+        assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), 4 * 64 + 200);
+        assert!(out.iter().all(|&n| (4..=16 * 16).contains(&n)));
+        let noisy = out[3 * w + 3];
+        let beside = out[3 * w + 4];
+        let far = out[7 * w + 7];
+        assert!(noisy > beside && beside > far, "{noisy} {beside} {far}");
+        assert_eq!(far, 4);
+        // Twice the spread, 2^NEED_POWER times the rays (Neyman's 2,
+        // tempered).
+        let sums = sums_with(&[(0, 0.4), (63, 0.2)], w * h, 4);
+        let out = allocate(&sums, w, 16, 100, 1);
+        assert!(
+            (out[0] as f64 / out[63] as f64 - 2f64.powf(NEED_POWER)).abs() < 0.1,
+            "{} {}",
+            out[0],
+            out[63]
+        );
+    }
+
+    /// The need is the spread, or the neighbour's share of the largest
+    /// spread around, to the power [`NEED_POWER`](super::NEED_POWER), with its floor.
+    #[test]
+    fn needs_are_spreads_to_the_power() {
+        let (w, h) = (5, 4);
+        let sums = sums_with(&[(2 * w + 2, 0.3)], w * h, 4);
+        let sigma = sums[2 * w + 2].spread();
+        let need = needs(&sums, w);
+        let top = sigma.powf(NEED_POWER);
+        assert!((need[2 * w + 2] - top).abs() < 1e-12);
+        for i in [w + 1, w + 3, 3 * w + 2, 2 * w + 1] {
+            assert!(
+                (need[i] - (NEIGHBOUR * sigma).powf(NEED_POWER)).abs() < 1e-12,
+                "pixel {i}"
+            );
+        }
+        assert_eq!(need[0], top * 1e-3);
+        assert_eq!(need[w * h - 1], top * 1e-3);
+        assert!(needs(&sums_with(&[], w * h, 4), w).iter().all(|&n| n == 1.0));
+    }
+
+    /// The rounding gives the rays left to the largest fractions (not the
+    /// largest ratios, nor the first pixels), ties to the first, and when
+    /// the fractions are too few, to the whole counts below the cap in
+    /// their order, never past the cap.
+    #[test]
+    fn rounding_follows_the_fractions() {
+        let real = [4.3, 8.5, 2.0, 6.3, 16.0, 1.9, 3.0];
+        // Whole parts 40, fractions 0.3, 0.5, 0, 0.3, 0, 0.9, 0.
+        let want = |more: &[usize]| {
+            let mut w = vec![4, 8, 2, 6, 16, 1, 3];
+            for &i in more {
+                w[i] += 1;
+            }
+            w
+        };
+        assert_eq!(round_counts(&real, &[0; 7], 40, 16, 1), want(&[]));
+        assert_eq!(round_counts(&real, &[0; 7], 41, 16, 1), want(&[5]));
+        assert_eq!(round_counts(&real, &[0; 7], 42, 16, 1), want(&[5, 1]));
+        assert_eq!(round_counts(&real, &[0; 7], 43, 16, 1), want(&[5, 1, 0]));
+        assert_eq!(round_counts(&real, &[0; 7], 44, 16, 1), want(&[5, 1, 0, 3]));
+        // Past the fractions: the whole counts below the cap, in order.
+        assert_eq!(round_counts(&real, &[0; 7], 45, 16, 1), want(&[5, 1, 0, 3, 2]));
+        assert_eq!(round_counts(&real, &[0; 7], 46, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(&real, &[0; 7], 50, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+    }
+
+    /// In quanta: each pixel starts at its level (its count so far or the
+    /// multiple at or below), steps go by the largest fraction of the way
+    /// to the next level while they fit, and the last rays, fewer than a
+    /// quantum, go one each; the total is exact.
+    #[test]
+    fn rounding_in_quanta() {
+        let real = [2.0, 5.0, 9.5, 20.0, 31.9, 64.0];
+        let low = [2; 6];
+        // Levels 2, 2, 8, 16, 24, 64 (116 rays); fractions of the way to
+        // 8, 8, 16, 24, 32 and none: 0, 0.5, 0.1875, 0.5, 0.9875.
+        assert_eq!(round_counts(&real, &low, 116, 64, 8), vec![2, 2, 8, 16, 24, 64]);
+        assert_eq!(round_counts(&real, &low, 124, 64, 8), vec![2, 2, 8, 16, 32, 64]);
+        // Two rays left after a quantum: one each, ties to the first.
+        assert_eq!(round_counts(&real, &low, 126, 64, 8), vec![2, 3, 8, 17, 32, 64]);
+        // Three steps (one short, 2 → 8) leave 2 rays for the last two.
+        assert_eq!(round_counts(&real, &low, 140, 64, 8), vec![3, 8, 9, 24, 32, 64]);
+        // Short steps leave a quantum more: a second round of steps.
+        let real = [5.0; 8];
+        assert_eq!(round_counts(&real, &[2; 8], 48, 64, 8), vec![8, 8, 8, 8, 8, 3, 3, 2]);
+        // None beyond the cap.
+        assert_eq!(round_counts(&[16.0, 15.0], &[2, 2], 40, 16, 8), vec![16, 16]);
+        // The fraction is of the step: 4.5 of the 6 from 2 to 8 (0.75)
+        // before 5 of the 8 from 8 to 16 (0.625), though 5 rays are more.
+        assert_eq!(round_counts(&[6.5, 13.0], &[2, 8], 18, 64, 8), vec![8, 9]);
+    }
+
+    /// The quantum is the budget's power of two at or below it, at most
+    /// [`MAX_QUANTUM`]; a render's counts after a later pass are the
+    /// first pass's or multiples of it.
+    #[test]
+    fn counts_come_in_quanta() {
+        let q: Vec<u32> = [1, 2, 4, 9, 16, 49, 64, 1024].into_iter().map(quantum).collect();
+        assert_eq!(q, vec![1, 2, 4, 8, 16, 32, 64, 64]);
+        let (w, h) = (16, 16);
+        let sums = sums_with(&[(3 * w + 3, 0.4), (9 * w + 12, 0.2), (12 * w + 2, 0.1)], w * h, 2);
+        let extra = (w * h) as u64 * 5;
+        let out = allocate(&sums, w, 16, extra, 16);
+        assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), (w * h) as u64 * 7);
+        let odd = out.iter().filter(|&&n| n != 2 && n % 16 != 0).count();
+        assert!(odd < 16, "{odd} pixels off the levels: {out:?}");
+        assert!(out.iter().any(|&n| n >= 32) && out.contains(&2));
+    }
+
+    /// λ makes the bounded counts add up to the total, by less than half a
+    /// ray beyond it, whether few or most pixels end at a bound.
+    #[test]
+    fn lambda_meets_the_total() {
+        let n = 500;
+        let need: Vec<f64> = (0..n).map(|i| 0.001 + hashed_uniform(i as u64).powi(3)).collect();
+        let counts: Vec<u32> = (0..n).map(|i| 2 + i as u32 % 5).collect();
+        let low: Vec<f64> = counts.iter().map(|&c| c as f64).collect();
+        let high: Vec<f64> = low.iter().map(|&l| l.max(64.0)).collect();
+        let sum = |l: f64| (0..n).map(|i| (l * need[i]).clamp(low[i], high[i])).sum::<f64>();
+        let (lo_sum, hi_sum): (f64, f64) = (low.iter().sum(), high.iter().sum());
+        for share in [0.001, 0.05, 0.3, 0.7, 0.95, 0.999] {
+            let total = (lo_sum + share * (hi_sum - lo_sum)).round();
+            let got = sum(solve_lambda(&need, &counts, 64.0, total));
+            assert!(got >= total && got - total < 0.5, "share {share}: {got} for {total}");
+        }
+    }
+
+    /// With no spread anywhere the rays go evenly, the remainder to the
+    /// first pixels; the cap holds when the need is all in one pixel.
+    #[test]
+    fn allocation_without_spread_is_even_and_capped() {
+        let sums = sums_with(&[], 10, 2);
+        assert_eq!(allocate(&sums, 5, 4, 25, 1), vec![5, 5, 5, 5, 5, 4, 4, 4, 4, 4]);
+        // In quanta of 4: 4 each, and the 5 rays left a quantum to the
+        // first pixel and one to the next.
+        assert_eq!(allocate(&sums, 5, 4, 20, 4), vec![4; 10]);
+        assert_eq!(allocate(&sums, 5, 4, 25, 4), vec![8, 5, 4, 4, 4, 4, 4, 4, 4, 4]);
+        let sums = sums_with(&[(0, 0.4)], 100, 2);
+        let out = allocate(&sums, 10, 4, 1000, 4);
+        // The noisy pixel at the cap, 16 budgets, in quanta of 4; with a
+        // budget of 49 in quanta of 32, the cap of 16 · 49 = 784 rounded
+        // down to whole quanta, 768.
+        assert_eq!(out[0], 64);
+        assert_eq!(allocate(&sums, 10, 49, 20_000, 32)[0], 768);
+        assert!(out.iter().all(|&n| n <= 64));
+        assert_eq!(out.iter().map(|&n| n as u64).sum::<u64>(), 200 + 1000);
+    }
+}
