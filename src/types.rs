@@ -154,9 +154,23 @@ impl Texture {
         let col = ((s.clamp(0.0, 1.0) * self.width as f64) as usize).min(self.width - 1);
         let row_up = ((t.clamp(0.0, 1.0) * self.height as f64) as usize).min(self.height - 1);
         let [r, g, b] = self.texels[(self.height - 1 - row_up) * self.width + col];
-        Intensity::new(r as f64, g as f64, b as f64) / 255.0
+        let unit = |c: u8| BYTE_UNIT[c as usize];
+        Intensity::new(unit(r), unit(g), unit(b))
     }
 }
+
+/// c / 255 for every byte c, the quotients a texel's channels take: looked
+/// up, where three divisions a hit were the most of a textured surface's
+/// colour (the same quotients, made once).
+const BYTE_UNIT: [f64; 256] = {
+    let mut t = [0.0; 256];
+    let mut c = 0;
+    while c < 256 {
+        t[c] = c as f64 / 255.0;
+        c += 1;
+    }
+    t
+};
 
 /// `surfacerecord` of Fig. 4.3, with the fields the deck's `surface`,
 /// `paint` and `texture` records fill.

@@ -115,6 +115,17 @@ mod tests {
             None,
             "no box, nothing kept"
         );
+        // Segments that are points, swept nowhere: no size, no bounds.
+        let point = SweepShape {
+            u: vec![Coeff::default(); boxless.u.len()],
+            v: vec![Coeff::default(); boxless.v.len()],
+            length: 0.0,
+            ..boxless.clone()
+        };
+        assert_eq!(
+            QueryBounds::of(PrimitiveClass::Translation, &point, &point.u, &point.v),
+            None
+        );
         let ray = Ray::new(DVec3::new(0.0, -5.0, 0.5), DVec3::Y);
         let opts = Options::default();
         let hit = intersect_sweep(PrimitiveClass::Translation, &boxless, &ray, 1e-9, &opts).expect("met");
