@@ -187,8 +187,14 @@ pub(super) fn solve_lambda(need: &[f64], counts: &[u32], cap: f64, total: f64) -
         }
         (sum, slope)
     };
-    // The start: λ where the counts would add up without their bounds.
-    let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
+    lambda_newton(sum_at, need.iter().sum::<f64>(), total)
+}
+
+/// The Newton steps of [`solve_lambda`] on the sum `sum_at(λ)` = (Σ,
+/// slope), from λ = `total`/`need_sum` (where the counts would add up
+/// without their bounds).
+pub(super) fn lambda_newton(sum_at: impl Fn(f64) -> (f64, f64), need_sum: f64, total: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0f64, total / need_sum);
     let mut at = sum_at(hi);
     while at.0 < total {
         (lo, hi) = (hi, hi * 2.0);
@@ -230,9 +236,11 @@ mod tests {
     use crate::drt::hashed_uniform;
 
     /// The allocation as it was first written (separate collections), the
-    /// reference the fused loops must give the same counts as.
+    /// reference the fused loops must give the same counts as. The needs
+    /// and λ's Newton steps are the module's own (they were not fused).
     mod plain {
-        use super::super::super::{PixelSum, CAP, NEIGHBOUR};
+        use super::super::super::{PixelSum, CAP};
+        use super::super::needs;
 
         pub(super) fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
             let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();
@@ -308,39 +316,6 @@ mod tests {
             out
         }
 
-        fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
-            let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
-            // The largest spread of the 3 pixels of the row around each, row by
-            // row (no division by the width a pixel).
-            let mut across = vec![0.0; sums.len()];
-            for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
-                for x in 0..width {
-                    let left = if x > 0 { row[x - 1] } else { 0.0 };
-                    let right = if x + 1 < width { row[x + 1] } else { 0.0 };
-                    out[x] = row[x].max(left).max(right);
-                }
-            }
-            let height = sums.len() / width;
-            let mut need = vec![0.0; sums.len()];
-            for y in 0..height {
-                for x in 0..width {
-                    let i = y * width + x;
-                    let up = if y > 0 { across[i - width] } else { 0.0 };
-                    let down = if y + 1 < height { across[i + width] } else { 0.0 };
-                    let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
-                    // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an instruction
-                    // each, where `powf` took a quarter of the allocation's time.
-                    need[i] = (w * w.sqrt()).sqrt();
-                }
-            }
-            let top = need.iter().copied().fold(0.0f64, f64::max);
-            let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
-            for w in &mut need {
-                *w = w.max(floor);
-            }
-            need
-        }
-
         fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
             // The sum and its slope at λ (the needs of the pixels not at a bound).
             let sum_at = |l: f64| {
@@ -358,40 +333,7 @@ mod tests {
                 }
                 (sum, slope)
             };
-            // The start: λ where the counts would add up without their bounds.
-            let (mut lo, mut hi) = (0.0f64, total / need.iter().sum::<f64>());
-            let mut at = sum_at(hi);
-            while at.0 < total {
-                (lo, hi) = (hi, hi * 2.0);
-                at = sum_at(hi);
-            }
-            let mut lambda = hi;
-            for _ in 0..100 {
-                let (sum, slope) = at;
-                if sum >= total {
-                    hi = lambda;
-                    if sum - total < 0.5 {
-                        return hi;
-                    }
-                } else {
-                    lo = lambda;
-                }
-                let step = if slope > 0.0 {
-                    lambda + (total - sum) / slope
-                } else {
-                    f64::NAN
-                };
-                // Aim a little beyond the total, so that a step from below lands
-                // above it rather than just short.
-                let step = if sum < total && slope > 0.0 {
-                    step + 0.25 / slope
-                } else {
-                    step
-                };
-                lambda = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
-                at = sum_at(lambda);
-            }
-            hi
+            super::lambda_newton(sum_at, need.iter().sum::<f64>(), total)
         }
     }
 
