@@ -75,11 +75,7 @@ fn solid_inside(class: PrimitiveClass, sw: &SweepShape, p: DVec3, margin: f64) -
             Some(inside_polygon(sw, q))
         }
         _ => {
-            let kappa = if class == PrimitiveClass::Conic {
-                (sw.scale - 1.0) / sw.length
-            } else {
-                0.0
-            };
+            let kappa = kappa(class, sw);
             let k = 1.0 + kappa * p.z;
             if p.z.abs() < margin || (p.z - sw.length).abs() < margin || k.abs() < 1e-3 {
                 return None;

@@ -225,11 +225,7 @@ pub fn check_hit(class: PrimitiveClass, sw: &SweepShape, hit: &LocalHit) -> (f64
             (dist / size, n.dot(t1).abs().max(n.dot(t2).abs()), unit)
         }
         _ => {
-            let kappa = if class == PrimitiveClass::Conic {
-                (sw.scale - 1.0) / sw.length
-            } else {
-                0.0
-            };
+            let kappa = kappa(class, sw);
             let k = 1.0 + kappa * p.z;
             let mut side = f64::INFINITY;
             let mut perp = 0.0f64;
@@ -408,6 +404,16 @@ pub fn random_ray(rng: &mut Rng, sw: &SweepShape, class: PrimitiveClass) -> Ray 
     let origin = centre + rng.unit() * 8.0;
     let target = DVec3::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y), rng.range(lo.z, hi.z));
     Ray::new(origin, (target - origin).normalize())
+}
+
+/// κ of a sweep's contour scale k(z) = 1 + κz: (scale − 1)/length for a
+/// conic sweep, 0 for a translation.
+pub fn kappa(class: PrimitiveClass, sw: &SweepShape) -> f64 {
+    if class == PrimitiveClass::Conic {
+        (sw.scale - 1.0) / sw.length
+    } else {
+        0.0
+    }
 }
 
 /// Both solvers, robust first.
