@@ -592,7 +592,9 @@ fn render_adaptive(shared: &Shared, camera: &Camera, progress: &(dyn Fn() + Sync
                             let scancol = (x as f64 + u) * m + 0.5;
                             let scanline = (row as f64 + v) * m + 0.5;
                             let aray = camera.ray(scancol, scanline, 0.0, 0.0);
+                            let before = crate::shapes::sweep::searched();
                             sums[x].add(tracer.shoot(shared, &aray));
+                            sums[x].add_searched(crate::shapes::sweep::searched() - before);
                         }
                     }
                 }

@@ -7,13 +7,15 @@
 //! pixels and 16 rays a pixel, this one 5.0 % (21 and 19 million); 1 % less
 //! CPU time on the whole render, fig5_3 and fig5_12 alike.)
 
-use super::{PixelSum, CAP, NEIGHBOUR};
+use super::{cost, PixelSum, CAP, NEIGHBOUR};
 
 /// The counts every pixel of a `width`×`height` image should have after
 /// the next pass, `spent` + its share of `extra` more rays in all.
 ///
 /// A pixel's need w is its spread σ, or [`NEIGHBOUR`] times the largest
-/// spread around it if that is more, to the power [`NEED_POWER`](super::NEED_POWER). To make
+/// spread around it if that is more, to the power [`NEED_POWER`](super::NEED_POWER), over
+/// the cost of its rays ([`cost`](super::cost): a pixel of sweeps whose
+/// rays search many polynomials gets a little less). To make
 /// the summed error Σ σ²/n smallest for a fixed total, counts grow with σ
 /// (Neyman allocation): the new counts are max(n, λ·w), at most [`CAP`] times the
 /// average `budget`, with λ found so they add up to the total; then
@@ -151,7 +153,7 @@ pub(super) fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
             let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
             // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an instruction
             // each, where `powf` took a quarter of the allocation's time.
-            need[i] = (w * w.sqrt()).sqrt();
+            need[i] = (w * w.sqrt()).sqrt() / cost(&sums[i]);
             top = top.max(need[i]);
         }
     }

@@ -50,6 +50,8 @@ pub use cap_grid::CapGrid;
 pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
+use std::cell::Cell;
+
 use super::Near;
 use crate::proc::robust::{bernstein, bernstein_unit_of, newton_until, polygon_crossing, real_roots};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
@@ -150,6 +152,22 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
     solve_further(n, a, crosses, opts)
 }
 
+thread_local! {
+    /// The polynomials this thread has searched with `laguerre` or the
+    /// robust solver (past the pre-tests that settle most of them): what
+    /// makes one ray dearer than another in a scene of sweeps, counted for
+    /// the adaptive sampler ([`searched`]).
+    static SEARCHED: Cell<u64> = const { Cell::new(0) };
+}
+
+/// The polynomials this thread has searched so far (see `SEARCHED`): the
+/// difference across a ray is the searches that ray (with its shadow rays)
+/// made. A ray is traced on one thread, so the count is the same for any
+/// number of threads.
+pub fn searched() -> u64 {
+    SEARCHED.with(Cell::get)
+}
+
 /// [`solve`] past the cubic's count: `laguerre` behind its Bernstein
 /// pre-test (unless the polynomial is known to `cross` [−δ, 1 + δ]), or
 /// the robust solver.
@@ -160,6 +178,7 @@ fn solve_further(n: usize, a: &[f64; 7], crosses: bool, opts: &Options) -> Found
     if opts.solver == Solver::Laguerre && !crosses && !may_have_root(n, a, lo, hi) {
         return out;
     }
+    SEARCHED.with(|k| k.set(k.get() + 1));
     match opts.solver {
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
