@@ -417,6 +417,30 @@ mod tests {
         }
     }
 
+    /// The cost of a pixel's rays: 1 without searches (or samples), else
+    /// (1 + 6 · searches a sample)^(3/16), from four square roots.
+    #[test]
+    fn cost_of_the_searches() {
+        let mut s = PixelSum::default();
+        assert_eq!(cost(&s), 1.0);
+        s.add_searched(3);
+        assert_eq!(cost(&s), 1.0, "no sample yet");
+        for _ in 0..4 {
+            s.add(Intensity::splat(0.5));
+        }
+        let want = (1.0 + SEARCH_COST * 0.75f64).powf(COST_POWER);
+        assert!((cost(&s) - want).abs() < 1e-15, "{} against {want}", cost(&s));
+        let mut none = PixelSum::default();
+        none.add(Intensity::splat(0.5));
+        assert_eq!(cost(&none), 1.0);
+        // Dearer rays, a larger cost; 256 searches a ray cost 1537^(3/16).
+        let mut dear = PixelSum::default();
+        dear.add(Intensity::splat(0.5));
+        dear.add_searched(256);
+        assert!(cost(&dear) > cost(&s));
+        assert!((cost(&dear) - 1537f64.powf(0.1875)).abs() < 1e-12);
+    }
+
     #[test]
     fn listing_fidelity_is_refused() {
         let opts = Options {

@@ -233,7 +233,7 @@ pub(super) fn lambda_newton(sum_at: impl Fn(f64) -> (f64, f64), need_sum: f64, t
 
 #[cfg(test)]
 mod tests {
-    use super::super::{quantum, Intensity, NEED_POWER};
+    use super::super::{quantum, Intensity, COST_POWER, NEED_POWER, SEARCH_COST};
     use super::*;
     use crate::drt::hashed_uniform;
 
@@ -443,6 +443,15 @@ mod tests {
         assert_eq!(need[0], top * 1e-3);
         assert_eq!(need[w * h - 1], top * 1e-3);
         assert!(needs(&sums_with(&[], w * h, 4), w).iter().all(|&n| n == 1.0));
+        // A pixel whose rays searched polynomials needs less by its cost;
+        // its neighbours, which searched none, need what they did.
+        let mut dear = sums.clone();
+        dear[2 * w + 2].add_searched(8);
+        let lowered = needs(&dear, w);
+        let c = cost(&dear[2 * w + 2]);
+        assert_eq!(c, (1.0f64 + SEARCH_COST * 2.0).powf(COST_POWER));
+        assert!((lowered[2 * w + 2] - top / c).abs() < 1e-12);
+        assert_eq!(lowered[w + 1], need[w + 1]);
     }
 
     /// The rounding gives the rays left to the largest fractions (not the

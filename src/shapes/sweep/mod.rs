@@ -571,6 +571,42 @@ mod tests {
         );
     }
 
+    /// `searched` counts the polynomials the solvers search, and only
+    /// those: not a cubic the Bernstein count settles, nor one `laguerre`'s
+    /// pre-test turns away; one each for the rest, with either solver.
+    #[test]
+    fn searched_counts_the_searches() {
+        let opts = |solver| Options {
+            solver,
+            ..Options::default()
+        };
+        let searches = |p: &[f64; 7], n: usize, solver| {
+            let before = searched();
+            solve(n, p, &opts(solver));
+            searched() - before
+        };
+        // No root near [0, 1]: the count settles it for both solvers.
+        let far = poly_from_roots(&[3.0, 4.0, 5.0], 1.0);
+        assert_eq!(searches(&far, 3, Solver::Laguerre), 0);
+        assert_eq!(searches(&far, 3, Solver::Robust), 0);
+        // One crossing: `laguerre` searches, the robust solver takes it
+        // from the count.
+        let one = poly_from_roots(&[0.5, 3.0, -2.0], 1.0);
+        assert_eq!(searches(&one, 3, Solver::Laguerre), 1);
+        assert_eq!(searches(&one, 3, Solver::Robust), 0);
+        // Three roots in [0, 1]: the count cannot tell; both search.
+        let three = poly_from_roots(&[0.2, 0.5, 0.8], 1.0);
+        assert_eq!(searches(&three, 3, Solver::Laguerre), 1);
+        assert_eq!(searches(&three, 3, Solver::Robust), 1);
+        // A sextic with no root near [0, 1]: `laguerre`'s pre-test turns
+        // it away; the robust solver searches it.
+        let mut sextic = [0.0; 7];
+        sextic[0] = 1.0;
+        sextic[6] = 1.0;
+        assert_eq!(searches(&sextic, 6, Solver::Laguerre), 0);
+        assert_eq!(searches(&sextic, 6, Solver::Robust), 1);
+    }
+
     /// `laguerre`'s roots are its own whatever the count says: where the
     /// count is one, the robust solver takes the one-crossing root, and
     /// `laguerre` still gives what it finds (the thesis's method, misses
