@@ -665,3 +665,65 @@ impl Scene {
         self.image.masksize = mask;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `width`×`height` texture whose texel number i (row-major from the
+    /// top) holds the bytes [i, 2i + 1, 255 − i]: a lookup names the texel
+    /// it took.
+    fn numbered(width: usize, height: usize) -> Texture {
+        let texels = (0..width * height)
+            .map(|i| [i as u8, (2 * i + 1) as u8, 255 - i as u8])
+            .collect();
+        Texture { width, height, texels }
+    }
+
+    /// The number of the texel a lookup took (and its three channels are
+    /// that texel's).
+    fn taken(tex: &Texture, s: f64, t: f64) -> usize {
+        let c = tex.texel(s, t);
+        let i = (c.x * 255.0).round() as usize;
+        let [r, g, b] = tex.texels[i];
+        assert_eq!(c.to_array(), [r, g, b].map(|c| c as f64 / 255.0), "({s}, {t})");
+        i
+    }
+
+    /// Nearest texels of non-square textures: every texel at its centre;
+    /// s to the right, t upward with row 0 at the top; the texel's own
+    /// lower-left edge is its (exactly, on a dyadic grid), one ulp below it
+    /// the neighbour's; s, t at 1 and beyond the square clamp to the last
+    /// column and the top row, below 0 to the first.
+    #[test]
+    fn texel_at_centres_edges_and_beyond() {
+        for (w, h) in [(3, 2), (2, 3), (4, 2), (5, 4), (1, 3), (3, 1)] {
+            let tex = numbered(w, h);
+            for row in 0..h {
+                let up = h - 1 - row; // rows counted from the bottom
+                for col in 0..w {
+                    let s = (col as f64 + 0.5) / w as f64;
+                    let t = (up as f64 + 0.5) / h as f64;
+                    assert_eq!(taken(&tex, s, t), row * w + col, "{w}×{h} ({col}, {row})");
+                }
+            }
+            let last = w - 1;
+            assert_eq!(taken(&tex, 1.0, 1.0), last, "{w}×{h}");
+            assert_eq!(taken(&tex, 7.0, 2.0), last, "{w}×{h}");
+            assert_eq!(taken(&tex, 1.0, 0.0), (h - 1) * w + last, "{w}×{h}");
+            assert_eq!(taken(&tex, 0.0, 0.0), (h - 1) * w, "{w}×{h}");
+            assert_eq!(taken(&tex, -3.0, -0.5), (h - 1) * w, "{w}×{h}");
+            assert_eq!(taken(&tex, -1.0, 1.0), 0, "{w}×{h}");
+        }
+        // 4×2: the edges s = 1/4, 1/2, 3/4 and t = 1/2 are exact.
+        let tex = numbered(4, 2);
+        for col in 1..4 {
+            let s = col as f64 / 4.0;
+            assert_eq!(taken(&tex, s, 0.75), col, "s = {s}");
+            assert_eq!(taken(&tex, s.next_down(), 0.75), col - 1, "s below {s}");
+            assert_eq!(taken(&tex, s, 0.25), 4 + col, "s = {s}");
+        }
+        assert_eq!(taken(&tex, 0.6, 0.5), 2, "t = 1/2 is the top row's edge");
+        assert_eq!(taken(&tex, 0.6, 0.5f64.next_down()), 6);
+    }
+}
