@@ -93,16 +93,17 @@ pub const SEARCH_COST: f64 = 6.0;
 /// rather than a given number of rays go as spread/√cost (Neyman's
 /// allocation with costs); the budget here is rays, so only a little of
 /// that. On the goal's decks at 96² (fig5_3 has no sweep and is not
-/// touched): 3/16 took 5–11 % of the instructions off the adaptive renders
-/// of fig5_9 and fig5_12 and moved their RMSE by −1 % to +5 %; 1/8 took 3–9 %;
-/// 1/4 cost fig5_9 and fig5_12 up to 7 % of RMSE, past the goal's half of
-/// the table's.
+/// touched): 3/16 took 4–16 % of the instructions off the adaptive renders
+/// of fig5_9 and fig5_12 (4 % on fig5_9, 15–16 % on fig5_12) and moved their
+/// RMSE by −1 % to +5 %; 1/8 took 3–11 %; 1/4 cost fig5_9 and fig5_12 up to
+/// 7 % of RMSE, past the goal's half of the table's.
 pub const COST_POWER: f64 = 0.1875;
 
 /// The cost of a ray of the pixel against one that searches nothing,
 /// 1 + [`SEARCH_COST`] · (searches a sample), to the power [`COST_POWER`]
-/// (c^⅛ · c^¹⁄₁₆, four square roots; `powf` is a library call); exactly 1 for a pixel whose rays searched no
-/// polynomial, so a scene without sweeps is allocated by its spreads alone.
+/// (c^⅛ · c^¹⁄₁₆, four square roots; `powf` is a library call); exactly 1
+/// for a pixel whose rays searched no polynomial, so a scene without
+/// sweeps is allocated by its spreads alone.
 pub fn cost(s: &PixelSum) -> f64 {
     if s.searched == 0 || s.n == 0 {
         return 1.0;
@@ -148,7 +149,7 @@ pub struct PixelSum {
     sum_sq: Intensity,
     /// The polynomials its samples' rays searched for roots
     /// ([`crate::shapes::sweep::searched`]): their cost ([`cost`]).
-    pub searched: u64,
+    searched: u64,
 }
 
 impl PixelSum {
