@@ -1,5 +1,6 @@
-//! `--sampler adaptive`: where in each pixel, and when in the shutter, its
-//! rays go, and how many rays each pixel gets. The port's extension, not the
+//! `--sampler adaptive`: how many rays each pixel gets (where in the pixel
+//! and when in the shutter they go is the sampler's,
+//! [`crate::sampler::PixelSampler`]). The port's extension, not the
 //! thesis's method: the thesis traces every pixel as the same `masksize` ×
 //! `masksize` subpixels (§2.1.3 (2), supersampling) with times from its
 //! pattern table (§2.6.4). Adaptive supersampling goes back to Whitted 1980,
@@ -20,37 +21,22 @@
 //!   sequence, each block evenly spread in place and time, where a count
 //!   in between leaves a block part-filled and the pixel's mean less
 //!   accurate than its count says.
-//! - Sample j of a pixel is point j of a 3-D Sobol sequence (pixel x,
-//!   pixel y, shutter time τ), Owen-scrambled (Burley 2020, *Practical
-//!   hash-based Owen scrambling*): every prefix is well spread in all
-//!   three, so a pixel can stop after any count. The place is scrambled by
-//!   a seed of the pixel, the time by a seed of its row and a shift of the
-//!   pixel ([`PixelSamples`]), so that a row's pixels take their samples
-//!   at shared instants and the scene is posed once an instant, not once
-//!   a ray.
-//! - τ is uniform over [0, 1): the box shutter `blur 1` samples, so the
-//!   picture converges to the same one as the other samplers'.
+//! - Sample j of a pixel is point j of a scrambled Sobol sequence
+//!   ([`crate::sampler::PixelSamples`]): every prefix is well spread in place, time and
+//!   both, so a pixel can stop after any count, and a row's pixels take
+//!   their samples at shared instants, so the scene is posed once an
+//!   instant, not once a ray ([`blocks_due`]).
 //!
 //! Every choice depends on the pixel, the sample's index and the image's
 //! counts after a whole pass, never on the order threads finish in: the
 //! image is the same for any number of threads.
 
 mod allocate;
-mod sobol;
 
-use crate::drt::hashed_uniform;
-use crate::types::{Fidelity, Intensity, Options, TimeSampler};
+use crate::options::{Fidelity, Options, TimeSampler};
+use crate::sampler::SHIFT_BLOCK;
+use crate::types::Intensity;
 pub use allocate::allocate;
-use sobol::{owen_scramble_reversed, sobol_reversed};
-
-/// A sample of a pixel: where in it (`u` across to the right, `v` down,
-/// both in [0, 1)) and when in the shutter (`tau` in [0, 1)).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sample {
-    pub u: f64,
-    pub v: f64,
-    pub tau: f64,
-}
 
 /// Later passes after the first: each deals out 1/(passes left) of the
 /// rays not yet spent, on the spreads seen so far (6 measured better than
@@ -148,7 +134,7 @@ pub struct PixelSum {
     sum: Intensity,
     sum_sq: Intensity,
     /// The polynomials its samples' rays searched for roots
-    /// ([`crate::shapes::sweep::searched`]): their cost ([`cost`]).
+    /// ([`crate::trace::TraceStats::searched`]): their cost ([`cost`]).
     searched: u64,
 }
 
@@ -209,32 +195,6 @@ pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     out
 }
 
-/// The samples of one pixel: the scrambles of its three dimensions, the
-/// place in the pixel (dimensions 0 and 1) by a seed of the pixel, the
-/// time (dimension 2) by a seed of its row, so that the rows' pixels can
-/// share their instants (interleaved sampling, Keller & Heidrich 2001):
-/// the scene at an instant (the poses, an in-between contour) is made
-/// once for all the row's rays at it. Pixel x takes the row's time k for
-/// its sample j = k ⊕ c with c < [`SHIFT_BLOCK`] a hash of the pixel: a
-/// digital shift of its times (the Sobol points are linear over bits,
-/// point k ⊕ c = point k ⊕ point c), so the pixels of a row do not all
-/// take their first samples at the same instants (a first pass that
-/// missed a brief change in one pixel would miss it along the whole
-/// row), and each pixel's samples are still a scrambled 3-D Sobol
-/// sequence, every prefix stratified in space, time and both.
-#[derive(Clone, Copy, Debug)]
-pub struct PixelSamples {
-    seeds: [u32; 3],
-    shift: u32,
-}
-
-/// The shifts of [`PixelSamples`] are below this (a power of two): the
-/// row's instants k and a pixel's samples j = k ⊕ c then lie in the same
-/// block of this many, and the instants a pass traces are at most the
-/// blocks its samples reach (16: eight different first pairs of times in
-/// a row, and still few instants a pass).
-pub const SHIFT_BLOCK: u32 = 16;
-
 /// The pixels of a row with samples due in a pass, block by block of
 /// [`SHIFT_BLOCK`] instants: for each block that has any (in increasing
 /// order), its number and the pixels (in increasing order) whose samples
@@ -263,101 +223,10 @@ pub fn blocks_due(start: &[u32], counts: &[u32]) -> Vec<(u32, Vec<usize>)> {
     (first..last).zip(lists).filter(|(_, l)| !l.is_empty()).collect()
 }
 
-/// The scramble of dimension `d` for key `key`.
-fn seed(key: u64, d: u64) -> u32 {
-    (hashed_uniform((key << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32
-}
-
-impl PixelSamples {
-    /// The samples of pixel `pixel` (its index in the image, row by row)
-    /// of an image `width` pixels wide.
-    pub fn new(pixel: usize, width: usize) -> Self {
-        let row = (pixel / width.max(1)) as u64;
-        PixelSamples {
-            seeds: [seed(pixel as u64, 0), seed(pixel as u64, 1), seed(row, 2)],
-            shift: seed(pixel as u64, 3) % SHIFT_BLOCK,
-        }
-    }
-
-    /// The sample the pixel takes at its row's instant `k`.
-    pub fn at_instant(&self, k: u32) -> u32 {
-        k ^ self.shift
-    }
-
-    /// Sample `j` of the pixel.
-    pub fn sample(&self, j: u32) -> Sample {
-        let (u, v) = self.place(j);
-        Sample { u, v, tau: self.tau(j) }
-    }
-
-    /// Where in the pixel sample `j` lies: `u` across, `v` down.
-    pub fn place(&self, j: u32) -> (f64, f64) {
-        (self.at(j, 0), self.at(j, 1))
-    }
-
-    /// The time of sample `j`: the row's instant `j ⊕ c`, the same for
-    /// every pixel of the row at that instant.
-    pub fn tau(&self, j: u32) -> f64 {
-        self.at(j ^ self.shift, 2)
-    }
-
-    fn at(&self, j: u32, d: usize) -> f64 {
-        owen_scramble_reversed(sobol_reversed(j, d), self.seeds[d]) as f64 / 4_294_967_296.0
-    }
-}
-
-/// Sample `j` of pixel `pixel` (its index in the image, row by row) of an
-/// image `width` pixels wide.
-pub fn sample(pixel: usize, width: usize, j: u32) -> Sample {
-    PixelSamples::new(pixel, width).sample(j)
-}
-
 #[cfg(test)]
 mod tests {
-    use super::sobol::sobol;
     use super::*;
-
-    /// The scramble keeps the nets (it permutes elementary intervals
-    /// within their parents) and changes the points.
-    #[test]
-    fn scrambled_samples_keep_their_strata() {
-        // Every aligned block of 2^k samples, not only the first: the
-        // counts come in such blocks ([`quantum`]).
-        for pixel in [0usize, 7, 12345] {
-            for (k, block) in [2u32, 4, 6].into_iter().flat_map(|k| [(k, 0u32), (k, 1), (k, 3)]) {
-                let n = 1u32 << k;
-                let mut times = vec![false; n as usize];
-                let mut cells = vec![false; n as usize];
-                let half = k / 2;
-                for j in block * n..(block + 1) * n {
-                    let s = sample(pixel, 100, j);
-                    assert!((0.0..1.0).contains(&s.u) && (0.0..1.0).contains(&s.v) && (0.0..1.0).contains(&s.tau));
-                    let t = (s.tau * n as f64) as usize;
-                    assert!(!times[t], "pixel {pixel}: two of {n} times in stratum {t}");
-                    times[t] = true;
-                    let cell =
-                        ((s.u * (1 << half) as f64) as usize) << (k - half) | (s.v * (1 << (k - half)) as f64) as usize;
-                    assert!(!cells[cell], "pixel {pixel}: two of {n} positions in cell {cell}");
-                    cells[cell] = true;
-                }
-            }
-        }
-        // Places differ from pixel to pixel; times from row to row, and
-        // not between the pixels of a row.
-        assert_ne!(sample(0, 100, 1).u, sample(1, 100, 1).u);
-        assert_ne!(sample(0, 100, 1).v, sample(1, 100, 1).v);
-        let (a, b) = (PixelSamples::new(0, 100), PixelSamples::new(99, 100));
-        for k in 0..64 {
-            assert_eq!(a.tau(a.at_instant(k)), b.tau(b.at_instant(k)), "instant {k}");
-            assert_eq!(a.at_instant(a.at_instant(k)), k);
-            assert_eq!(a.at_instant(k) / SHIFT_BLOCK, k / SHIFT_BLOCK);
-        }
-        // The first pairs of times of a row's pixels are not all the same.
-        let first = |x: usize| sample(x, 100, 0).tau.min(sample(x, 100, 1).tau);
-        assert!((1..100).any(|x| first(x) != first(0)));
-        assert_ne!(sample(0, 100, 1).tau, sample(100, 100, 1).tau);
-        assert_ne!(sample(0, 100, 0).tau, sobol(0, 2) as f64 / 4_294_967_296.0);
-    }
+    use crate::sampler::PixelSamples;
 
     /// Visiting each block's pixels visits every due sample of a row once,
     /// in the order of the scan of every instant and pixel it replaces.
@@ -403,7 +272,9 @@ mod tests {
         assert!((s.spread() - (0.25f64 / 3.0).sqrt()).abs() < 1e-12);
     }
 
-    /// of it within 2..=8.
+    /// The first pass takes an eighth of the budget, within 2..=8 (a
+    /// budget of one ray is all first pass), and the passes together
+    /// spend the whole budget.
     #[test]
     fn passes_spend_the_budget() {
         assert_eq!(first_pass(1), 1);

@@ -23,9 +23,11 @@
 //!   (the box convolved with the Irwin–Hall density of x̄), tending to the
 //!   comb of `blur 0` — §3.4 (c): "n decides the normal distribution".
 
-use crate::types::{
-    Axis, BoundingBox, DMat3, DVec3, Fidelity, Law, MotionRecord, ObjectRecord, PatternRecord, Pose, Ray,
-};
+use crate::types::{Axis, BoundingBox, DMat3, DVec3, ObjectRecord, Pose, Ray};
+
+use crate::options::Fidelity;
+
+use crate::scene::{Law, MotionRecord, PatternRecord};
 
 /// `maxindex`: the length of the lookup tables the cursors `aindex`,
 /// `dindex` and `mindex` run through (wrapping to 1 past it). Not printed;
@@ -247,45 +249,6 @@ impl TimeTable {
     }
 }
 
-/// A uniform in [0, 1) from a 64-bit key: the SplitMix64 finaliser (Steele,
-/// Lea & Flood 2014). The samplers that are not the thesis's draw from it,
-/// so a sample's value depends on its index only, whatever the thread.
-pub fn hashed_uniform(key: u64) -> f64 {
-    let mut z = key.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
-    (z >> 11) as f64 / (1u64 << 53) as f64
-}
-
-/// `--sampler random`: an independent uniform time for the `k`-th subpixel
-/// of the scan order. Not the thesis's method.
-pub fn random_time(k: usize) -> f64 {
-    hashed_uniform(k as u64)
-}
-
-/// `--sampler stratified`: the strata of pixel `pixel`'s n subpixels, a
-/// permutation π of 0..n drawn for that pixel (Fisher–Yates on
-/// [`hashed_uniform`]): every pixel sees each of the n strata once, and
-/// neighbouring pixels see them in unrelated orders, so no pattern repeats
-/// across the image. Not the thesis's method.
-pub fn strata(pixel: usize, n: usize) -> Vec<u32> {
-    let mut perm: Vec<u32> = (0..n as u32).collect();
-    let key = (pixel as u64) << 24;
-    for i in 0..n.saturating_sub(1) {
-        let r = i + (hashed_uniform(key + i as u64) * (n - i) as f64) as usize;
-        perm.swap(i, r.min(n - 1));
-    }
-    perm
-}
-
-/// `--sampler stratified`: the time of subpixel `j` of pixel `pixel`,
-/// a uniform place in its stratum `stratum` of n. Not the thesis's method.
-pub fn stratified_time(pixel: usize, j: usize, stratum: u32, n: usize) -> f64 {
-    let key = ((pixel as u64) << 24) ^ 0x00A5_A5A5 ^ ((j as u64) << 1) ^ (1 << 63);
-    (stratum as f64 + hashed_uniform(key)) / n as f64
-}
-
 /// `LAW(OP, MAXVAL, FRACT)` of Fig. 3.2 (§3.2.2, OCR lines 720–733): how
 /// far along a path a key frame is at the fraction FRACT of the time.
 #[allow(non_snake_case)]
@@ -361,6 +324,99 @@ pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidel
             object.pose().turned(turn_xyz(motion.turn * f), sphereo)
         }
     }
+}
+
+/// Where `motionblur` can put the object's origin (`sphereo`) over the
+/// times `t0` ≤ t ≤ `t1`: the smallest box that holds it (the port's, for
+/// bounds over the shutter; the thesis bounds objects at rest only).
+/// Erratum 3, as in [`motionblur`]: `listing` slides the origin 6·t along x
+/// whatever the motion record says; `thesis` follows the user's path at
+/// LAW(law, 1, t). Times outside [0, 1] (the listing's reach 1.5) are
+/// bounded as well: each formula holds for any t.
+pub fn motion_bounds(
+    object: &ObjectRecord,
+    motion: &MotionRecord,
+    t0: f64,
+    t1: f64,
+    fidelity: Fidelity,
+) -> BoundingBox {
+    let s = object.sphereo;
+    match fidelity {
+        // Listing: sphereo.x := sphereo.x + time*6, linear in time.
+        Fidelity::Listing => BoundingBox::EMPTY
+            .holding(s + DVec3::new(6.0 * t0, 0.0, 0.0))
+            .holding(s + DVec3::new(6.0 * t1, 0.0, 0.0)),
+        // Thesis: the path at the fraction LAW(law, 1, t) of the way.
+        Fidelity::Thesis => {
+            let (f0, f1) = law_range(motion.law, t0, t1);
+            path_bounds(s, motion, f0, f1)
+        }
+    }
+}
+
+/// The least and greatest LAW(op, 1, t) over `t0` ≤ t ≤ `t1`: the values
+/// at the ends and where the law turns (its derivative's zeros: at even t
+/// for LAW 2, odd t for LAW 3, whole t for LAW 4).
+pub fn law_range(op: Law, t0: f64, t1: f64) -> (f64, f64) {
+    let (a, b) = (t0.min(t1), t0.max(t1));
+    let mut lo = LAW(op, 1.0, a).min(LAW(op, 1.0, b));
+    let mut hi = LAW(op, 1.0, a).max(LAW(op, 1.0, b));
+    let (step, offset) = match op {
+        Law::Constant => return (lo, hi),
+        Law::Accelerate => (2.0, 0.0),
+        Law::Decelerate => (2.0, 1.0),
+        Law::Smooth => (1.0, 0.0),
+    };
+    // The turning points step·n + offset strictly inside (a, b); only the
+    // first few matter (the law is periodic), so at most three are taken.
+    let first = ((a - offset) / step).floor() + 1.0;
+    for n in 0..3 {
+        let t = (first + n as f64) * step + offset;
+        if t >= b || !t.is_finite() {
+            break;
+        }
+        let f = LAW(op, 1.0, t);
+        (lo, hi) = (lo.min(f), hi.max(f));
+    }
+    (lo, hi)
+}
+
+/// The box of [`path_point`] over the fractions `f0` ≤ f ≤ `f1`: a line's
+/// two ends, or a Bezier path's ends and, on each axis, its turning points
+/// (the roots of the derivative, a quadratic) between them.
+pub fn path_bounds(from: DVec3, motion: &MotionRecord, f0: f64, f1: f64) -> BoundingBox {
+    let mut b = BoundingBox::EMPTY
+        .holding(path_point(from, motion, f0))
+        .holding(path_point(from, motion, f1));
+    let Some([p1, p2]) = motion.via else {
+        return b;
+    };
+    // B(f) = from (1−f)³ + 3 p1 (1−f)² f + 3 p2 (1−f) f² + to f³; B′(f)/3 =
+    // a f² + 2 b f + c per axis, a = −from + 3 p1 − 3 p2 + to,
+    // b = from − 2 p1 + p2, c = p1 − from.
+    let a = -from + 3.0 * p1 - 3.0 * p2 + motion.to;
+    let bq = from - 2.0 * p1 + p2;
+    let c = p1 - from;
+    for axis in 0..3 {
+        let (qa, qb, qc) = (a[axis], bq[axis], c[axis]);
+        let roots: [Option<f64>; 2] = if qa == 0.0 {
+            [(qb != 0.0).then(|| -qc / (2.0 * qb)), None]
+        } else {
+            let disc = qb * qb - qa * qc;
+            if disc < 0.0 {
+                [None, None]
+            } else {
+                let r = disc.sqrt();
+                [Some((-qb - r) / qa), Some((-qb + r) / qa)]
+            }
+        };
+        for f in roots.into_iter().flatten() {
+            if f > f0.min(f1) && f < f0.max(f1) {
+                b = b.holding(path_point(from, motion, f));
+            }
+        }
+    }
+    b
 }
 
 /// `boundvolume(r, class)` (nested in `motionblur`, OCR lines 2044–2110):

@@ -9,7 +9,8 @@
 //! ([`FrameRange`], [`frame_path`]), reading a film's rasters back
 //! ([`read_sequence`]), and the animated PNG ([`write_apng`]).
 //! The deck's `film FRAMES [shutter S] [rate FPS]` record is read into a
-//! [`FilmRecord`] by the deck reader.
+//! [`FilmRecord`] (a record of the scene, [`crate::scene`]) by the deck
+//! reader; its frames are made here.
 //!
 //! # Film time
 //! The scene's motions and key-frame chains run over film time t ∈ [0, 1],
@@ -23,30 +24,9 @@
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use crate::raster::{read_raster_file, Raster, RasterError};
-use crate::types::Pos;
-
-/// The most frames a film may have.
-pub const MAX_FRAMES: u32 = 10_000;
-/// The highest frame rate, frames per second.
-pub const MAX_RATE: u32 = 60;
-/// The shutter when the record names none: open half of each frame's
-/// interval (a 180° shutter, the usual one of film cameras).
-pub const DEFAULT_SHUTTER: f64 = 0.5;
-/// The frame rate when the record names none.
-pub const DEFAULT_RATE: u32 = 12;
-
-/// The deck's `film FRAMES [shutter S] [rate FPS]` record.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FilmRecord {
-    pub pos: Pos,
-    /// F: the number of frames, 1..=[`MAX_FRAMES`].
-    pub frames: u32,
-    /// S: the fraction of a frame's interval the shutter is open, in (0, 1].
-    pub shutter: f64,
-    /// Frames per second when played, 1..=[`MAX_RATE`].
-    pub rate: u32,
-}
+use crate::image_file::read_image_file;
+use crate::raster::{Raster, RasterError};
+use crate::scene::FilmRecord;
 
 impl FilmRecord {
     /// Frame `number` (1-based) of the film.
@@ -269,12 +249,13 @@ pub enum SequenceError {
     },
 }
 
-/// Reads the rasters of a film, in the order given; the first that cannot
-/// be read, or whose size differs from the first's, is named in the error.
+/// Reads the frames of a film, in the order given: Sun rasters, or PNG or
+/// PPM files ([`crate::image_file`]); the first that cannot be read, or
+/// whose size differs from the first's, is named in the error.
 pub fn read_sequence(paths: &[PathBuf]) -> Result<Vec<Raster>, SequenceError> {
     let mut frames: Vec<Raster> = Vec::with_capacity(paths.len());
     for path in paths {
-        let r = read_raster_file(path).map_err(|source| SequenceError::Read {
+        let r = read_image_file(path).map_err(|source| SequenceError::Read {
             path: path.clone(),
             source,
         })?;
@@ -298,6 +279,7 @@ pub fn read_sequence(paths: &[PathBuf]) -> Result<Vec<Raster>, SequenceError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Pos;
 
     #[test]
     fn still_maps_every_time_to_itself() {

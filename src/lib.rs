@@ -8,18 +8,31 @@
 //! [`proc`], and (with later work) `drt` and `paper`; beside them the
 //! reconstructed base program ([`trace`], [`shapes`], [`deck`], [`raster`])
 //! and the PS 390 display emulation [`psout`]; [`output`], the port's own,
-//! writes every output file.
+//! writes every output file; [`cli`] and [`exit`], the port's too, are the
+//! command line's words for a render and the exit statuses, shared by every
+//! program; [`image_file`] reads the pictures psout
+//! shows (Sun raster, PNG, PPM).
 
 pub mod adaptive;
+pub mod cli;
 pub mod deck;
 pub mod drt;
+pub mod exit;
 pub mod film;
+pub mod hash;
+pub mod image_file;
+pub mod intersect;
+pub mod motion;
+pub mod options;
 pub mod output;
 pub mod paper;
 pub mod proc;
 pub mod psout;
 pub mod raster;
 pub mod raytrace;
+pub mod robust;
+pub mod sampler;
+pub mod scene;
 pub mod shapes;
 pub mod trace;
 pub mod types;

@@ -4,9 +4,9 @@
 //! what happens at the file system is decided here, in one place for every
 //! writer (`raytrace`, `psout --screenshot`, the tools).
 //!
-//! - The format follows the extension ([`Format::of`]): `.ras` Sun raster,
-//!   `.png` PNG, `.ppm` or `.pnm` netpbm (binary P6). Anything else is an
-//!   error that names the extensions. `-` ([`STDOUT`]) is standard output.
+//! - The format of an image follows its extension: that is the raster's
+//!   business ([`crate::raster::Format`]); here only bytes reach files.
+//!   `-` ([`STDOUT`]) is standard output.
 //! - [`PendingFile::create`] checks that a file can be written and reserves
 //!   it before the work that fills it, so a long render never ends on an
 //!   output it cannot write; [`PendingFile::commit`] writes it.
@@ -16,7 +16,11 @@
 //!   interrupted write never leaves half a file or clobbers the last good
 //!   one. A symbolic link to a regular file keeps its link: the file it
 //!   points to is replaced. A path that exists and is not a regular file (a
-//!   device such as /dev/null, a FIFO) is written into, never replaced.
+//!   device such as /dev/null, a FIFO: [`is_stream`]) is written into,
+//!   never replaced.
+//! - Standard output whose reader has stopped reading (`raytrace DECK -o -
+//!   | head -c 10`) is no error: the rest is dropped and the program ends
+//!   as it would have, quietly, as a Unix filter does.
 //! - No folder is created here; a missing folder, or a file where a folder
 //!   should be, is an error that names it.
 //! - [`remove_temp_files_on_signals`]: SIGINT or SIGTERM removes the
@@ -33,13 +37,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, MutexGuard, Once, PoisonError};
 
-use crate::raster::{write_sun_raster, Raster, RasterError};
-
 /// The file name that means standard output.
 pub const STDOUT: &str = "-";
-
-/// The extensions an image output may have, as the errors list them.
-pub const EXTENSIONS: &str = ".ras (Sun raster), .png (PNG), .ppm or .pnm (netpbm)";
 
 /// What can go wrong before or while writing an output file. The messages
 /// do not name the file; callers prefix it (`PATH: message`).
@@ -47,11 +46,6 @@ pub const EXTENSIONS: &str = ".ras (Sun raster), .png (PNG), .ppm or .pnm (netpb
 pub enum OutputError {
     #[error("the file name is empty")]
     Empty,
-    #[error("{}: the format follows the extension, one of {EXTENSIONS}",
-        .0.as_ref().map_or("no extension".to_string(), |e| format!("unknown extension '.{e}'")))]
-    UnknownFormat(Option<String>),
-    #[error("this build has no PNG export (the `png` feature is off)")]
-    NoPng,
     #[error("the folder {} does not exist", .0.display())]
     MissingFolder(PathBuf),
     #[error("{} is a file, not a folder", .0.display())]
@@ -62,76 +56,11 @@ pub enum OutputError {
     Io(#[from] io::Error),
 }
 
-/// The format of an image output file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// A Sun rasterfile, 24-bit RT_STANDARD ([`crate::raster`]).
-    SunRaster,
-    /// An 8-bit RGB PNG.
-    Png,
-    /// A binary netpbm pixmap (P6, maxval 255).
-    Netpbm,
-}
-
-impl Format {
-    /// The format `path`'s extension names (in any case); [`STDOUT`] has
-    /// none, so its format is the caller's choice.
-    pub fn of(path: &Path) -> Result<Format, OutputError> {
-        if path.as_os_str().is_empty() {
-            return Err(OutputError::Empty);
-        }
-        let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
-        match extension.as_deref() {
-            Some("ras") => Ok(Format::SunRaster),
-            Some("png") if cfg!(feature = "png") => Ok(Format::Png),
-            Some("png") => Err(OutputError::NoPng),
-            Some("ppm" | "pnm") => Ok(Format::Netpbm),
-            _ => Err(OutputError::UnknownFormat(extension)),
-        }
-    }
-
-    /// Writes `raster` to `w` in this format.
-    pub fn write(self, raster: &Raster, w: &mut dyn Write) -> Result<(), RasterError> {
-        match self {
-            Format::SunRaster => write_sun_raster(raster, w),
-            Format::Png => write_png_to(raster, w),
-            Format::Netpbm => write_ppm_to(raster, w),
-        }
-    }
-}
-
-/// Writes `raster` as an 8-bit RGB PNG to `w`.
-#[cfg(feature = "png")]
-pub fn write_png_to(raster: &Raster, w: &mut dyn Write) -> Result<(), RasterError> {
-    use image::ImageEncoder;
-    raster.check()?;
-    image::codecs::png::PngEncoder::new(w).write_image(
-        raster.pixels.as_flattened(),
-        raster.width as u32,
-        raster.height as u32,
-        image::ExtendedColorType::Rgb8,
-    )?;
-    Ok(())
-}
-
-#[cfg(not(feature = "png"))]
-pub fn write_png_to(_raster: &Raster, _w: &mut dyn Write) -> Result<(), RasterError> {
-    Err(OutputError::NoPng.into())
-}
-
-/// Writes `raster` as a binary netpbm pixmap (P6, maxval 255) to `w`.
-pub fn write_ppm_to(raster: &Raster, w: &mut dyn Write) -> Result<(), RasterError> {
-    raster.check()?;
-    write!(w, "P6\n{} {}\n255\n", raster.width, raster.height)?;
-    for row in raster.pixels.chunks_exact(raster.width) {
-        w.write_all(row.as_flattened())?;
-    }
-    Ok(())
-}
-
-/// Writes `raster` to `path` in `format` ([`write_atomically`]).
-pub fn write_image(path: &Path, raster: &Raster, format: Format) -> Result<(), RasterError> {
-    write_atomically(path, |w| format.write(raster, w))
+/// Whether `path` names an existing file that is not a regular file or a
+/// folder: a device (`/dev/null`; `/dev/stdout` when it is a terminal or a
+/// pipe), a FIFO, a socket. Such a file is written into, never replaced.
+pub fn is_stream(path: &Path) -> bool {
+    fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
 }
 
 /// Writes through `write` to `path`: [`PendingFile::create`] then
@@ -233,7 +162,7 @@ impl PendingFile {
     ) -> Result<(), E> {
         match std::mem::replace(&mut self.sink, Sink::Done) {
             Sink::Done => Ok(()),
-            Sink::Stdout => write_buffered(&mut io::stdout().lock(), write),
+            Sink::Stdout => write_buffered(&mut ReaderMayStop::new(io::stdout().lock()), write),
             Sink::Into => {
                 let mut file = File::options()
                     .write(true)
@@ -278,6 +207,49 @@ fn write_buffered<E: From<OutputError>>(
     write(&mut w)?;
     w.flush().map_err(OutputError::from)?;
     Ok(())
+}
+
+/// A stream whose reader may stop reading early (`| head`): once a write
+/// finds it closed (EPIPE), the rest is dropped instead of being an error,
+/// since what the reader did not want is no failure of the writer.
+struct ReaderMayStop<W> {
+    inner: W,
+    closed: bool,
+}
+
+impl<W: Write> ReaderMayStop<W> {
+    fn new(inner: W) -> Self {
+        ReaderMayStop { inner, closed: false }
+    }
+
+    /// `result`, or success once the reader is gone.
+    fn unless_closed<T>(&mut self, result: io::Result<T>, done: T) -> io::Result<T> {
+        match result {
+            Err(e) if e.kind() == io::ErrorKind::BrokenPipe => {
+                self.closed = true;
+                Ok(done)
+            }
+            r => r,
+        }
+    }
+}
+
+impl<W: Write> Write for ReaderMayStop<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if self.closed {
+            return Ok(buf.len());
+        }
+        let r = self.inner.write(buf);
+        self.unless_closed(r, buf.len())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        if self.closed {
+            return Ok(());
+        }
+        let r = self.inner.flush();
+        self.unless_closed(r, ())
+    }
 }
 
 impl Drop for PendingFile {
@@ -425,11 +397,94 @@ pub fn remove_temp_files_on_signals() -> io::Result<()> {
                         for temp in registry.iter() {
                             let _ = fs::remove_file(temp);
                         }
-                        std::process::exit(128 + signal);
+                        std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
                     }
                 })?;
             Ok(())
         })();
     });
     result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A reader that takes `room` bytes and then closes its end.
+    struct Pipe {
+        got: Vec<u8>,
+        room: usize,
+    }
+
+    impl Write for Pipe {
+        fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+            if self.got.len() >= self.room {
+                return Err(io::ErrorKind::BrokenPipe.into());
+            }
+            let n = buf.len().min(self.room - self.got.len());
+            self.got.extend_from_slice(&buf[..n]);
+            Ok(n)
+        }
+
+        fn flush(&mut self) -> io::Result<()> {
+            if self.got.len() >= self.room {
+                return Err(io::ErrorKind::BrokenPipe.into());
+            }
+            Ok(())
+        }
+    }
+
+    /// Standard output as the program sees it, over a reader that takes
+    /// `room` bytes.
+    fn stdout_read_for(room: usize) -> ReaderMayStop<Pipe> {
+        ReaderMayStop::new(Pipe { got: Vec::new(), room })
+    }
+
+    #[test]
+    fn a_reader_that_stops_is_no_error_and_gets_what_it_read() {
+        let mut w = stdout_read_for(10);
+        w.write_all(b"0123456789abcdef").unwrap();
+        w.write_all(b"more").unwrap();
+        w.flush().unwrap();
+        assert!(w.closed);
+        assert_eq!(w.inner.got, b"0123456789");
+    }
+
+    #[test]
+    fn other_errors_stay_errors() {
+        struct Full;
+        impl Write for Full {
+            fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+                Err(io::Error::other("disk full"))
+            }
+            fn flush(&mut self) -> io::Result<()> {
+                Err(io::Error::other("disk full"))
+            }
+        }
+        let mut w = ReaderMayStop::new(Full);
+        assert!(w.write(b"x").is_err());
+        assert!(w.flush().is_err());
+        assert!(!w.closed);
+    }
+
+    #[test]
+    fn an_open_reader_gets_everything() {
+        let mut w = stdout_read_for(100);
+        w.write_all(b"abc").unwrap();
+        w.flush().unwrap();
+        assert!(!w.closed);
+        assert_eq!(w.inner.got, b"abc");
+    }
+
+    #[test]
+    fn devices_and_fifos_are_streams_and_files_and_folders_not() {
+        assert!(is_stream(Path::new("/dev/null")));
+        let dir = std::env::temp_dir();
+        assert!(!is_stream(&dir));
+        assert!(!is_stream(&dir.join("no such file, surely")));
+        let file = dir.join(format!("is_stream.{}.tmp", std::process::id()));
+        fs::write(&file, b"x").unwrap();
+        assert!(!is_stream(&file));
+        fs::remove_file(&file).unwrap();
+    }
 }

@@ -38,6 +38,9 @@ use byteorder::{BigEndian, ByteOrder};
 
 use crate::types::Intensity;
 
+mod format;
+pub use format::{write_image, write_png_to, write_ppm_to, Format, FormatError, EXTENSIONS};
+
 /// `RAS_MAGIC`: the first four bytes of every Sun raster file.
 pub const RAS_MAGIC: u32 = 0x59a6_6a95;
 /// `RT_OLD`: the layout of RT_STANDARD; old writers left `ras_length` 0.
@@ -154,9 +157,18 @@ pub enum RasterError {
     Io(#[from] std::io::Error),
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    #[error(transparent)]
+    Format(#[from] FormatError),
     #[cfg(feature = "png")]
     #[error("PNG: {0}")]
     Png(#[from] image::ImageError),
+    #[cfg(not(feature = "png"))]
+    #[error("a PNG file, and this build reads none (it is without the `png` feature)")]
+    PngNotBuilt,
+    #[error("PPM: {0}")]
+    Ppm(String),
+    #[error("not a Sun raster, PNG or PPM file (it starts with {0:#010x})")]
+    UnknownKind(u32),
 }
 
 /// The header fields, as stored.
@@ -654,5 +666,5 @@ pub fn outputframe(path: &Path, raster: &Raster) -> Result<(), RasterError> {
 #[cfg(feature = "png")]
 pub fn write_png(path: &Path, raster: &Raster) -> Result<(), RasterError> {
     raster.check()?;
-    crate::output::write_atomically(path, |w| crate::output::write_png_to(raster, w))
+    crate::output::write_atomically(path, |w| write_png_to(raster, w))
 }

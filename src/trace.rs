@@ -22,114 +22,12 @@
 //!   below [`MINWEIGHT`]; total internal reflection sends the transmitted
 //!   weight along the reflected direction and is counted (`kfTIRcnt`).
 
-use std::cell::{Cell, Ref, RefCell};
-
-use crate::paper::PaperChain;
-use crate::shapes::{face_coords, in_bounding_sphere, intersect_shape, shape_blocks};
+use crate::intersect::{for_each_blocker, nearest, Snapshot};
+use crate::sampler::Sampler;
+use crate::shapes::face_coords;
 use crate::types::{
-    DVec3, Intensity, IntersectionRecord, LocalHit, ObjectRecord, Options, PaintKind, Painting, Pose, Ray, Scene,
-    Shape, SurfaceAttribute, SurfaceRecord,
+    DVec3, Intensity, IntersectionRecord, LocalHit, PaintKind, Painting, Ray, SurfaceAttribute, SurfaceRecord,
 };
-
-/// The scene at one instant of the shutter: the read-only scene, where
-/// each of its objects stands then (`poses[i]` for `scene.objects[i]`),
-/// and the objects whose contour deforms. What `motionblur` wrote into the
-/// shared records, the port keeps here.
-#[derive(Clone, Copy, Debug)]
-pub struct Snapshot<'a> {
-    pub scene: &'a Scene,
-    pub poses: &'a [Pose],
-    pub deforming: &'a [Deforming<'a>],
-}
-
-/// An in-between object of a key-frame chain (§3.2): its contour at the
-/// snapshot's time. `motionblur` computed it for every ray (`do34` or
-/// `Hermite`); here it is computed the first time a ray of the instant
-/// reaches the object's bounding sphere, and kept for the instant's other
-/// rays, since most rays never come near the object (DEVIATIONS D19).
-#[derive(Debug)]
-pub struct Deforming<'a> {
-    /// Index into `scene.objects`.
-    pub object: usize,
-    chain: &'a PaperChain,
-    time: Cell<f64>,
-    ready: Cell<bool>,
-    contour: RefCell<Shape>,
-}
-
-impl<'a> Deforming<'a> {
-    /// Scratch for the in-between object `object` of `chain`.
-    pub fn new(object: usize, chain: &'a PaperChain) -> Self {
-        Deforming {
-            object,
-            chain,
-            time: Cell::new(0.0),
-            ready: Cell::new(false),
-            contour: RefCell::new(Shape::Sweep(chain.scratch())),
-        }
-    }
-
-    /// A new instant: the contour is due again.
-    pub fn at(&self, time: f64) {
-        self.time.set(time);
-        self.ready.set(false);
-    }
-
-    /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
-    /// (`PaperChain::inbetween`), on first use.
-    pub fn contour(&self) -> Ref<'_, Shape> {
-        if !self.ready.get() {
-            if let Shape::Sweep(sw) = &mut *self.contour.borrow_mut() {
-                self.chain.inbetween(self.time.get(), sw);
-            }
-            self.ready.set(true);
-        }
-        self.contour.borrow()
-    }
-}
-
-impl Snapshot<'_> {
-    /// `f` of object `i` as it stands at this instant (its own shape, or
-    /// its contour of the moment when it deforms), for a ray that reaches
-    /// its bounding sphere; `None` for one that does not.
-    fn at_instant<R>(
-        &self,
-        i: usize,
-        ray: &Ray,
-        f: impl FnOnce(&ObjectRecord, &Shape, &Pose) -> Option<R>,
-    ) -> Option<R> {
-        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
-        if !in_bounding_sphere(obj, pose, ray, TMIN) {
-            return None;
-        }
-        match self.deforming.iter().find(|d| d.object == i) {
-            None => f(obj, &obj.shape, pose),
-            Some(d) => f(obj, &d.contour(), pose),
-        }
-    }
-
-    /// Does object `i` as it stands at this instant meet the ray before
-    /// `tmax`? ([`Snapshot::hit_object`]'s hit, before `tmax`.)
-    fn blocks(&self, i: usize, ray: &Ray, tmax: f64, opts: &Options) -> bool {
-        self.at_instant(i, ray, |obj, shape, pose| {
-            shape_blocks(obj, shape, pose, ray, TMIN, tmax, opts).then_some(())
-        })
-        .is_some()
-    }
-
-    /// The hit of a ray with object `i` as it stands at this instant.
-    fn hit_object(&self, i: usize, ray: &Ray, opts: &Options) -> Option<LocalHit> {
-        self.at_instant(i, ray, |obj, shape, pose| {
-            intersect_shape(obj, shape, pose, ray, TMIN, opts)
-        })
-    }
-}
-
-/// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
-/// scene in which nothing moves.
-pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
-    scene.objects.iter().map(|o| o.pose()).collect()
-}
 
 /// The deepest recursion `raytrace` makes (the main program calls it at
 /// depth 1). The base program's limit is not printed; 6 is the port's.
@@ -147,39 +45,50 @@ const FUDGE: f64 = 1e-7;
 /// point does not meet the surface it left.
 const TMIN: f64 = 1e-9;
 
-/// Counts of what a render did: rays of each kind and `kfTIRcnt`, the
-/// main program's count of total internal reflections.
+/// Counts of what a render did: rays of each kind, `kfTIRcnt` (the main
+/// program's count of total internal reflections) and the polynomial
+/// searches of the sweeps (what makes one ray dearer than another).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct TraceStats {
+    /// Primary rays: the subpixels traced (the listing's extra column
+    /// included), or the adaptive sampler's samples.
+    pub primary: u64,
     /// Every ray `raytrace` was called with (primary and secondary).
     pub rays: u64,
     /// Shadow rays to the lights.
     pub shadow_rays: u64,
     /// `kfTIRcnt`: total internal reflections.
     pub kftircnt: u64,
+    /// Polynomials searched for roots by `laguerre` or the robust solver
+    /// (past the pre-tests that settle most of them).
+    pub searched: u64,
 }
 
 impl std::ops::AddAssign for TraceStats {
     fn add_assign(&mut self, o: Self) {
+        self.primary += o.primary;
         self.rays += o.rays;
         self.shadow_rays += o.shadow_rays;
         self.kftircnt += o.kftircnt;
+        self.searched += o.searched;
     }
 }
 
+/// What one ray tree carries besides the scene: the counts it adds to and
+/// the sample it belongs to, whose further dimensions ([`Sampler::get_1d`],
+/// [`Sampler::get_2d`]) are where a lens point, a light point or a gloss
+/// turn come from. Per thread: the renderer makes one for each primary ray
+/// from its worker's scratch.
+pub struct Context<'a> {
+    pub stats: &'a mut TraceStats,
+    pub sampler: &'a mut dyn Sampler,
+}
+
 /// The nearest hit of a ray with the scene's objects beyond the ray's
-/// origin, as an `intersectionrecord` (Fig. 4.3); `None` is `status =
-/// false`. `dir` must be unit length.
-pub fn intersect(snap: &Snapshot, ray: &Ray, opts: &Options) -> Option<IntersectionRecord> {
-    let mut best: Option<(usize, LocalHit)> = None;
-    for i in 0..snap.scene.objects.len() {
-        if let Some(h) = snap.hit_object(i, ray, opts) {
-            if best.is_none_or(|(_, b)| h.t < b.t) {
-                best = Some((i, h));
-            }
-        }
-    }
-    let (object, hit) = best?;
+/// origin ([`nearest`]), as an `intersectionrecord` (Fig. 4.3); `None` is
+/// `status = false`. `dir` must be unit length.
+pub fn intersect(snap: &Snapshot, ray: &Ray, stats: &mut TraceStats) -> Option<IntersectionRecord> {
+    let (object, hit) = nearest(snap, ray, TMIN, &mut stats.searched)?;
     Some(record_of(snap, object, ray, &hit))
 }
 
@@ -205,7 +114,7 @@ fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> Inter
 
 /// The colour a surface shows at a hit under diffuse light: its `color`,
 /// or its pattern's (`painting` of unit `proc`), or its texture's.
-pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord, opts: &Options) -> Intensity {
+pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord) -> Intensity {
     let obj = &snap.scene.objects[hit.object];
     if let Some(tex) = &surf.texture {
         let f = face_coords(obj, hit.local, hit.local_normal);
@@ -221,7 +130,7 @@ pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRe
         }
         PaintKind::Floorstar => {
             let f = face_coords(obj, hit.local, hit.local_normal);
-            crate::proc::floorstar(f.s, f.t, paint.lengthx, paint.lengthy, opts.fidelity)
+            crate::proc::floorstar(f.s, f.t, paint.lengthx, paint.lengthy, snap.opts.fidelity)
         }
         PaintKind::Star => {
             // `startest` with cas = 1 (the x–z plane) on the point scaled to
@@ -237,21 +146,14 @@ pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRe
 }
 
 /// `raytrace(aray, weight, inside, acolor, depth)`: the colour seen along
-/// a ray. Reconstructed (see the module's comment); `inside` is kept for
-/// the reader of the main program, the side is taken from the normal.
-pub fn raytrace(
-    snap: &Snapshot,
-    aray: &Ray,
-    weight: f64,
-    inside: bool,
-    depth: u32,
-    opts: &Options,
-    stats: &mut TraceStats,
-) -> Intensity {
-    let _ = inside;
+/// a ray. Reconstructed (see the module's comment). The colour is returned
+/// rather than written to `acolor`; `inside`, whether the ray travels
+/// inside an object, is not kept: the side a ray meets a surface from is
+/// taken from the normal at the hit.
+pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut Context) -> Intensity {
     let scene = snap.scene;
-    stats.rays += 1;
-    let Some(hit) = intersect(snap, aray, opts) else {
+    ctx.stats.rays += 1;
+    let Some(hit) = intersect(snap, aray, ctx.stats) else {
         return scene.backgrnd;
     };
     let surf = &scene.surfaces[hit.surface];
@@ -269,14 +171,14 @@ pub fn raytrace(
     } else {
         (-hit.normal, hit.insidep, hit.p)
     };
-    let color = surface_color(snap, surf, &hit, opts);
+    let color = surface_color(snap, surf, &hit);
     let ambient_color = if surf.paint.is_some() || surf.texture.is_some() {
         color
     } else {
         surf.iobject
     };
     let mut i = surf.ka * ambient_color;
-    i += surf.kd * diffuse(snap, near, n, opts, stats) * color;
+    i += surf.kd * diffuse(snap, near, n, ctx) * color;
 
     let (ks_weight, kt_weight) = match surf.surface {
         SurfaceAttribute::Opaque => (0.0, 0.0),
@@ -289,25 +191,25 @@ pub fn raytrace(
     let reflected = d - 2.0 * d.dot(n) * n;
     if ks_weight > 0.0 && weight * ks_weight >= MINWEIGHT {
         let r = Ray::new(near, reflected.normalize());
-        i += ks_weight * raytrace(snap, &r, weight * ks_weight, !entering, depth + 1, opts, stats);
+        i += ks_weight * raytrace(snap, &r, weight * ks_weight, depth + 1, ctx);
     }
     if kt_weight > 0.0 && weight * kt_weight >= MINWEIGHT {
         let eta = if entering { 1.0 / surf.index } else { surf.index };
         let t = match refract(d, n, eta) {
             Some(t) => Ray::new(far, t),
             None => {
-                stats.kftircnt += 1;
+                ctx.stats.kftircnt += 1;
                 Ray::new(near, reflected.normalize())
             }
         };
-        i += kt_weight * raytrace(snap, &t, weight * kt_weight, entering, depth + 1, opts, stats);
+        i += kt_weight * raytrace(snap, &t, weight * kt_weight, depth + 1, ctx);
     }
     i
 }
 
 /// Σ (N·L̂j) · light colour over the lights a shadow ray from `p` reaches,
 /// each shadow ray attenuated by the `crystal` objects it passes.
-fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, opts: &Options, stats: &mut TraceStats) -> Intensity {
+fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, ctx: &mut Context) -> Intensity {
     let mut sum = Intensity::ZERO;
     for light in &snap.scene.lights {
         let to_light = light.position - p;
@@ -317,32 +219,27 @@ fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, opts: &Options, stats: &mut Trac
         if cos <= 0.0 {
             continue;
         }
-        stats.shadow_rays += 1;
-        let transmit = shadow(snap, Ray::new(p, l), dist, opts);
+        ctx.stats.shadow_rays += 1;
+        let transmit = shadow(snap, Ray::new(p, l), dist, ctx.stats);
         sum += cos * light.color * transmit;
     }
     sum
 }
 
-/// How much light passes along a shadow ray to a light `dist` away.
-fn shadow(snap: &Snapshot, ray: Ray, dist: f64, opts: &Options) -> Intensity {
+/// How much light passes along a shadow ray to a light `dist` away: none
+/// past an opaque object; through each `crystal` object once (its two
+/// walls count as one), kt·colour of it, taken in the object table's order.
+fn shadow(snap: &Snapshot, ray: Ray, dist: f64, stats: &mut TraceStats) -> Intensity {
     let mut transmit = Intensity::ONE;
-    for (i, obj) in snap.scene.objects.iter().enumerate() {
-        let surf = &snap.scene.surfaces[obj.surface];
-        if matches!(surf.surface, SurfaceAttribute::Light | SurfaceAttribute::Background) {
-            continue;
-        }
-        if !snap.blocks(i, &ray, dist, opts) {
-            continue;
-        }
-        if surf.surface == SurfaceAttribute::Crystal {
-            // Once through each crystal object (its two walls count as one).
-            transmit *= surf.kt * surf.color;
-        } else {
-            return Intensity::ZERO;
-        }
+    let stopped = for_each_blocker(snap, &ray, TMIN, dist, &mut stats.searched, |i| {
+        let surf = &snap.scene.surfaces[snap.scene.objects[i].surface];
+        transmit *= surf.kt * surf.color;
+    });
+    if stopped.is_break() {
+        Intensity::ZERO
+    } else {
+        transmit
     }
-    transmit
 }
 
 /// Snell's law: the refracted unit direction of unit `d` at a surface whose

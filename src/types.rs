@@ -18,20 +18,6 @@ pub const STRINGLENGTH: usize = 10;
 /// The bound of `u, v : array [1..60] of coeff` in `objectrecord`.
 pub const MAXSEGMENTS: usize = 60;
 
-/// Which of two behaviours to follow where the printed listings and the
-/// thesis text disagree (legacy_pascal/DEVIATIONS.md lists every place).
-///
-/// Only the code of an erratum branches on this; each branch quotes both
-/// formulas.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Fidelity {
-    /// Reproduce the printed listings, quirks included.
-    Listing,
-    /// Follow the thesis text where the listing disagrees.
-    #[default]
-    Thesis,
-}
-
 /// `axis = (xaxis, yaxis, zaxis)`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Axis {
@@ -136,18 +122,7 @@ pub struct Texture {
     pub texels: Vec<[u8; 3]>,
 }
 
-/// The most texels a deck texture may have: 4096 × 4096 (48 MiB), a
-/// sixteenth of a raster's [`crate::raster::MAX_PIXELS`], since a deck may
-/// paste several. The port's bound: the thesis's textures are 256×256.
-pub const MAX_TEXELS: usize = 4096 * 4096;
-
 impl Texture {
-    /// The reading limit of a deck texture ([`MAX_TEXELS`]).
-    pub const LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
-        pixels: MAX_TEXELS,
-        what: "deck texture",
-    };
-
     /// The texel under (s, t) in the unit square, s to the right, t upward; nearest
     /// texel, as a 1989 frame-buffer paste would take it.
     pub fn texel(&self, s: f64, t: f64) -> Intensity {
@@ -263,6 +238,37 @@ impl BoundingBox {
         zmax: f64::NEG_INFINITY,
     };
 
+    /// The smallest box holding this one and the point `p`.
+    pub fn holding(&self, p: DVec3) -> BoundingBox {
+        self.union(&BoundingBox {
+            xmin: p.x,
+            xmax: p.x,
+            ymin: p.y,
+            ymax: p.y,
+            zmin: p.z,
+            zmax: p.z,
+        })
+    }
+
+    /// The box grown by `by` on every side.
+    pub fn widened(&self, by: f64) -> BoundingBox {
+        BoundingBox {
+            xmin: self.xmin - by,
+            xmax: self.xmax + by,
+            ymin: self.ymin - by,
+            ymax: self.ymax + by,
+            zmin: self.zmin - by,
+            zmax: self.zmax + by,
+        }
+    }
+
+    /// Does the box hold the point `p` (its faces included)?
+    pub fn holds(&self, p: DVec3) -> bool {
+        (self.xmin..=self.xmax).contains(&p.x)
+            && (self.ymin..=self.ymax).contains(&p.y)
+            && (self.zmin..=self.zmax).contains(&p.z)
+    }
+
     /// The smallest box holding both.
     pub fn union(&self, b: &BoundingBox) -> BoundingBox {
         BoundingBox {
@@ -306,17 +312,6 @@ pub struct SweepShape {
     /// the contour per ray (the port's; the thesis keeps no such field).
     /// 0 where not known: computed from `u` and `v` when needed.
     pub orientation: f64,
-    /// The cells of the contour's box that lie wholly inside or outside it
-    /// ([`CapGrid`](crate::shapes::sweep::CapGrid)), made with `u` and `v`
-    /// for a contour that keeps its shape, so a cap test there takes no
-    /// root (the port's; DEVIATIONS D32). `None` where not made (the
-    /// in-between contours of key frames): every cap test is solved.
-    pub cap_grid: Option<std::sync::Arc<crate::shapes::sweep::CapGrid>>,
-    /// What the intersection takes from `bbox` for every ray
-    /// ([`QueryBounds`](crate::shapes::sweep::QueryBounds)), made once the
-    /// box is final; kept with the box it was made from, so a box changed
-    /// since (an in-between contour's) is not answered by it (the port's).
-    pub bounds: Option<std::sync::Arc<crate::shapes::sweep::QueryBounds>>,
 }
 
 /// The variant part of `objectrecord`, in local coordinates (the local
@@ -382,7 +377,7 @@ impl ObjectRecord {
 /// Where an object stands at one instant of the shutter: the fields of
 /// `objectrecord` that `motionblur` rewrites per ray (`transfm`, `inverse`,
 /// `sphereo`). The port keeps them in per-thread scratch instead of the
-/// shared record (DESIGN, "State").
+/// shared record (legacy_pascal/README.md, "State").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pose {
     pub transfm: DMat4,
@@ -478,192 +473,6 @@ pub struct LocalHit {
     pub point: DVec3,
     /// Unit outward normal, local frame.
     pub normal: DVec3,
-}
-
-/// The root solver of the sweep intersection (`--solver`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Solver {
-    /// `laguerre` as printed (§2.5): the thesis's method and the default.
-    #[default]
-    Laguerre,
-    /// Every real root in the interval, isolated and polished; not the
-    /// thesis's method.
-    Robust,
-}
-
-/// How each subpixel's time is chosen (`--sampler`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum TimeSampler {
-    /// The pattern lookup table of §2.6.4 (Fig. 2.33) with the CLT jitter
-    /// of §2.6.5, as the fidelity reads them: the thesis's method and the
-    /// default.
-    #[default]
-    Table,
-    /// An independent uniform time for every subpixel; not the thesis's.
-    Random,
-    /// One uniform time in each of the M² strata of the shutter, the strata
-    /// dealt to the subpixels by a permutation of the pixel's own, as
-    /// renderers later came to do; not the thesis's.
-    Stratified,
-    /// M² rays a pixel on average, dealt out by each pixel's need, at
-    /// scrambled Sobol places and times ([`crate::adaptive`]); not the
-    /// thesis's.
-    Adaptive,
-}
-
-/// How to render: the choices that are not part of the scene.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Options {
-    pub fidelity: Fidelity,
-    pub solver: Solver,
-    pub sampler: TimeSampler,
-}
-
-/// A point light (the base program's, not printed): deck `light`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LightRecord {
-    pub name: String,
-    pub position: DVec3,
-    pub color: Intensity,
-}
-
-/// The view (deck `view`; the Pascal read it from the file `fview`).
-/// Reconstructed from the main program: `eyept`, the look point, and
-/// `screensize`, `scrndistance` of the screen window.
-#[derive(Clone, Debug, PartialEq)]
-pub struct View {
-    pub eyept: DVec3,
-    pub lookpt: DVec3,
-    /// `screensize`: the width of the window on the screen plane.
-    pub screensize: f64,
-    /// `scrndistance`: the distance of the screen plane from the eye.
-    pub scrndistance: f64,
-}
-
-/// The image (deck `image`): the final raster size, `masksize`×`masksize`
-/// subpixels a pixel, and the `aliasing` jitter amplitude (0–1 of a subpixel).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ImageSpec {
-    pub width: usize,
-    pub height: usize,
-    /// `masksize`: each pixel is traced as masksize × masksize subpixels.
-    pub masksize: usize,
-    /// `aliasing`: scales the `noise2` jitter of each subpixel's position.
-    pub aliasing: f64,
-}
-
-/// Where a deck record stands, for errors raised after parsing.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Pos {
-    pub line: u32,
-    pub column: u32,
-}
-
-/// LAW 1–4 of Fig. 3.2: how the fraction of the shutter maps onto the path.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Law {
-    /// LAW 1: constant speed, f.
-    #[default]
-    Constant,
-    /// LAW 2: accelerate, 1 − cos(πf/2).
-    Accelerate,
-    /// LAW 3: decelerate, sin(πf/2).
-    Decelerate,
-    /// LAW 4: accelerate then decelerate, (1 − cos πf)/2.
-    Smooth,
-}
-
-/// Deck `motion` (§3.2.2): the object's path over the shutter.
-#[derive(Clone, Debug, PartialEq)]
-pub struct MotionRecord {
-    pub pos: Pos,
-    /// Index into [`Scene::objects`].
-    pub object: usize,
-    /// Where `sphereo` stands at t = 1.
-    pub to: DVec3,
-    /// Degrees added about x, y, z over the shutter.
-    pub turn: DVec3,
-    /// The inner control points of a cubic Bezier path, if any.
-    pub via: Option<[DVec3; 2]>,
-    pub law: Law,
-}
-
-/// How the segment counts of two key shapes are made equal (§3.2.3).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Expander {
-    /// `expanding`/`more`: Burtnyk & Wein 1971.
-    Burtnyk,
-    /// `expanding2`/`more2`/`plus`: the thesis's arc-length method.
-    #[default]
-    Arclength,
-}
-
-/// Deck `keyframe` (§3.1–3.3): a chain of key shapes. FIRST stays in the
-/// scene as the in-between object; the later key shapes are removed from the
-/// scene (`delete` in `goahead`) and kept here.
-#[derive(Clone, Debug, PartialEq)]
-pub struct KeyframeRecord {
-    pub pos: Pos,
-    /// FIRST: index into [`Scene::objects`].
-    pub first: usize,
-    /// The later key shapes, in order (LAST alone for a pair).
-    pub rest: Vec<ObjectRecord>,
-    pub expander: Expander,
-}
-
-/// Deck `pattern` (Fig. 2.33): the M×M table of subpixel times, values
-/// 0..M²−1, `pattern[row][col]`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PatternRecord {
-    pub pos: Pos,
-    pub m: usize,
-    pub values: Vec<Vec<u32>>,
-}
-
-/// Deck `blur N` (§2.6.5): the CLT normal is the sum of N uniforms.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BlurRecord {
-    pub pos: Pos,
-    pub n: u32,
-}
-
-/// The scene `initialize` builds from a deck, read-only while rendering.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Scene {
-    pub view: View,
-    pub image: ImageSpec,
-    /// `backgrnd`: the background colour.
-    pub backgrnd: Intensity,
-    pub lights: Vec<LightRecord>,
-    pub surfaces: Vec<SurfaceRecord>,
-    /// `table`: the objects still in the scene, in deck order.
-    pub objects: Vec<ObjectRecord>,
-    /// Where each object's defining record stands (same indices as `objects`).
-    pub object_pos: Vec<Pos>,
-    pub motions: Vec<MotionRecord>,
-    pub keyframes: Vec<KeyframeRecord>,
-    pub blur: Option<BlurRecord>,
-    pub pattern: Option<PatternRecord>,
-    /// The `film` record (the port's extension, [`crate::film`]); `None`
-    /// renders one still, as the thesis does.
-    pub film: Option<crate::film::FilmRecord>,
-}
-
-impl Scene {
-    /// Sets the image to `width`×`height` pixels of `mask`×`mask`
-    /// subpixels in place of the deck's `image` record (`--size`,
-    /// `--mask`); the view (the window on the screen plane) stays, so the
-    /// picture is the same at another resolution. A deck's `pattern`
-    /// record fits one mask only, so it is dropped when the mask changes
-    /// (the default table of that mask is used).
-    pub fn resize(&mut self, width: usize, height: usize, mask: usize) {
-        if self.image.masksize != mask {
-            self.pattern = None;
-        }
-        self.image.width = width;
-        self.image.height = height;
-        self.image.masksize = mask;
-    }
 }
 
 #[cfg(test)]

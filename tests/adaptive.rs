@@ -2,7 +2,10 @@
 //! image for any number of threads, exactly the budget of rays, spent where
 //! the picture varies, and times that sample the box shutter of `blur 1`.
 
-use raytrace::raytrace::{render, render_colours, render_counted};
+use common::{render_frame, render_request, render_still};
+use raytrace::options::*;
+use raytrace::raytrace::Request;
+use raytrace::scene::*;
 use raytrace::types::*;
 
 mod common;
@@ -71,8 +74,8 @@ fn converges_to_the_box_shutter() {
     let mut errors = Vec::new();
     for m in [2usize, 4, 8] {
         let s = moving_square(m);
-        let (worst, rms) = error_against_coverage(&render_colours(&s, &adaptive()));
-        let (_, table) = error_against_coverage(&render_colours(&s, &Options::default()));
+        let (worst, rms) = error_against_coverage(&render_still(&s, &adaptive()).colours);
+        let (_, table) = error_against_coverage(&render_still(&s, &Options::default()).colours);
         eprintln!("mask {m}: adaptive worst {worst:.4} rms {rms:.4}; table rms {table:.4}");
         assert!(worst < 0.25, "mask {m}: worst {worst}");
         if m > 2 {
@@ -93,10 +96,13 @@ fn converges_to_the_box_shutter() {
 fn spends_the_budget_where_the_picture_varies() {
     let m = 4;
     let s = moving_square(m);
-    let r = render(&s, &adaptive(), &|| {});
-    assert_eq!(r.primary, (64 * 16 * m * m) as u64);
-    let (_, counts) = render_counted(&s, &adaptive());
-    assert_eq!(counts.iter().map(|&n| n as u64).sum::<u64>(), r.primary);
+    let r = render_still(&s, &adaptive());
+    assert_eq!(r.stats.primary, (64 * 16 * m * m) as u64);
+    let (_, counts) = {
+        let r = render_still(&s, &adaptive());
+        (r.colours, r.counts)
+    };
+    assert_eq!(counts.iter().map(|&n| n as u64).sum::<u64>(), r.stats.primary);
     let coverage = square_coverage();
     let budget = (m * m) as u32;
     for (i, &n) in counts.iter().enumerate() {
@@ -110,7 +116,10 @@ fn spends_the_budget_where_the_picture_varies() {
     let along: u32 = (6..=9).map(|row| counts[row * 64 + 32]).sum();
     assert!(along > 4 * budget, "column 32: {along} rays over 4 pixels");
     // The table's counts for comparison: M² everywhere.
-    let (_, table) = render_counted(&s, &Options::default());
+    let (_, table) = {
+        let r = render_still(&s, &Options::default());
+        (r.colours, r.counts)
+    };
     assert!(table.iter().all(|&n| n == budget));
 }
 
@@ -126,7 +135,10 @@ fn same_image_for_any_threads() {
             .into_iter()
             .map(|n| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-                pool.install(|| render_counted(&s, &adaptive()))
+                pool.install(|| {
+                    let r = render_still(&s, &adaptive());
+                    (r.colours, r.counts)
+                })
             })
             .collect();
         assert!(runs[0].1.iter().any(|&n| n != 16), "{deck}: the counts vary");
@@ -146,11 +158,17 @@ fn same_image_for_any_threads() {
 fn one_ray_a_pixel_and_still_scenes() {
     let mut s = load_deck("fig5_1.deck", Fidelity::Thesis);
     s.resize(16, 12, 1);
-    let (colours, counts) = render_counted(&s, &adaptive());
+    let (colours, counts) = {
+        let r = render_still(&s, &adaptive());
+        (r.colours, r.counts)
+    };
     assert!(counts.iter().all(|&n| n == 1));
     assert!(colours.iter().all(|c| c.is_finite()));
     s.resize(16, 12, 3);
-    let (_, counts) = render_counted(&s, &adaptive());
+    let (_, counts) = {
+        let r = render_still(&s, &adaptive());
+        (r.colours, r.counts)
+    };
     assert_eq!(counts.iter().sum::<u32>(), 16 * 12 * 9);
 }
 
@@ -161,7 +179,6 @@ fn one_ray_a_pixel_and_still_scenes() {
 #[test]
 fn films_frame_by_frame() {
     use raytrace::film::Frame;
-    use raytrace::raytrace::render_frame;
     let s = moving_square(4);
     let mut centroids = Vec::new();
     for k in 1..=4 {
@@ -174,7 +191,7 @@ fn films_frame_by_frame() {
             .into_iter()
             .map(|n| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-                pool.install(|| render_frame(&s, &adaptive(), frame, &|| {}).raster.pixels)
+                pool.install(|| render_frame(&s, &adaptive(), frame).raster.pixels)
             })
             .collect();
         assert_eq!(images[0], images[1], "frame {k}");
@@ -206,9 +223,13 @@ fn progress_once_a_row() {
     for m in [1usize, 2, 4] {
         let s = moving_square(m);
         let rows = AtomicUsize::new(0);
-        render(&s, &adaptive(), &|| {
-            rows.fetch_add(1, Ordering::Relaxed);
-        });
+        render_request(
+            &s,
+            &adaptive(),
+            &Request::STILL.progress(&|| {
+                rows.fetch_add(1, Ordering::Relaxed);
+            }),
+        );
         assert_eq!(rows.load(Ordering::Relaxed), s.image.height, "mask {m}");
     }
 }

@@ -1,5 +1,5 @@
 //! The shadow ray's yes/no questions against the nearest hits they stand
-//! for ([`shape_blocks`], [`block_blocks`]), and the ray re-based near an
+//! for ([`Posed::blocks`], [`block_blocks`]), and the ray re-based near an
 //! object ([`Near::of`]), on rays whose arithmetic is exact, so that the
 //! ties a boundary comparison decides (an entry at the exit, an entry at
 //! `tmin`, a ray in a face's plane, a hit at `tmax`) happen exactly.
@@ -10,13 +10,13 @@
 //! no) is repeated by its final test, which the exit makes true at the
 //! entry and at `exit > tmin`; `>=` for `>` in keeping the largest entry
 //! (and `<=` for `<`, the smallest exit) assigns an equal value; `slab`'s
-//! `dk < 0` and `dk > 0` follow `dk == 0`; `shape_blocks`' block and
+//! `dk < 0` and `dk > 0` follow `dk == 0`; `Posed::blocks`' block and
 //! sweep arms give the answer of the nearest hit they stand in for.
 
 mod common;
 
 use common::sweeps::{circle_points, sweep, Rng, ROBUST};
-use raytrace::shapes::{block_blocks, intersect_block, intersect_shape, shape_blocks, Near};
+use raytrace::shapes::{block_blocks, intersect_block, Near, Posed, SweepCache};
 use raytrace::types::*;
 
 /// The nearest hit's answer: a hit with t in (`tmin`, `tmax`).
@@ -130,10 +130,10 @@ fn block_blocks_at_its_ties() {
 }
 
 /// A sphere, a block, a cylinder off its centre, a prism and a sweep, each
-/// turned and moved: `shape_blocks` answers as `intersect_shape`'s nearest
-/// hit before `tmax`, with `tmax` exactly at the hit among others.
+/// turned and moved: `Posed::blocks` answers as `Posed::intersect`'s
+/// nearest hit before `tmax`, with `tmax` exactly at the hit among others.
 #[test]
-fn shape_blocks_as_the_nearest_hit_for_every_shape() {
+fn posed_blocks_as_the_nearest_hit_for_every_shape() {
     let mut cylinder = common::object(
         "cyl",
         0,
@@ -177,6 +177,16 @@ fn shape_blocks_as_the_nearest_hit_for_every_shape() {
     let turn = DMat3::from_rotation_x(0.3) * DMat3::from_rotation_y(-0.7) * DMat3::from_rotation_z(1.1);
     for obj in &objects {
         let pose = obj.pose().turned(turn, DVec3::new(1.0, -2.0, 0.5));
+        let cache = match &obj.shape {
+            Shape::Sweep(sw) => SweepCache::new(obj.class, sw),
+            _ => None,
+        };
+        let posed = Posed {
+            obj,
+            shape: &obj.shape,
+            cache: cache.as_ref(),
+            pose: &pose,
+        };
         let (mut yes, mut no, mut at_hit) = (0, 0, 0);
         for k in 0..3000 {
             // From all around the object toward a point near it; from its
@@ -185,16 +195,16 @@ fn shape_blocks_as_the_nearest_hit_for_every_shape() {
             let mut o = pose.sphereo + rng.unit() * rng.range(0.5, 6.0);
             if k % 4 == 0 {
                 let probe = Ray::new(o, target - o);
-                if let Some(h) = intersect_shape(obj, &obj.shape, &pose, &probe, 1e-9, &ROBUST) {
+                if let Some(h) = posed.intersect(&probe, 1e-9, &ROBUST, &mut 0) {
                     o = probe.at(h.t);
                 }
             }
             let ray = Ray::new(o, (target - o).normalize_or(DVec3::Z));
             for tmin in [1e-9, 0.0] {
-                let nearest = intersect_shape(obj, &obj.shape, &pose, &ray, tmin, &ROBUST);
+                let nearest = posed.intersect(&ray, tmin, &ROBUST, &mut 0);
                 for tmax in tmaxes(nearest, tmin) {
                     let want = nearest_before(nearest, tmax);
-                    let got = shape_blocks(obj, &obj.shape, &pose, &ray, tmin, tmax, &ROBUST);
+                    let got = posed.blocks(&ray, tmin, tmax, &ROBUST, &mut 0);
                     assert_eq!(got, want, "{} ray {k}: {o} tmin {tmin} tmax {tmax}", obj.name);
                     (yes, no) = if want { (yes + 1, no) } else { (yes, no + 1) };
                     at_hit += nearest.is_some_and(|h| h.t == tmax) as usize;

@@ -131,7 +131,7 @@ fn flags() {
 /// before `rgbtochars`, which would hide a NaN as black).
 #[test]
 fn every_legacy_deck_renders_without_nan() {
-    use raytrace::types::{Fidelity, Options};
+    use raytrace::options::{Fidelity, Options};
     let mut names = vec![];
     for entry in std::fs::read_dir(decks()).unwrap() {
         let path = entry.unwrap().path();
@@ -151,14 +151,19 @@ fn every_legacy_deck_renders_without_nan() {
                 fidelity,
                 ..Options::default()
             };
-            if let Err(e) = raytrace::raytrace::prepare(&mut scene, &opts) {
-                // Key frames come with the paper unit.
-                assert!(e.to_string().contains("keyframe"), "{name}: {e}");
-                continue;
-            }
             scene.image.width = 48;
             scene.image.height = 48;
-            let colours = raytrace::raytrace::render_colours(&scene, &opts);
+            let prepared = match raytrace::raytrace::Prepared::new(scene, opts) {
+                Ok(p) => p,
+                Err(e) => {
+                    // Key frames come with the paper unit.
+                    assert!(e.to_string().contains("keyframe"), "{name}: {e}");
+                    continue;
+                }
+            };
+            let colours = raytrace::raytrace::render(&prepared, &raytrace::raytrace::Request::STILL)
+                .unwrap()
+                .colours;
             assert!(
                 colours.iter().all(|c| c.is_finite()),
                 "{name} ({fidelity:?}): a NaN or infinite colour"
@@ -187,8 +192,149 @@ fn no_deck_renders_the_embedded_default() {
         &std::fs::read_to_string(file).unwrap(),
         "nec_morph.deck",
         decks(),
-        raytrace::types::Fidelity::Thesis,
+        raytrace::options::Fidelity::Thesis,
     )
     .unwrap();
     assert_eq!(scene.keyframes.len(), 1);
+}
+
+/// `raytrace -` reads the deck from standard input: the same raster as
+/// from the file, errors named `<stdin>:LINE:COLUMN`, texture files
+/// relative to the current folder, and the default output raster/stdin.ras.
+#[test]
+fn a_deck_from_standard_input() {
+    use std::io::Write;
+    use std::process::Stdio;
+    let piped = |deck: &str, dir: &std::path::Path, args: &[&str]| {
+        let mut child = raytrace_command()
+            .arg("-")
+            .args(args)
+            .current_dir(dir)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        child.stdin.take().unwrap().write_all(deck.as_bytes()).unwrap();
+        child.wait_with_output().unwrap()
+    };
+    let (dir, file) = small_deck();
+    let from_file = raytrace_command()
+        .arg("-q")
+        .arg(&file)
+        .args(["-o", "-"])
+        .output()
+        .unwrap();
+    let from_stdin = piped(SMALL_DECK, dir.path(), &["-q", "-o", "-"]);
+    assert!(
+        from_stdin.status.success(),
+        "{}",
+        String::from_utf8_lossy(&from_stdin.stderr)
+    );
+    assert_eq!(from_stdin.stdout, from_file.stdout);
+
+    let bad = piped(&SMALL_DECK.replace("radius 1", "radius lots"), dir.path(), &["-q"]);
+    assert_eq!(bad.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(err.starts_with("raytrace: <stdin>:5:"), "{err}");
+
+    // A texture named relative to the current folder; the default output.
+    let tex = raytrace::raster::Raster {
+        width: 2,
+        height: 2,
+        pixels: vec![[0, 255, 0]; 4],
+    };
+    raytrace::raster::outputframe(&dir.path().join("green.ras"), &tex).unwrap();
+    let textured = format!("{SMALL_DECK}texture red green.ras\n");
+    let run = piped(&textured, dir.path(), &["-q"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let r = raytrace::raster::read_raster_file(&dir.path().join("raster/stdin.ras")).unwrap();
+    assert!(
+        r.pixels.iter().any(|p| p[1] > 100 && p[0] < 30),
+        "the green texture is on the ball"
+    );
+    help_says("or - to read it from standard input");
+}
+
+/// `--threads` takes 0 (one per core) to 256; more is refused at once as
+/// a usage error, never a render starting thousands of threads.
+#[test]
+fn threads_are_bounded() {
+    let (_dir, deck) = small_deck();
+    let out = deck.with_extension("ras");
+    let with = |n: &str| {
+        let mut command = raytrace_command();
+        command.arg(&deck).args(["-q", "--threads", n, "-o"]).arg(&out);
+        let run = command.output().unwrap();
+        (run.status.code(), String::from_utf8_lossy(&run.stderr).into_owned())
+    };
+    for n in ["10000", "257"] {
+        let (code, err) = with(n);
+        assert_eq!(code, Some(2), "--threads {n}");
+        assert!(err.contains("--threads <N>"), "--threads {n}: {err}");
+        assert!(!out.exists());
+    }
+    let mut rasters = Vec::new();
+    for n in ["0", "1", "256"] {
+        let (code, err) = with(n);
+        assert_eq!(code, Some(0), "--threads {n}: {err}");
+        rasters.push(std::fs::read(&out).unwrap());
+    }
+    assert!(
+        rasters.iter().all(|r| r == &rasters[0]),
+        "the same image for any number"
+    );
+    help_says("1..256, or 0 for one per core");
+}
+
+/// The summary line (without --quiet) names the deck, what was written,
+/// the size and sampling, and the rays traced: a film's are the sum of
+/// its frames'.
+#[test]
+fn the_summary_line_counts_the_rays() {
+    let (dir, deck) = small_deck();
+    let film = dir.path().join("film.deck");
+    std::fs::write(&film, format!("{SMALL_DECK}motion ball to 1 0 0\nfilm 2\n")).unwrap();
+    let summary = |deck: &std::path::Path, args: &[&str]| {
+        let run = raytrace_command()
+            .arg(deck)
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        String::from_utf8(run.stderr).unwrap()
+    };
+    let still = summary(&deck, &["-o", "s.ras"]);
+    assert!(
+        still.contains("small.deck → s.ras (16×12, 1×1 subpixels, 192 rays, "),
+        "{still}"
+    );
+    let rays = |line: &str| -> u64 {
+        let before = &line[..line.find(" rays").unwrap()];
+        before[before.rfind(' ').unwrap() + 1..].parse().unwrap()
+    };
+    let both = summary(&film, &["-o", "f.ras"]);
+    assert!(
+        both.contains("film.deck → f.0001.ras … f.0002.ras (frames 1..2 of 2, 16×12"),
+        "{both}"
+    );
+    let one = summary(&film, &["-o", "f.ras", "--frames", "1"]);
+    let two = summary(&film, &["-o", "f.ras", "--frames", "2"]);
+    assert!(rays(&one) > 0);
+    assert_eq!(rays(&both), rays(&one) + rays(&two));
+}
+
+/// A temporary folder with small.deck (SMALL_DECK) in it.
+fn small_deck() -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("small.deck");
+    std::fs::write(&deck, SMALL_DECK).unwrap();
+    (dir, deck)
+}
+
+/// `raytrace --help` says `words`.
+fn help_says(words: &str) {
+    let help = String::from_utf8(raytrace_command().arg("--help").output().unwrap().stdout).unwrap();
+    assert!(help.contains(words), "{help}");
 }

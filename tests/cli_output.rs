@@ -122,6 +122,11 @@ fn bad_output_names_are_usage_errors_and_write_nothing() {
             "a value is required for '--debug <FILE>'",
         ),
         (&["-o", "-", "--png", "-"], "only one output can go to standard output"),
+        (
+            &["-o", "x.ras", "--apng", "film.gif"],
+            "--apng 'film.gif': --apng writes an animated PNG, so the name must end in .png",
+        ),
+        (&["-o", "-", "--apng", "-"], "only one output can go to standard output"),
     ];
     for (args, says) in cases {
         let o = run(raytrace_command().arg(&deck).args(*args).current_dir(dir.path()));
@@ -262,6 +267,62 @@ fn a_fifo_output_is_written_into() {
         file_names(dir.path()),
         ["pipe.png", "pipe.ras", "small.deck", "small.ras"]
     );
+}
+
+/// A device or FIFO named without an extension gets the Sun raster, the
+/// original's format: `-o /dev/null` renders and writes nothing anywhere,
+/// `-o /dev/stdout` (a pipe here) the bytes of `-o -`, a FIFO `pipe` the
+/// raster. A regular file without an extension is still refused.
+#[test]
+fn a_device_or_fifo_without_an_extension_gets_the_sun_raster() {
+    let (dir, deck) = small_deck();
+    let null = run(raytrace_command().arg("-q").arg(&deck).args(["-o", "/dev/null"]));
+    assert!(null.status.success(), "{}", stderr(&null));
+    assert!(null.stdout.is_empty() && null.stderr.is_empty());
+    let dash = run(raytrace_command().arg("-q").arg(&deck).args(["-o", "-"]));
+    let dev = run(raytrace_command().arg("-q").arg(&deck).args(["-o", "/dev/stdout"]));
+    assert!(dev.status.success(), "{}", stderr(&dev));
+    assert_eq!(dev.stdout, dash.stdout);
+    assert_eq!(read_raster(&dev.stdout).unwrap().width, 16);
+
+    let fifo = dir.path().join("pipe");
+    if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        let path = fifo.clone();
+        let got = std::thread::spawn(move || std::fs::read(path).unwrap());
+        let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&fifo));
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+        assert_eq!(got.join().unwrap(), dash.stdout);
+    }
+    std::fs::write(dir.path().join("plain"), b"a regular file").unwrap();
+    let o = run(raytrace_command().arg(&deck).arg("-o").arg(dir.path().join("plain")));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("plain': no extension"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(dir.path().join("plain")).unwrap(), b"a regular file");
+}
+
+/// `raytrace DECK -o - | head -c 10`: the reader takes ten bytes of a
+/// raster far larger than a pipe holds and closes its end; raytrace drops
+/// the rest and ends as the render did, status 0, with no message.
+#[test]
+fn a_reader_that_stops_early_ends_the_run_quietly() {
+    use std::io::Read;
+    let (_dir, deck) = small_deck();
+    let mut child = raytrace_command()
+        .arg("-q")
+        .arg(&deck)
+        .args(["--size", "512x512", "-o", "-"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut head = [0; 10];
+    child.stdout.take().unwrap().read_exact(&mut head).unwrap();
+    // The read end is dropped here: 786 KB of raster cannot all fit in the pipe.
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(&head[..4], &[0x59, 0xa6, 0x6a, 0x95], "a Sun raster's magic number");
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
 }
 
 /// `psout --screenshot` writes a PNG, so its name must say so.

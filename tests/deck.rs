@@ -4,6 +4,8 @@
 use std::path::Path;
 
 use raytrace::deck::initialize;
+use raytrace::options::*;
+use raytrace::scene::*;
 use raytrace::types::*;
 
 /// A deck with every record kind (except `texture`, which needs a raster
@@ -97,6 +99,16 @@ end
 
 fn full() -> Scene {
     initialize(FULL, "full.deck", Path::new("."), Fidelity::Thesis).expect("the full deck is valid")
+}
+
+/// Where a record of the full deck stands: line `line`, column 1, of
+/// full.deck (a position names its file).
+fn full_at(line: u32) -> Pos {
+    Pos {
+        file: "full.deck".into(),
+        line,
+        column: 1,
+    }
 }
 
 fn object<'a>(scene: &'a Scene, name: &str) -> &'a ObjectRecord {
@@ -315,7 +327,7 @@ fn delete_and_keyframe_remove_objects_and_indices_follow() {
     assert_eq!(s.objects[k.first].name, "wave");
     assert_eq!(k.rest.iter().map(|o| o.name.as_str()).collect::<Vec<_>>(), ["wave2"]);
     assert_eq!(k.expander, Expander::Arclength);
-    assert_eq!(k.pos, Pos { line: 76, column: 1 });
+    assert_eq!(k.pos, full_at(76));
     let Shape::Sweep(w2) = &k.rest[0].shape else {
         panic!("wave2 is a sweep")
     };
@@ -341,22 +353,16 @@ fn motions_blur_and_pattern() {
     assert_eq!(m.turn, DVec3::new(0.0, 0.0, 90.0));
     assert_eq!(m.via, Some([DVec3::new(0.0, 0.0, 1.0), DVec3::new(1.0, 0.0, 1.0)]));
     assert_eq!(m.law, Law::Smooth);
-    assert_eq!(m.pos, Pos { line: 78, column: 1 });
+    assert_eq!(m.pos, full_at(78));
     let m = &s.motions[1];
     assert_eq!(s.objects[m.object].name, "ball");
     assert_eq!((m.turn, m.via, m.law), (DVec3::ZERO, None, Law::Constant));
 
-    assert_eq!(
-        s.blur,
-        Some(BlurRecord {
-            pos: Pos { line: 80, column: 1 },
-            n: 6
-        })
-    );
+    assert_eq!(s.blur, Some(BlurRecord { pos: full_at(80), n: 6 }));
     assert_eq!(
         s.pattern,
         Some(PatternRecord {
-            pos: Pos { line: 81, column: 1 },
+            pos: full_at(81),
             m: 2,
             values: vec![vec![0, 3], vec![2, 1]],
         })

@@ -4,8 +4,9 @@
 use std::path::Path;
 
 use raytrace::deck::{initialize, DeckError};
+use raytrace::options::Fidelity;
 use raytrace::raster::read_raster_file;
-use raytrace::types::{Fidelity, Scene};
+use raytrace::scene::Scene;
 
 /// A valid deck of 11 lines; the cases change one line or add lines 12….
 const BASE: &str = "\
@@ -113,6 +114,43 @@ fn unterminated_paren_comment_in_a_record() {
 }
 
 #[test]
+fn nested_comment_is_named_at_its_inner_opener() {
+    let cases = [
+        (
+            "{ a { b } c }\n",
+            "12:5: deck",
+            "{",
+            "}",
+            "12:1, the '}' at 12:9 ends that comment, and the '}' at 12:13",
+        ),
+        (
+            "sphere b2 red at 0 0 3 { big {\n very } } radius 1\n",
+            "12:30: sphere 'b2'",
+            "{",
+            "}",
+            "12:24, the '}' at 13:7 ends that comment, and the '}' at 13:9",
+        ),
+        // The stray closer is found past a comment of the other kind.
+        (
+            "(* a (* b *) c { d *) } *)\n",
+            "12:6: deck",
+            "(*",
+            "*)",
+            "12:1, the '*)' at 12:11 ends that comment, and the '*)' at 12:25",
+        ),
+    ];
+    for (deck, at, open, close, rest) in cases {
+        let inner = format!("'{open} … {close}' comments do not nest (Pascal's), so this '{open}' is text");
+        let expected = format!(
+            "t.deck:{at}: a comment inside a comment: {inner} of the comment opened at {rest} is outside any comment"
+        );
+        check(&plus(deck), &expected);
+    }
+    // Valid Pascal (the inner '{' is text); the lexer's tests hold the rest.
+    assert!(read(&plus("{ a { b }\n{ c }\n"), Fidelity::Thesis).is_ok());
+}
+
+#[test]
 fn malformed_number() {
     check(
         &plus("sphere b2 red at 0 0 1.2.3 radius 1\n"),
@@ -158,8 +196,27 @@ fn unknown_record() {
 fn misplaced_field() {
     check(
         &plus("sphere b2 red radius 1 at 0 0 0\n"),
-        "t.deck:12:15: sphere 'b2': expected 'at', found 'radius'",
+        "t.deck:12:15: sphere 'b2': expected 'at', found 'radius' — 'at' comes before 'radius'",
     );
+}
+
+#[test]
+fn field_out_of_order_misspelt_or_given_twice() {
+    let cases = [
+        (4, "surface red opaque color 1 0 0 kd 0.7 ka 0.1 ks 0.2 kt 0", "4:32: surface 'red': expected 'ka', found 'kd' — 'ka' comes before 'kd'"),
+        (5, "sphere ball red at 0 0 1 radus 1", "5:26: sphere 'ball': expected 'radius', found 'radus' — did you mean 'radius'?"),
+        (1, "view look 0 0 1 eye 0 -10 4 screen 4 distance 5", "1:6: view: expected 'eye', found 'look' — 'eye' comes before 'look'"),
+        (1, "view eye 0 -10 4 eye 0 0 1 screen 4 distance 5", "1:18: view: expected 'look', found 'eye' — the field 'eye' is given twice"),
+        // An optional field before a required one.
+        (5, "cylinder ball red at 0 0 1 radius 1 bottom 0 axis x top 1", "5:46: cylinder 'ball': expected 'top', found 'axis' — 'top' comes before 'axis'"),
+        // A required field again among the optional ones.
+        (4, "surface red opaque color 1 0 0 ka 0.1 kd 0.7 ks 0.2 kt 0 color 1 1 1", "4:58: surface 'red': expected end of line or 'ambient', 'reflect', 'index', found 'color' — the field 'color' is given twice"),
+        // A word that is no slip of a field gets no suggestion.
+        (5, "sphere ball red at 0 0 1 size 1", "5:26: sphere 'ball': expected 'radius', found 'size'"),
+    ];
+    for (line, text, expected) in cases {
+        check(&replacing(line, text), &format!("t.deck:{expected}"));
+    }
 }
 
 #[test]
@@ -315,10 +372,23 @@ fn paint_and_texture_on_one_surface() {
 
 #[test]
 fn texture_file_that_cannot_be_read() {
-    let e = read(&plus("texture red no_such.ras\n"), Fidelity::Thesis).unwrap_err();
+    let deck = plus("texture red no_such.ras\n");
+    let e = read(&deck, Fidelity::Thesis).unwrap_err();
     let reader = read_raster_file(&Path::new("decks").join("no_such.ras")).unwrap_err();
     assert_eq!((e.line, e.column), (12, 13));
     assert_eq!((e.record.as_str(), e.name.as_deref()), ("texture", Some("red")));
+    // The path as written, then where it was looked for (from the deck's
+    // folder, here `decks`).
+    let looked = Path::new("decks").join("no_such.ras");
+    assert_eq!(
+        e.message,
+        format!(
+            "cannot read the raster file 'no_such.ras': {reader}; from the deck's folder, that is '{}'",
+            looked.display()
+        )
+    );
+    // A deck in the working folder: the path as written is where it was looked for.
+    let e = initialize(&deck, "t.deck", Path::new(""), Fidelity::Thesis).unwrap_err();
     assert_eq!(
         e.message,
         format!("cannot read the raster file 'no_such.ras': {reader}")

@@ -11,8 +11,11 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use raytrace::deck::{initialize, DeckError, MAX_DECK_BYTES, RECORDS};
-use raytrace::types::{Fidelity, Options, Scene};
+mod common;
+use common::render_still;
+use raytrace::deck::{initialize, DeckError, FIELDS, MAX_DECK_BYTES, RECORDS};
+use raytrace::options::{Fidelity, Options};
+use raytrace::scene::Scene;
 
 fn read(deck: impl AsRef<[u8]>) -> Result<Scene, DeckError> {
     initialize(&deck, "t.deck", Path::new("."), Fidelity::Thesis)
@@ -67,10 +70,9 @@ fn the_fixtures_read_as_they_say() {
             Ok(mut scene) => {
                 assert_eq!(expect, "ok", "{name} was accepted");
                 let opts = Options::default();
-                raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
                 scene.image.width = 24;
                 scene.image.height = 24;
-                let colours = raytrace::raytrace::render_colours(&scene, &opts);
+                let colours = render_still(&scene, &opts).colours;
                 let bad = colours.iter().filter(|c| !c.is_finite()).count();
                 assert_eq!(bad, 0, "{name}: pixels that are not finite");
             }
@@ -148,18 +150,18 @@ fn unknown_records_fields_and_names_get_the_nearest_one() {
     );
 }
 
+/// DECK.md's synopsis of the records: the code block under "## Records".
+fn records_synopsis() -> String {
+    let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/DECK.md")).unwrap();
+    let block = doc.split("## Records\n```\n").nth(1).unwrap();
+    block.split("```").next().unwrap().to_string()
+}
+
 /// Every record DECK.md lists is one `RECORDS` holds, and each is read as a
 /// record (not "unknown record").
 #[test]
 fn the_suggested_records_are_deck_md_s() {
-    let doc = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/DECK.md")).unwrap();
-    let block = doc
-        .split("## Records\n```\n")
-        .nth(1)
-        .unwrap()
-        .split("```")
-        .next()
-        .unwrap();
+    let block = records_synopsis();
     let mut listed: Vec<&str> = block
         .lines()
         .filter(|l| l.starts_with(|c: char| c.is_ascii_lowercase()))
@@ -174,6 +176,30 @@ fn the_suggested_records_are_deck_md_s() {
         let e = error(format!("{BASE}{kw} @\n"));
         assert!(!e.contains("unknown record"), "{kw}: {e}");
     }
+}
+
+/// `FIELDS`, the order a misplaced field is told, is DECK.md's: each
+/// record's lower-case words in its synopsis (comments, choices such as
+/// `x|y|z` and `end` aside), in order.
+#[test]
+fn the_field_order_is_deck_md_s() {
+    let block = records_synopsis();
+    let mut listed: Vec<(&str, Vec<&str>)> = Vec::new();
+    for line in block.lines() {
+        let mut words = line.split('{').next().unwrap().split_whitespace();
+        if line.starts_with(|c: char| c.is_ascii_lowercase()) {
+            listed.push((words.next().unwrap(), Vec::new()));
+        }
+        let fields = words
+            .map(|w| w.trim_matches(['[', ']']))
+            .filter(|w| !w.is_empty() && *w != "end" && w.chars().all(|c| c.is_ascii_lowercase()));
+        listed.last_mut().unwrap().1.extend(fields);
+    }
+    // Records without fields are not in FIELDS; `keyframe` has two lines.
+    listed.retain(|(_, fields)| !fields.is_empty());
+    listed.dedup();
+    let known: Vec<(&str, Vec<&str>)> = FIELDS.iter().map(|(r, f)| (*r, f.to_vec())).collect();
+    assert_eq!(listed, known);
 }
 
 /// DECK.md's sample error is one the reader prints.
@@ -241,12 +267,12 @@ fn echoed_words_are_cut_and_escaped() {
 fn a_render_with_colours_that_are_not_finite_is_refused() {
     let mut scene = read(BASE).unwrap();
     let opts = Options::default();
-    let fine = raytrace::raytrace::render(&scene, &opts, &|| {});
+    let fine = render_still(&scene, &opts);
     assert_eq!(fine.nonfinite, 0);
     assert!(fine.check_finite().is_ok());
     scene.objects[0].radius = 1e155;
     scene.objects[0].sphereo.z = 0.0;
-    let bad = raytrace::raytrace::render(&scene, &opts, &|| {});
+    let bad = render_still(&scene, &opts);
     assert!(bad.nonfinite > 0);
     let e = bad.check_finite().unwrap_err().to_string();
     assert_eq!(

@@ -2,9 +2,12 @@
 //! renders with a known answer.
 
 mod common;
+use common::render_still;
 use common::*;
 use raytrace::drt::*;
-use raytrace::raytrace::render;
+use raytrace::options::*;
+use raytrace::sampler::{random_time, strata, stratified_time};
+use raytrace::scene::*;
 use raytrace::types::*;
 
 /// LAW 1–4 of Fig. 3.2 at FRACT = 0, ½, 1.
@@ -277,13 +280,12 @@ fn moving_square(sampler: TimeSampler) {
     let m = 8usize;
     let s = common::moving_block(m, 4, 20.0);
     let (w_sq, x0, d) = (2.0, -5.0, 10.0);
-    let img = render(
+    let img = render_still(
         &s,
         &Options {
             sampler,
             ..Options::default()
         },
-        &|| {},
     )
     .raster;
     let cam = raytrace::raytrace::Camera::new(&s, Fidelity::Thesis);
@@ -332,7 +334,7 @@ fn motion_is_deterministic_and_leaves_static_objects_alone() {
         .push(surface(SurfaceAttribute::Light, [0.9, 0.5, 0.2], 0.0, 0.0, 0.0, 0.0));
     s.objects.push(sphere("still", 0, [-2.0, 0.0, 0.0], 1.0));
     s.objects.push(sphere("mover", 0, [1.5, 0.0, 0.0], 0.8));
-    let still = render(&s, &Options::default(), &|| {}).raster;
+    let still = render_still(&s, &Options::default()).raster;
     s.motions.push(MotionRecord {
         pos: Pos::default(),
         object: 1,
@@ -349,7 +351,7 @@ fn motion_is_deterministic_and_leaves_static_objects_alone() {
         .into_iter()
         .map(|n| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-            pool.install(|| render(&s, &Options::default(), &|| {})).raster
+            pool.install(|| render_still(&s, &Options::default())).raster
         })
         .collect();
     assert_eq!(images[0], images[1]);

@@ -7,9 +7,11 @@
 mod common;
 
 use raytrace::drt::{default_pattern, TimeTable};
+use raytrace::options::*;
 use raytrace::paper::{do34, widen_tbox, Hermite, PaperChain};
-use raytrace::raytrace::{debug_log, key_frame_chains, prepare, render, still_at, Camera};
-use raytrace::shapes::sweep::QueryBounds;
+use raytrace::raytrace::{debug_log, key_frame_chains, render, Camera, Prepared, Request};
+use raytrace::scene::*;
+use raytrace::shapes::prepare_caches;
 use raytrace::types::*;
 
 fn opts(fidelity: Fidelity) -> Options {
@@ -19,10 +21,13 @@ fn opts(fidelity: Fidelity) -> Options {
     }
 }
 
+fn read_prepared(deck: &str, fidelity: Fidelity) -> Prepared {
+    let scene = raytrace::deck::initialize(deck, "test.deck", common::decks(), fidelity).unwrap();
+    common::prepare(scene, opts(fidelity))
+}
+
 fn read(deck: &str, fidelity: Fidelity) -> Scene {
-    let mut scene = raytrace::deck::initialize(deck, "test.deck", common::decks(), fidelity).unwrap();
-    prepare(&mut scene, &opts(fidelity)).unwrap();
-    scene
+    read_prepared(deck, fidelity).scene().clone()
 }
 
 fn sweep_box(obj: &ObjectRecord) -> BoundingBox {
@@ -142,12 +147,20 @@ fn erratum_9_tbox_widened_by_2_for_every_pair() {
         sweep_box(&again.objects[0]).xmax,
         sweep_box(&listing.objects[0]).xmax + 6.0
     );
-    // The bounds every ray takes from the box are made again for the new
-    // box (a kept one for the old box would be passed over, not used).
-    for obj in &again.objects {
+    // The bounds every ray takes from the box are kept by the caches made
+    // once the boxes are final: for the widened boxes; those made before
+    // the widening are for the old boxes (and would be passed over).
+    let (before, after) = (prepare_caches(&listing), prepare_caches(&again));
+    for (i, obj) in again.objects.iter().enumerate() {
         if let Shape::Sweep(sw) = &obj.shape {
-            assert!(sw.bounds.is_some(), "{}", obj.name);
-            assert_eq!(sw.bounds, QueryBounds::kept(obj.class, sw), "{}", obj.name);
+            assert!(after[i].as_ref().is_some_and(|c| c.fits(obj.class, sw)), "{}", obj.name);
+            let widened = obj.class == PrimitiveClass::Translation;
+            assert_eq!(
+                before[i].as_ref().is_some_and(|c| c.fits(obj.class, sw)),
+                !widened,
+                "{}",
+                obj.name
+            );
         }
     }
 
@@ -341,9 +354,9 @@ end
 keyframe ta tb
 "
     );
-    let scene = read(&deck, Fidelity::Listing);
-    let chains = key_frame_chains(&scene, Fidelity::Listing).unwrap();
-    let still = still_at(&scene, &chains, 0.5, Fidelity::Listing);
+    let prepared = read_prepared(&deck, Fidelity::Listing);
+    let (scene, still) = (prepared.scene(), prepared.still_at(0.5));
+    let still = still.scene();
     let ball = scene.objects.iter().position(|o| o.name == "ball").unwrap();
     let ta = scene.objects.iter().position(|o| o.name == "ta").unwrap();
     assert_eq!(still.objects[ball].sphereo, DVec3::new(3.0, 0.0, 2.0));
@@ -390,9 +403,9 @@ fn the_listing_lines_of_goahead_in_the_debug_log() {
         let deck = format!(
             "{HEAD}sweep five s translation bezier at 0 0 0 length 1\n{first}end\nsweep petals s translation bezier at 0 0 0 length 1\n{last}end\nkeyframe five petals expander {expander}\n"
         );
-        let scene = read(&deck, Fidelity::Listing);
-        let out = render(&scene, &opts(Fidelity::Listing), &|| {});
-        let log = debug_log(&scene, &out, Fidelity::Listing);
+        let prepared = read_prepared(&deck, Fidelity::Listing);
+        let out = render(&prepared, &Request::STILL).unwrap();
+        let log = debug_log(&prepared, &out);
         let got: Vec<&str> = log.lines().collect();
         assert_eq!(&got[..lines.len()], &lines[..], "{expander}");
         let paths = got.iter().filter(|l| l.starts_with("path : ")).count();
@@ -405,8 +418,8 @@ fn the_listing_lines_of_goahead_in_the_debug_log() {
     let deck = format!(
         "{HEAD}sweep five s translation bezier at 0 0 0 length 1\n{first}end\nsweep same s translation bezier at 1 0 0 length 1\n{first}end\nkeyframe five same\n"
     );
-    let scene = read(&deck, Fidelity::Thesis);
-    let out = render(&scene, &opts(Fidelity::Thesis), &|| {});
-    let log = debug_log(&scene, &out, Fidelity::Thesis);
+    let prepared = read_prepared(&deck, Fidelity::Thesis);
+    let out = render(&prepared, &Request::STILL).unwrap();
+    let log = debug_log(&prepared, &out);
     assert_eq!(log.lines().next(), Some("path : 0.000 0.000 1.000 0.000"));
 }

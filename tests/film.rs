@@ -5,10 +5,13 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use raytrace::film::{frame_path, read_sequence, FilmRecord, FrameRange};
+use raytrace::film::{frame_path, read_sequence, FrameRange};
+
+use raytrace::options::{Fidelity, Options};
 use raytrace::raster::read_raster_file;
-use raytrace::raytrace::{key_frame_chains, prepare, render, render_frame, still_at};
-use raytrace::types::{Fidelity, Options, Scene};
+use raytrace::raytrace::{render, Prepared, Request};
+use raytrace::scene::FilmRecord;
+use raytrace::scene::Scene;
 
 fn raytrace() -> Command {
     Command::new(env!("CARGO_BIN_EXE_raytrace"))
@@ -40,14 +43,23 @@ keyframe A B
 blur 1
 ";
 
+/// The deck as `initialize` reads it.
 fn scene(deck: &str, fidelity: Fidelity) -> Result<Scene, String> {
-    let opts = Options {
-        fidelity,
-        ..Options::default()
-    };
-    let mut scene = raytrace::deck::initialize(deck, "t.deck", Path::new("."), fidelity).map_err(|e| e.to_string())?;
-    prepare(&mut scene, &opts).map_err(|e| e.to_string())?;
-    Ok(scene)
+    raytrace::deck::initialize(deck, "t.deck", Path::new("."), fidelity).map_err(|e| e.to_string())
+}
+
+/// The still of `scene` rendered with `opts`.
+fn render_still(scene: &Scene, opts: &Options) -> raytrace::raytrace::Render {
+    render_request(&Prepared::new(scene.clone(), *opts).unwrap(), &Request::STILL)
+}
+
+/// Film frame `frame` of `scene` rendered with `opts`.
+fn render_frame(scene: &Scene, opts: &Options, frame: raytrace::film::Frame) -> raytrace::raytrace::Render {
+    render_request(&Prepared::new(scene.clone(), *opts).unwrap(), &Request::frame(frame))
+}
+
+fn render_request(prepared: &Prepared, request: &Request) -> raytrace::raytrace::Render {
+    render(prepared, request).unwrap()
 }
 
 fn opts(fidelity: Fidelity) -> Options {
@@ -60,11 +72,11 @@ fn opts(fidelity: Fidelity) -> Options {
 #[test]
 fn the_film_record_reads_its_fields_and_defaults() {
     let s = scene(&format!("{MOVING}film 36\n"), Fidelity::Thesis).unwrap();
-    let film = s.film.unwrap();
+    let film = s.film.clone().unwrap();
     assert_eq!((film.frames, film.shutter, film.rate), (36, 0.5, 12));
     assert_eq!((film.pos.line, film.pos.column), (22, 1));
     let s = scene(&format!("{MOVING}FILM 10000 rate 60 shutter 1\n"), Fidelity::Thesis).unwrap();
-    let film = s.film.unwrap();
+    let film = s.film.clone().unwrap();
     assert_eq!((film.frames, film.shutter, film.rate), (10000, 1.0, 60));
     assert!(scene(MOVING, Fidelity::Thesis).unwrap().film.is_none());
 }
@@ -101,7 +113,7 @@ fn bad_film_records_are_errors_at_line_and_column() {
 /// every sampler.
 #[test]
 fn film_1_shutter_1_is_the_still_bit_for_bit() {
-    use raytrace::types::TimeSampler;
+    use raytrace::options::TimeSampler;
     for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
         let still = scene(MOVING, fidelity).unwrap();
         let film = scene(&format!("{MOVING}film 1 shutter 1\n"), fidelity).unwrap();
@@ -110,9 +122,9 @@ fn film_1_shutter_1_is_the_still_bit_for_bit() {
                 sampler,
                 ..opts(fidelity)
             };
-            let a = render(&still, &o, &|| {}).raster;
-            let f = film.film.unwrap();
-            let b = render_frame(&film, &o, f.frame(1), &|| {}).raster;
+            let a = render_still(&still, &o).raster;
+            let f = film.film.clone().unwrap();
+            let b = render_frame(&film, &o, f.frame(1)).raster;
             assert_eq!(a, b, "{fidelity:?} {sampler:?}");
         }
     }
@@ -128,10 +140,10 @@ fn film_1_shutter_1_is_the_still_bit_for_bit() {
 fn frames_are_different_instants_in_both_fidelities() {
     for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
         let s = scene(&format!("{MOVING}film 4 shutter 0.5\n"), fidelity).unwrap();
-        let film = s.film.unwrap();
-        let still = render(&s, &opts(fidelity), &|| {}).raster;
+        let film = s.film.clone().unwrap();
+        let still = render_still(&s, &opts(fidelity)).raster;
         let frames: Vec<_> = (1..=4)
-            .map(|k| render_frame(&s, &opts(fidelity), film.frame(k), &|| {}).raster)
+            .map(|k| render_frame(&s, &opts(fidelity), film.frame(k)).raster)
             .collect();
         for (i, a) in frames.iter().enumerate() {
             assert_ne!(a, &still, "{fidelity:?} frame {}", i + 1);
@@ -154,11 +166,11 @@ fn the_render_loop_uses_frame_time_for_every_sample() {
     for (fidelity, tau) in [(Fidelity::Thesis, 0.5), (Fidelity::Listing, 0.7)] {
         let s = scene(&format!("{one_instant}film 5 shutter 0.8\n"), fidelity).unwrap();
         let o = opts(fidelity);
-        let chains = key_frame_chains(&s, fidelity).unwrap();
+        let prepared = Prepared::new(s.clone(), o).unwrap();
         for k in [1u32, 3, 5] {
             let t = (f64::from(k - 1) + 0.8 * tau) / 5.0;
-            let want = render(&still_at(&s, &chains, t, fidelity), &o, &|| {}).raster;
-            let got = render_frame(&s, &o, s.film.unwrap().frame(k), &|| {}).raster;
+            let want = render_request(&prepared.still_at(t), &Request::STILL).raster;
+            let got = render_frame(&s, &o, s.film.as_ref().unwrap().frame(k)).raster;
             assert_eq!(got, want, "{fidelity:?} frame {k}");
         }
     }
@@ -330,6 +342,53 @@ fn bad_film_flags_exit_2_and_write_nothing() {
     assert_eq!(run.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&run.stderr).contains("bad.deck:22:17: film"));
     assert!(!dir.path().join("out").exists());
+}
+
+/// docs/film.md's `-o DIR/NAME`: a film named without an extension writes
+/// DIR/NAME.0001.ras …, the bytes of `-o DIR/NAME.ras`; a device is no
+/// stem for frames (exit 2), and `--apng` must name a PNG.
+#[test]
+fn a_film_named_without_an_extension_writes_name_0001_ras() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = write_deck(dir.path(), &format!("{MOVING}film 3\n"));
+    for folder in ["bare", "ras"] {
+        std::fs::create_dir(dir.path().join(folder)).unwrap();
+        let name = if folder == "bare" { "bare/walk" } else { "ras/walk.ras" };
+        run_ok(
+            raytrace()
+                .current_dir(dir.path())
+                .arg(&deck)
+                .args(["-q", "--frames", "2..3", "-o", name]),
+        );
+    }
+    let bare = frame_files(&dir.path().join("bare/walk"), 2..=3, 3);
+    let ras = frame_files(&dir.path().join("ras/walk"), 2..=3, 3);
+    for (a, b) in bare.iter().zip(&ras) {
+        assert_eq!(std::fs::read(a).unwrap(), std::fs::read(b).unwrap(), "{}", a.display());
+    }
+    assert_eq!(std::fs::read_dir(dir.path().join("bare")).unwrap().count(), 2);
+
+    for (flags, words) in [
+        (
+            &["-o", "/dev/null"][..],
+            "-o /dev/null: a film writes one Sun raster per frame",
+        ),
+        (
+            &["--apng", "film.gif"],
+            "--apng 'film.gif': --apng writes an animated PNG",
+        ),
+    ] {
+        let run = raytrace()
+            .current_dir(dir.path())
+            .arg(&deck)
+            .args(flags)
+            .output()
+            .unwrap();
+        assert_eq!(run.status.code(), Some(2), "{flags:?}");
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(err.contains(words), "{flags:?}: {err}");
+        assert!(!dir.path().join("raster").exists() && !dir.path().join("film.gif").exists());
+    }
 }
 
 #[test]

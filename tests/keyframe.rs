@@ -3,8 +3,10 @@
 
 mod common;
 use common::load_deck as load;
-use raytrace::raytrace::{key_frame_chains, render};
-use raytrace::types::*;
+use common::{prepare, render_still};
+use raytrace::options::*;
+use raytrace::raytrace::{key_frame_chains, render, Request};
+use raytrace::scene::*;
 
 const KEY_FRAME_DECKS: [&str; 4] = ["fig5_10.deck", "fig5_11.deck", "fig5_12.deck", "nec_morph.deck"];
 
@@ -14,8 +16,8 @@ const KEY_FRAME_DECKS: [&str; 4] = ["fig5_10.deck", "fig5_11.deck", "fig5_12.dec
 fn key_frame_decks_prepare() {
     for name in KEY_FRAME_DECKS {
         for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
-            let scene = load(name, fidelity);
-            let chains = key_frame_chains(&scene, fidelity).unwrap();
+            let prepared = prepare(load(name, fidelity), options(fidelity));
+            let chains = key_frame_chains(prepared.scene(), fidelity).unwrap();
             assert_eq!(chains.len(), 1, "{name}");
             let pairs = chains[0].1.pairs().len();
             assert_eq!(pairs, if name == "nec_morph.deck" { 2 } else { 1 }, "{name}");
@@ -23,10 +25,11 @@ fn key_frame_decks_prepare() {
     }
 }
 
-/// The scene with the in-between object put in at time t, still.
-fn still_at(scene: &Scene, t: f64) -> Scene {
-    let chains = key_frame_chains(scene, Fidelity::Thesis).unwrap();
-    raytrace::raytrace::still_at(scene, &chains, t, Fidelity::Thesis)
+fn options(fidelity: Fidelity) -> Options {
+    Options {
+        fidelity,
+        ..Options::default()
+    }
 }
 
 /// With one subpixel and a 1×1 pattern table every sample is at t = ½ (the
@@ -48,14 +51,17 @@ fn render_draws_the_in_between_shape() {
             m: 1,
             values: vec![vec![0]],
         });
-        let drawn = render(&scene, &Options::default(), &|| {}).raster;
-        let by_hand = render(&still_at(&scene, 0.5), &Options::default(), &|| {}).raster;
+        let prepared = prepare(scene.clone(), Options::default());
+        let drawn = render(&prepared, &Request::STILL).unwrap().raster;
+        // The scene with the in-between object put in at time ½, still.
+        let still = prepared.still_at(0.5);
+        let by_hand = render(&still, &Request::STILL).unwrap().raster;
         assert_eq!(drawn, by_hand, "{name}");
         // And the object is in the picture: it differs from the floor alone.
-        let mut empty = still_at(&scene, 0.5);
+        let mut empty = still.scene().clone();
         let first = scene.keyframes[0].first;
         empty.objects.remove(first);
-        let floor = render(&empty, &Options::default(), &|| {}).raster;
+        let floor = render_still(&empty, &Options::default()).raster;
         let differ = drawn.pixels.iter().zip(&floor.pixels).filter(|(a, b)| a != b).count();
         assert!(differ > 50, "{name}: {differ} pixels show the object");
     }
@@ -67,8 +73,9 @@ fn render_draws_the_in_between_shape() {
 #[test]
 fn in_between_contours_stay_in_the_bounding_sphere() {
     for name in KEY_FRAME_DECKS {
-        let scene = load(name, Fidelity::Thesis);
-        let chains = key_frame_chains(&scene, Fidelity::Thesis).unwrap();
+        let prepared = prepare(load(name, Fidelity::Thesis), Options::default());
+        let scene = prepared.scene();
+        let chains = key_frame_chains(scene, Fidelity::Thesis).unwrap();
         let (k, chain) = &chains[0];
         let obj = &scene.objects[scene.keyframes[*k].first];
         let mut contour = chain.scratch();

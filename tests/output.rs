@@ -7,8 +7,10 @@ use std::os::unix::fs::FileTypeExt;
 use std::path::Path;
 use std::process::Command;
 
-use raytrace::output::{write_atomically, write_image, Format, OutputError, PendingFile};
+use raytrace::output::{write_atomically, OutputError, PendingFile};
+
 use raytrace::raster::{encode_raster, outputframe, read_raster, read_raster_file, Raster, RasterError};
+use raytrace::raster::{write_image, Format, FormatError};
 
 mod common;
 use common::file_names;
@@ -38,14 +40,37 @@ fn the_extension_chooses_the_format_and_anything_else_is_an_error_naming_them() 
         ("ras", "no extension"),
     ] {
         let e = Format::of(Path::new(name)).unwrap_err();
-        assert!(matches!(e, OutputError::UnknownFormat(_)), "{name}: {e:?}");
+        assert!(matches!(e, FormatError::UnknownFormat(_)), "{name}: {e:?}");
         let message = e.to_string();
         assert!(message.starts_with(says), "{name}: {message}");
         for ext in [".ras", ".png", ".ppm", ".pnm"] {
             assert!(message.contains(ext), "{name}: {message}");
         }
     }
-    assert!(matches!(Format::of(Path::new("")), Err(OutputError::Empty)));
+    assert!(matches!(Format::of(Path::new("")), Err(FormatError::Empty)));
+}
+
+/// An output's format: standard output and a device or FIFO without an
+/// extension get the Sun raster; a file or a new name without one none; a
+/// device with an extension its extension's.
+#[test]
+fn an_output_without_an_extension_that_is_a_stream_is_a_sun_raster() {
+    for name in ["-", "/dev/null"] {
+        assert_eq!(Format::of_output(Path::new(name)).unwrap(), Format::SunRaster, "{name}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let plain = dir.path().join("plain");
+    std::fs::write(&plain, b"x").unwrap();
+    for path in [plain, dir.path().join("new"), dir.path().to_path_buf()] {
+        let e = Format::of_output(&path).unwrap_err();
+        assert!(
+            matches!(e, FormatError::UnknownFormat(None)),
+            "{}: {e:?}",
+            path.display()
+        );
+    }
+    assert_eq!(Format::of_output(Path::new("a.png")).unwrap(), Format::Png);
+    assert!(Format::of_output(Path::new("a.jpg")).is_err());
 }
 
 #[test]

@@ -4,9 +4,11 @@
 
 mod common;
 
+use raytrace::options::*;
 use raytrace::paper::*;
 use raytrace::proc::sweep::spline;
-use raytrace::shapes::sweep::intersect_sweep;
+use raytrace::scene::*;
+use raytrace::shapes::sweep::Sweep;
 use raytrace::types::*;
 
 // ---------------------------------------------------------------- fixtures
@@ -53,8 +55,6 @@ fn sweep(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
         scale: 1.0,
         bbox,
         orientation: 0.0,
-        cap_grid: None,
-        bounds: None,
     }
 }
 
@@ -390,29 +390,6 @@ fn hermite_and_do34_keep_the_contours_orientation() {
                     let want = raytrace::shapes::sweep::orientation(&c.u, &c.v);
                     assert_eq!(c.orientation, want, "{name} {fidelity:?} {who}({t})");
                 }
-            }
-        }
-    }
-}
-
-/// The in-between contour is a contour of the moment: `Hermite` and `do34`
-/// leave no cap grid (which a scratch record may carry from the key shape
-/// it was cloned from), so its caps are solved, not looked up in the
-/// grid of another shape.
-#[test]
-fn hermite_and_do34_leave_no_cap_grid() {
-    let (_, star) = common::deck_sweep("fig5_6.deck");
-    let stale = raytrace::shapes::sweep::CapGrid::new(&star.u, &star.v).map(std::sync::Arc::new);
-    assert!(stale.is_some());
-    for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
-        for (name, pair) in end_pairs(fidelity) {
-            for t in [0.0, 0.3, 1.0] {
-                let (mut a, mut b) = (pair.scratch(), pair.scratch());
-                (a.cap_grid, b.cap_grid) = (stale.clone(), stale.clone());
-                Hermite(&pair, t, &mut a);
-                do34(t, &pair, &mut b);
-                assert!(a.cap_grid.is_none(), "{name} {fidelity:?} Hermite({t})");
-                assert!(b.cap_grid.is_none(), "{name} {fidelity:?} do34({t})");
             }
         }
     }
@@ -890,8 +867,8 @@ fn prepared_pair(first: ObjectRecord, last: ObjectRecord, expander: Expander, fi
         fidelity,
         ..Options::default()
     };
-    raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
-    let chain = PaperChain::from_keyframe(&scene, &scene.keyframes[0], fidelity).unwrap();
+    let prepared = common::prepare(scene, opts);
+    let chain = PaperChain::from_keyframe(prepared.scene(), &prepared.scene().keyframes[0], fidelity).unwrap();
     chain.pairs()[0].clone()
 }
 
@@ -1255,7 +1232,13 @@ fn inbetween_contours_meet_the_sweep_intersection() {
             for &(x0, y0, dx, dy) in &rays {
                 let truth = first_crossing(&out.u, &out.v, x0, y0, dx, dy);
                 let ray = Ray::new(DVec3::new(x0, y0, 1.0), DVec3::new(dx, dy, 0.0));
-                let got = intersect_sweep(PrimitiveClass::Translation, &out, &ray, 1e-9, &opts);
+                // A contour of the moment: no cache.
+                let contour = Sweep {
+                    class: PrimitiveClass::Translation,
+                    shape: &out,
+                    cache: None,
+                };
+                let got = contour.intersect(&ray, 1e-9, &opts, &mut 0);
                 match (truth, got) {
                     (Some(d), Some(h)) if (h.t - d).abs() < 1e-6 => {
                         hits[fi] += 1;

@@ -1,6 +1,6 @@
 //! psout: framebuffer composition, the lookup-table quantiser, the folder
-//! listing, the command line, and the committed check raster used by
-//! .ci/psout_xvfb.sh.
+//! listing, the command line, the committed check raster used by
+//! .ci/psout_xvfb.sh, and the PNG and PPM files it reads besides rasters.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -10,6 +10,8 @@ use raytrace::psout::{
     Framebuffer, Lut, SCREEN_HEIGHT, SCREEN_WIDTH,
 };
 use raytrace::raster::{encode_raster, outputframe, read_raster, Raster};
+#[cfg(feature = "png")]
+use raytrace::raster::{write_image, Format};
 
 /// A colour that encodes its own coordinates (unique below 4096×4096), so
 /// a screen pixel tells which raster pixel it shows.
@@ -612,4 +614,123 @@ fn the_screen_is_exactly_1024_by_864() {
     assert_eq!(fb.to_raster().pixels[430 * 1024 + 510], [9, 8, 7]);
     assert_eq!(fb.pixel(512, 432), 0x090807);
     assert_eq!(fb.pixel(513, 432), 0);
+}
+
+// PNG and PPM: the other files `raytrace -o` writes.
+
+#[cfg(feature = "png")]
+#[test]
+fn a_png_or_a_ppm_shows_as_its_raster_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let raster = pseudo_random_raster(255, 3, 11);
+    let shot = |file: &Path| {
+        let png = file.with_extension("shot.png");
+        let out = psout().arg("--screenshot").arg(&png).arg(file).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        image::open(&png).unwrap().to_rgb8().into_raw()
+    };
+    let ras = dir.path().join("r.ras");
+    outputframe(&ras, &raster).unwrap();
+    let expected = shot(&ras);
+    for (name, format) in [("r.png", Format::Png), ("r.ppm", Format::Netpbm)] {
+        let path = dir.path().join(name);
+        write_image(&path, &raster, format).unwrap();
+        assert!(shot(&path) == expected, "{name}: the screen differs");
+    }
+    // A film of PNG frames is read like one of rasters.
+    let frames = [dir.path().join("r.png"), dir.path().join("r.ppm")];
+    let out = psout()
+        .args(["--screenshot", "-", "--frame", "2"])
+        .args(frames)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn bad_png_and_ppm_files_exit_with_code_2_and_say_what_is_wrong() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut png = Vec::new();
+    #[cfg(feature = "png")]
+    raytrace::raster::write_png_to(&pseudo_random_raster(4, 4, 1), &mut png).unwrap();
+    #[cfg(not(feature = "png"))]
+    png.extend_from_slice(b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR");
+    let mut bad_crc = png.clone();
+    bad_crc[20] ^= 1;
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        ("truncated.png", png[..png.len() / 2].to_vec(), "PNG"),
+        ("bad-crc.png", bad_crc, "PNG"),
+        ("signature-only.png", png[..8].to_vec(), "PNG"),
+        (
+            "truncated.ppm",
+            b"P6 4 4 255\n\x01\x02\x03".to_vec(),
+            "PPM pixel data needs 48 bytes, only 3",
+        ),
+        (
+            "no-height.ppm",
+            b"P6 4".to_vec(),
+            "PPM: the file ends before the height",
+        ),
+        (
+            "word.ppm",
+            b"P6 four 4 255\n".to_vec(),
+            "PPM: the width 'four' is not a number",
+        ),
+        (
+            "zero.ppm",
+            b"P6 0 4 255\n".to_vec(),
+            "PPM: the width 0 is outside 1..=16384",
+        ),
+        (
+            "huge.ppm",
+            b"P6 2 99999999999 255\n".to_vec(),
+            "PPM: the height 99999999999 is outside",
+        ),
+        (
+            "too-many.ppm",
+            b"P6 16384 4097 255\n".to_vec(),
+            "16384×4097 is 67125248 pixels, more than the 67108864",
+        ),
+        (
+            "maxval.ppm",
+            b"P6 1 1 70000\n\0\0\0\0\0\0".to_vec(),
+            "PPM: the maxval 70000 is outside 1..=65535",
+        ),
+        (
+            "sample.ppm",
+            b"P3 1 1 15\n1 2 16\n".to_vec(),
+            "PPM: a sample 16 is more than the maxval 15",
+        ),
+        (
+            "short.ppm",
+            b"P3 1 1 15\n1 2".to_vec(),
+            "PPM: the file ends before the sample 3",
+        ),
+        (
+            "grey.pgm",
+            b"P5 1 1 255\n\0".to_vec(),
+            "P5 file (PGM, grey); the PPM kinds P6 and P3 are read",
+        ),
+        ("long.ppm", [&b"P6 "[..], &[b'9'; 30]].concat(), "longer than 20 bytes"),
+        (
+            "text.txt",
+            b"hello, world\n".repeat(4),
+            "not a Sun raster, PNG or PPM file (it starts with 0x68656c6c)",
+        ),
+    ];
+    for (name, bytes, says) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let out = psout()
+            .arg("--screenshot")
+            .arg(dir.path().join("never.png"))
+            .arg(&path)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(name) && stderr.contains(says), "{name}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    }
+    assert!(!dir.path().join("never.png").exists());
 }

@@ -2,6 +2,7 @@
 //! supported kind, every malformed case, truncation and mutation fuzzing,
 //! and cross-checks against Pillow and netpbm.
 
+use std::ffi::OsString;
 use std::io::Write;
 use std::process::{Command, Stdio};
 
@@ -454,19 +455,30 @@ fn read_raster_file_reads_only_what_the_header_needs() {
     ));
 }
 
-/// Whether a cross-check may run: false (after saying how to enable it) when
-/// the tool is missing and CI is not set; a failing test when CI is set.
-fn tool_available(probe: &mut Command, tool: &str, install: &str) -> bool {
-    let found = probe
+/// Whether a probe command runs and succeeds, its output discarded.
+fn succeeds(probe: &mut Command) -> bool {
+    probe
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status()
-        .is_ok_and(|s| s.success());
+        .is_ok_and(|s| s.success())
+}
+
+/// A cross-check's tool is missing: says what was looked for and how to
+/// enable it (the test then passes), or fails the test when CI is set.
+fn missing(tool: &str, looked_for: &str, enable: &str) {
+    if std::env::var_os("CI").is_some() {
+        panic!("{tool} is missing ({looked_for}) and CI is set; {enable} would enable it");
+    }
+    println!("skipping the {tool} cross-check ({looked_for}); {enable} would enable it");
+}
+
+/// Whether a cross-check may run: false (after saying how to enable it) when
+/// the tool is missing and CI is not set; a failing test when CI is set.
+fn tool_available(probe: &mut Command, tool: &str, install: &str) -> bool {
+    let found = succeeds(probe);
     if !found {
-        if std::env::var_os("CI").is_some() {
-            panic!("{tool} is missing and CI is set; install it with `{install}`");
-        }
-        println!("skipping the {tool} cross-check: `{install}` would enable it");
+        missing(tool, "not found", &format!("`{install}`"));
     }
     found
 }
@@ -481,20 +493,63 @@ fn cross_check_rasters() -> Vec<Raster> {
     ]
 }
 
-/// The Python the Pillow cross-check runs: `$PYTHON`, or `python3` on PATH.
-fn python() -> Command {
-    Command::new(std::env::var_os("PYTHON").unwrap_or("python3".into()))
+/// The Python the Pillow cross-check runs: the first of `$PYTHON`, `python3`
+/// on PATH and Debian's `/usr/bin/python3` that imports Pillow (a pyenv or
+/// venv `python3` first on PATH may lack it while Debian's has it).
+fn python_with_pillow() -> Result<OsString, String> {
+    let named = std::env::var_os("PYTHON").map(|p| (format!("$PYTHON={}", p.to_string_lossy()), p));
+    let usual = ["python3", "/usr/bin/python3"].map(|p| (p.to_owned(), OsString::from(p)));
+    first_with_pillow(named.into_iter().chain(usual))
+}
+
+/// The first of the (label, program) candidates that imports PIL.Image;
+/// else the labels of those tried, for the skip message.
+fn first_with_pillow(candidates: impl IntoIterator<Item = (String, OsString)>) -> Result<OsString, String> {
+    let mut tried = Vec::new();
+    for (label, python) in candidates {
+        if succeeds(Command::new(&python).args(["-c", "import PIL.Image"])) {
+            return Ok(python);
+        }
+        tried.push(label);
+    }
+    Err(format!("tried {}: none imports PIL.Image", tried.join(", ")))
+}
+
+#[test]
+fn the_pillow_python_is_the_first_candidate_that_imports_it() {
+    // Stand-ins: /bin/true for a Python with Pillow (its probe succeeds),
+    // /bin/false for one without, and a program that does not exist.
+    let candidate = |label: &str, program: &str| (label.to_owned(), OsString::from(program));
+    let absent = "/nonexistent/python3";
+    assert_eq!(
+        first_with_pillow([
+            candidate("$PYTHON=absent", absent),
+            candidate("false", "/bin/false"),
+            candidate("true", "/bin/true"),
+            candidate("false again", "/bin/false"),
+        ]),
+        Ok(OsString::from("/bin/true"))
+    );
+    assert_eq!(
+        first_with_pillow([
+            candidate("$PYTHON=absent", absent),
+            candidate("/bin/false", "/bin/false")
+        ]),
+        Err("tried $PYTHON=absent, /bin/false: none imports PIL.Image".to_owned())
+    );
 }
 
 #[test]
 fn pillow_reads_the_rasters_the_project_writes() {
-    if !tool_available(
-        python().args(["-c", "import PIL.Image"]),
-        "Python Pillow",
-        "apt-get install -y python3-pil",
-    ) {
-        return;
-    }
+    let python = match python_with_pillow() {
+        Ok(python) => python,
+        Err(tried) => {
+            let enable = "`apt-get install -y python3-pil` (for /usr/bin/python3) or `PYTHON=/path/to/python3` \
+                          naming one with Pillow";
+            missing("Python Pillow", &tried, enable);
+            return;
+        }
+    };
     let dir = tempfile::tempdir().unwrap();
     for (k, raster) in cross_check_rasters().iter().enumerate() {
         let path = dir.path().join(format!("r{k}.ras"));
@@ -502,7 +557,7 @@ fn pillow_reads_the_rasters_the_project_writes() {
         // Pillow's Sun reader by name: left to guess, Debian's Pillow 9.4
         // takes a raster 1 or 2 pixels wide for a GIMP brush (its test reads
         // the magic number as a header size and the width as a version).
-        let out = python()
+        let out = Command::new(&python)
             .args([
                 "-c",
                 "import sys; from PIL import Image\n\

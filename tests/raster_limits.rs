@@ -2,10 +2,12 @@
 //! one for deck textures, both checked on the header before anything is
 //! allocated, and textures kept as bytes.
 
+use raytrace::deck::MAX_TEXELS;
+use raytrace::options::Fidelity;
 use raytrace::raster::{
     read_raster, read_raster_file_within, read_raster_within, PixelLimit, Raster, RasterError, MAX_PIXELS,
 };
-use raytrace::types::{Fidelity, Texture, MAX_TEXELS};
+use raytrace::types::Texture;
 
 mod common;
 use common::sun_raster_file;

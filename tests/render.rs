@@ -2,7 +2,8 @@
 
 mod common;
 use common::load_deck as load;
-use raytrace::raytrace::render;
+use common::render_still;
+use raytrace::options::*;
 use raytrace::types::*;
 
 /// The connected regions (4-neighbours) of the pixels where `mask` holds.
@@ -54,11 +55,11 @@ fn fig5_1_shows_four_copies() {
     let ball = scene.objects.iter().position(|o| o.name == "ball").unwrap();
     let surface = scene.objects[ball].surface;
     scene.surfaces[surface].surface = SurfaceAttribute::Light;
-    let with = render(&scene, &Options::default(), &|| {}).raster;
+    let with = render_still(&scene, &Options::default()).raster;
     let mut without = scene.clone();
     without.objects.remove(ball);
     without.motions.clear();
-    let without = render(&without, &Options::default(), &|| {}).raster;
+    let without = render_still(&without, &Options::default()).raster;
     let mask: Vec<bool> = with.pixels.iter().zip(&without.pixels).map(|(a, b)| a != b).collect();
     assert!(mask.iter().filter(|&&m| m).count() > 400, "the copies are visible");
     assert_eq!(regions(&mask, with.width), 4);
@@ -71,13 +72,13 @@ fn fig5_1_shows_four_copies() {
 fn texture_reaches_the_image() {
     let mut scene = load("fig5_3.deck", Fidelity::Thesis);
     scene.motions.clear();
-    let textured = render(&scene, &Options::default(), &|| {}).raster;
+    let textured = render_still(&scene, &Options::default()).raster;
     // Saturated bar colours: one channel high, another low.
     let vivid = |p: &[u8; 3]| p.iter().max().unwrap() > &180 && p.iter().min().unwrap() < &60;
     assert!(textured.pixels.iter().filter(|p| vivid(p)).count() > 500);
     let picture = scene.objects.iter().find(|o| o.name == "cube").unwrap().surface;
     scene.surfaces[picture].texture = None;
-    let plain = render(&scene, &Options::default(), &|| {}).raster;
+    let plain = render_still(&scene, &Options::default()).raster;
     assert_eq!(plain.pixels.iter().filter(|p| vivid(p)).count(), 0);
 }
 
@@ -86,7 +87,7 @@ fn texture_reaches_the_image() {
 #[test]
 fn still_life_floor_is_a_checker() {
     let scene = load("still_life.deck", Fidelity::Thesis);
-    let img = render(&scene, &Options::default(), &|| {}).raster;
+    let img = render_still(&scene, &Options::default()).raster;
     let y = img.height * 7 / 8;
     let row = &img.pixels[y * img.width..(y + 1) * img.width];
     let light = |p: &[u8; 3]| p[0] > 150;

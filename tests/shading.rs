@@ -2,9 +2,12 @@
 //! values derived by hand.
 
 mod common;
+use common::render_still;
 use common::*;
-use raytrace::raytrace::{render, Camera};
-use raytrace::trace::{raytrace, refract, rest_poses, Snapshot, TraceStats};
+use raytrace::options::*;
+use raytrace::raytrace::{trace_ray, Camera};
+use raytrace::scene::*;
+use raytrace::trace::refract;
 use raytrace::types::*;
 
 fn opts() -> Options {
@@ -13,20 +16,7 @@ fn opts() -> Options {
 
 /// `raytrace(aray, 1.0, false, acolor, 1)` in a scene where nothing moves.
 fn trace_one(s: &Scene, ray: &Ray) -> Intensity {
-    let poses = rest_poses(s);
-    raytrace(
-        &Snapshot {
-            scene: s,
-            poses: &poses,
-            deforming: &[],
-        },
-        ray,
-        1.0,
-        false,
-        1,
-        &opts(),
-        &mut TraceStats::default(),
-    )
+    trace_ray(&prepare(s.clone(), opts()), ray, 0.0).0
 }
 
 /// I = ka·Iobject + kd·cosθ·light·colour at a known angle θ = 60°.
@@ -181,7 +171,7 @@ fn same_image_for_any_thread_count() {
         .into_iter()
         .map(|n| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-            pool.install(|| render(&s, &opts(), &|| {})).raster
+            pool.install(|| render_still(&s, &opts())).raster
         })
         .collect();
     assert_eq!(images[0], images[1]);
@@ -195,18 +185,17 @@ fn same_image_for_any_thread_count() {
 #[test]
 fn erratum_13_the_extra_column() {
     let s = busy_scene();
-    let thesis = render(&s, &opts(), &|| {});
-    let listing = render(
+    let thesis = render_still(&s, &opts());
+    let listing = render_still(
         &s,
         &Options {
             fidelity: Fidelity::Listing,
             ..opts()
         },
-        &|| {},
     );
     let (w, h, m) = (s.image.width as u64, s.image.height as u64, s.image.masksize as u64);
-    assert_eq!(thesis.primary, w * m * h * m);
-    assert_eq!(listing.primary, (w * m + 1) * h * m);
+    assert_eq!(thesis.stats.primary, w * m * h * m);
+    assert_eq!(listing.stats.primary, (w * m + 1) * h * m);
 }
 
 /// Erratum 14: for a 2:1 raster the thesis keeps pixels square, the
@@ -261,7 +250,7 @@ fn erratum_15_jitter_cursor() {
             // (0.3 + i/40)·5/9.5 right of the centre, across a pixel.
             let x = 0.3 + f64::from(i) / 40.0;
             s.objects = vec![block("wall", 0, [50.0 + x, 0.0, 0.0], [100.0, 1.0, 100.0])];
-            let rs = rows(&render(&s, &o, &|| {}).raster);
+            let rs = rows(&render_still(&s, &o).raster);
             // The edge is in the picture: some pixel is white, some black.
             assert!(rs[0].contains(&[255; 3]) && rs[0].contains(&[0; 3]));
             if rs.iter().any(|r| *r != rs[0]) {
@@ -274,13 +263,13 @@ fn erratum_15_jitter_cursor() {
         }
     }
     s.objects = vec![block("wall", 0, [50.3, 0.0, 0.0], [100.0, 1.0, 100.0])];
-    let thesis_a = render(&s, &opts(), &|| {}).raster;
+    let thesis_a = render_still(&s, &opts()).raster;
     s.image.aliasing = 0.0;
-    let thesis_0 = render(&s, &opts(), &|| {}).raster;
+    let thesis_0 = render_still(&s, &opts()).raster;
     assert_ne!(thesis_a, thesis_0, "jitter changes the image");
 }
 
-/// fig5_6's star casts its shadow (the sweep's shadow query, `sweep_blocks`):
+/// fig5_6's star casts its shadow (the sweep's shadow query, `Sweep::blocks`):
 /// a floor point whose ray to a low light crosses the star is lit by the
 /// ambient term alone, and lit by the light once the star is gone;
 /// a floor point whose ray passes beside it is lit the same either way.
@@ -297,8 +286,9 @@ fn a_sweep_casts_its_shadow() {
         .position(|o| matches!(o.shape, Shape::Sweep(_)))
         .unwrap();
     s.objects[star].shape = match &s.objects[star].shape {
+        // No control points: `spline` makes no segment of it.
         Shape::Sweep(sw) => Shape::Sweep(SweepShape {
-            segment: 0,
+            points: Vec::new(),
             ..sw.clone()
         }),
         _ => unreachable!(),

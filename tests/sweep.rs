@@ -5,7 +5,8 @@
 
 mod common;
 use common::sweeps::*;
-use raytrace::proc::robust::{poly_from_roots, real_roots};
+use raytrace::options::*;
+use raytrace::robust::{poly_from_roots, real_roots};
 use raytrace::types::*;
 
 // ---------------------------------------------------------------------------

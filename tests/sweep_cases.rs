@@ -3,7 +3,8 @@
 
 mod common;
 use common::sweeps::*;
-use raytrace::shapes::sweep::{intersect_sweep, point_in_contour, prepare_sweeps, signed_area};
+use raytrace::options::*;
+use raytrace::shapes::sweep::{point_in_contour, prepare_sweeps, signed_area, Sweep, SweepCache};
 use raytrace::types::*;
 use std::f64::consts::{PI, TAU};
 
@@ -178,6 +179,12 @@ fn grazing_ray_double_root() {
         1.0,
     );
     let t = PrimitiveClass::Translation;
+    let cache = SweepCache::new(t, &sw);
+    let circle = Sweep {
+        class: t,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     // Tangent at s0 of segment 3, at height 1.
     let mut laguerre_found = vec![];
     for s0 in [0.0, 0.37, 0.5] {
@@ -185,10 +192,12 @@ fn grazing_ray_double_root() {
         let p = DVec3::new(u.value(s0), v.value(s0), 1.0);
         let tan = DVec3::new(u.slope(s0), v.slope(s0), 0.0).normalize();
         let ray = Ray::new(p - tan * 5.0, tan);
-        let h = intersect_sweep(t, &sw, &ray, 1e-9, &ROBUST).expect("the robust solver finds the tangency");
+        let h = circle
+            .intersect(&ray, 1e-9, &ROBUST, &mut 0)
+            .expect("the robust solver finds the tangency");
         assert!((h.t - 5.0).abs() < 1e-6, "s0 {s0}: {h:?}");
         assert!(h.normal.dot(tan).abs() < 1e-6);
-        laguerre_found.push(intersect_sweep(t, &sw, &ray, 1e-9, &LAGUERRE).is_some());
+        laguerre_found.push(circle.intersect(&ray, 1e-9, &LAGUERRE, &mut 0).is_some());
     }
     // Laguerre converges only linearly on a double root: four steps from
     // its fixed starts do not settle, and it misses every tangency.
@@ -202,12 +211,18 @@ fn grazing_ray_double_root() {
         1.0,
     );
     let ray = Ray::new(DVec3::new(1.0, -5.0, 0.0), DVec3::Y);
-    let h = intersect_sweep(PrimitiveClass::Rotation, &sp, &ray, 1e-9, &ROBUST).unwrap();
+    let cache = SweepCache::new(PrimitiveClass::Rotation, &sp);
+    let sphere = Sweep {
+        class: PrimitiveClass::Rotation,
+        shape: &sp,
+        cache: cache.as_ref(),
+    };
+    let h = sphere.intersect(&ray, 1e-9, &ROBUST, &mut 0).unwrap();
     assert!(
         (h.t - 5.0).abs() < 1e-6 && (h.normal - DVec3::X).length() < 1e-6,
         "{h:?}"
     );
-    let l = intersect_sweep(PrimitiveClass::Rotation, &sp, &ray, 1e-9, &LAGUERRE);
+    let l = sphere.intersect(&ray, 1e-9, &LAGUERRE, &mut 0);
     assert!(l.is_some_and(|l| (l.t - 5.0).abs() < 1e-6));
 }
 
@@ -224,6 +239,12 @@ fn near_double_roots_in_the_driver() {
         1.0,
     );
     let t = PrimitiveClass::Translation;
+    let cache = SweepCache::new(t, &sw);
+    let circle = Sweep {
+        class: t,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     let (u, v) = (&sw.u[5], &sw.v[5]);
     let s0 = 0.4;
     let p = DVec3::new(u.value(s0), v.value(s0), 1.0);
@@ -232,11 +253,15 @@ fn near_double_roots_in_the_driver() {
     let mut lag = vec![];
     for delta in [1e-4, 1e-8, 1e-12] {
         let ray = Ray::new(p + inward * delta - tan * 5.0, tan);
-        let h = intersect_sweep(t, &sw, &ray, 1e-9, &ROBUST).unwrap();
+        let h = circle.intersect(&ray, 1e-9, &ROBUST, &mut 0).unwrap();
         // The entry lies before the tangent point, by about √(2ρδ).
         assert!(h.t < 5.0 + 1e-7 && h.t > 5.0 - 0.1, "δ {delta}: {}", h.t);
         assert!(check_hit(t, &sw, &h).0 < 1e-9);
-        lag.push(intersect_sweep(t, &sw, &ray, 1e-9, &LAGUERRE).map(|l| (l.t - h.t).abs() < 1e-7));
+        lag.push(
+            circle
+                .intersect(&ray, 1e-9, &LAGUERRE, &mut 0)
+                .map(|l| (l.t - h.t).abs() < 1e-7),
+        );
     }
     // Laguerre: found at 1e-4; at 1e-8 and 1e-12 it misses the object.
     assert_eq!(lag, vec![Some(true), None, None]);
@@ -261,15 +286,25 @@ fn rays_through_joints() {
         1.0,
     );
     let vase = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
+    let caches = [&sw, &bz].map(|s| SweepCache::new(PrimitiveClass::Translation, s));
+    let vase_cache = SweepCache::new(PrimitiveClass::Rotation, &vase);
     for opts in both() {
-        for (class, s) in [(PrimitiveClass::Translation, &sw), (PrimitiveClass::Translation, &bz)] {
-            for i in 0..s.segment {
-                let j = DVec3::new(s.u[i].d, s.v[i].d, 0.5);
+        for (class, s, cache) in [
+            (PrimitiveClass::Translation, &sw, &caches[0]),
+            (PrimitiveClass::Translation, &bz, &caches[1]),
+        ] {
+            let s = Sweep {
+                class,
+                shape: s,
+                cache: cache.as_ref(),
+            };
+            for i in 0..s.shape.segment {
+                let j = DVec3::new(s.shape.u[i].d, s.shape.v[i].d, 0.5);
                 // From far out, toward the joint along a slanted line.
                 let dir = DVec3::new(-j.x + 0.3, -j.y - 0.2, 0.05).normalize();
                 let ray = Ray::new(j - dir * 6.0, dir);
-                let h = intersect_sweep(class, s, &ray, 1e-9, &opts);
-                let rob = intersect_sweep(class, s, &ray, 1e-9, &ROBUST).unwrap();
+                let h = s.intersect(&ray, 1e-9, &opts, &mut 0);
+                let rob = s.intersect(&ray, 1e-9, &ROBUST, &mut 0).unwrap();
                 let h = h.unwrap_or_else(|| panic!("{opts:?}: joint {i} missed"));
                 assert!((h.t - rob.t).abs() < 1e-9);
                 assert!(h.t <= 6.0 + 1e-9, "{opts:?}: joint {i}: {} ", h.t);
@@ -281,7 +316,13 @@ fn rays_through_joints() {
                 DVec3::new(r + 3.0, 0.0, z + 1.0),
                 DVec3::new(-3.0, 0.0, -1.0).normalize(),
             );
-            let h = intersect_sweep(PrimitiveClass::Rotation, &vase, &ray, 1e-9, &opts)
+            let vase = Sweep {
+                class: PrimitiveClass::Rotation,
+                shape: &vase,
+                cache: vase_cache.as_ref(),
+            };
+            let h = vase
+                .intersect(&ray, 1e-9, &opts, &mut 0)
                 .unwrap_or_else(|| panic!("{opts:?}: vase joint {i} missed"));
             assert!(h.t <= 10f64.sqrt() + 1e-9, "{opts:?}: vase joint {i}");
         }
@@ -314,7 +355,7 @@ fn erratum_9_one_box_per_class() {
         sc.objects
             .iter()
             .map(|o| match &o.shape {
-                Shape::Sweep(s) => (s.bbox, s.clone(), o.radius),
+                Shape::Sweep(s) => (s.bbox, s.clone(), o.radius, SweepCache::new(o.class, s)),
                 _ => unreachable!(),
             })
             .collect::<Vec<_>>()
@@ -341,7 +382,7 @@ fn erratum_9_one_box_per_class() {
     assert!(rt.xmin < -1.0 && rt.xmin == -rt.xmax && rt.ymin == rt.xmin);
     assert!(rl.xmin >= 0.4 && rl.xmax == rt.xmax && rl.zmin == rt.zmin && rl.zmax == rt.zmax);
     // Each object's bounding sphere holds its own box.
-    for (b, _, radius) in &thesis {
+    for (b, _, radius, _) in &thesis {
         let corner = DVec3::new(
             b.xmax.abs().max(b.xmin.abs()),
             b.ymax.abs().max(b.ymin.abs()),
@@ -358,10 +399,15 @@ fn erratum_9_one_box_per_class() {
             PrimitiveClass::Conic,
             PrimitiveClass::Rotation,
         ][k];
+        let [own, class_box] = [&thesis[k], &listing[k]].map(|(_, shape, _, cache)| Sweep {
+            class,
+            shape,
+            cache: cache.as_ref(),
+        });
         for _ in 0..200 {
             let ray = random_ray(&mut rng, &thesis[k].1, class);
-            let a = intersect_sweep(class, &thesis[k].1, &ray, 1e-9, &ROBUST);
-            let b = intersect_sweep(class, &listing[k].1, &ray, 1e-9, &ROBUST);
+            let a = own.intersect(&ray, 1e-9, &ROBUST, &mut 0);
+            let b = class_box.intersect(&ray, 1e-9, &ROBUST, &mut 0);
             // The box also decides where the ray is re-based (DEVIATIONS
             // D28), so the hits agree to rounding.
             match (a, b) {
@@ -469,6 +515,12 @@ fn point_in_contour_against_a_polygon() {
 #[test]
 fn laguerre_edge_on_rotation_band() {
     let sw = sweep(PrimitiveClass::Rotation, CurveKind::Bspline, vase_points(), 0.0, 1.0);
+    let cache = SweepCache::new(PrimitiveClass::Rotation, &sw);
+    let vase = Sweep {
+        class: PrimitiveClass::Rotation,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     let mut got = vec![];
     for tilt in [1e-1, 1e-2, 1e-3, 1e-4, 1e-6] {
         let (mut hits, mut miss, mut far) = (0, 0, 0);
@@ -476,8 +528,8 @@ fn laguerre_edge_on_rotation_band() {
             let y = -1.1 + 2.2 * (i % 20) as f64 / 19.0;
             let z = 0.05 + 2.5 * (i / 20) as f64 / 19.0;
             let ray = Ray::new(DVec3::new(-6.0, y, z), DVec3::new(1.0, 0.0, tilt).normalize());
-            let r = intersect_sweep(PrimitiveClass::Rotation, &sw, &ray, 1e-9, &ROBUST);
-            let l = intersect_sweep(PrimitiveClass::Rotation, &sw, &ray, 1e-9, &LAGUERRE);
+            let r = vase.intersect(&ray, 1e-9, &ROBUST, &mut 0);
+            let l = vase.intersect(&ray, 1e-9, &LAGUERRE, &mut 0);
             if let Some(r) = r {
                 hits += 1;
                 match l {
@@ -562,6 +614,12 @@ fn frustum_and_sphere_match_their_quadrics() {
         ),
         (PrimitiveClass::Rotation, &sp, dev_sp, &sphere),
     ] {
+        let cache = SweepCache::new(class, sw);
+        let obj = Sweep {
+            class,
+            shape: sw,
+            cache: cache.as_ref(),
+        };
         let mut compared = 0;
         for _ in 0..2000 {
             let ray = random_ray(&mut rng, sw, class);
@@ -572,7 +630,8 @@ fn frustum_and_sphere_match_their_quadrics() {
             if cos < 0.3 || nq.z.abs() > 0.999 {
                 continue; // grazing, or a cap (where near the rim the side may come first)
             }
-            let h = intersect_sweep(class, sw, &ray, 1e-9, &ROBUST)
+            let h = obj
+                .intersect(&ray, 1e-9, &ROBUST, &mut 0)
                 .unwrap_or_else(|| panic!("{class:?}: missed a quadric hit at t = {tq}"));
             assert!((h.t - tq).abs() <= 1.5 * dev / cos + 1e-9, "{class:?}: {} vs {tq}", h.t);
             assert!(h.normal.dot(nq) > 0.95);
@@ -635,6 +694,8 @@ fn garbage_in_no_panic() {
         let Shape::Sweep(mut sw) = sc.objects.pop().unwrap().shape else {
             unreachable!()
         };
+        // Made as the scene is prepared, before the record goes bad.
+        let cache = SweepCache::new(class, &sw);
         if rng.next() < 0.2 {
             sw.segment += 3; // more than u, v hold
         }
@@ -644,7 +705,12 @@ fn garbage_in_no_panic() {
                 DVec3::new(pick(&mut rng), pick(&mut rng), pick(&mut rng)),
             );
             for opts in OPTS {
-                if let Some(h) = intersect_sweep(class, &sw, &ray, pick(&mut rng), &opts) {
+                let obj = Sweep {
+                    class,
+                    shape: &sw,
+                    cache: cache.as_ref(),
+                };
+                if let Some(h) = obj.intersect(&ray, pick(&mut rng), &opts, &mut 0) {
                     assert!(h.t.is_finite() && h.point.is_finite() && h.normal.is_finite());
                 }
             }

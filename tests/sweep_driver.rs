@@ -4,7 +4,7 @@
 
 mod common;
 use common::sweeps::*;
-use raytrace::shapes::sweep::intersect_sweep;
+use raytrace::shapes::sweep::{Sweep, SweepCache};
 use raytrace::types::*;
 
 // ---------------------------------------------------------------------------
@@ -17,11 +17,17 @@ use raytrace::types::*;
 fn hits_lie_on_the_surface_with_true_normals() {
     let mut rng = Rng(7);
     for (name, class, sw) in shapes() {
+        let cache = SweepCache::new(class, &sw);
+        let obj = Sweep {
+            class,
+            shape: &sw,
+            cache: cache.as_ref(),
+        };
         let mut hits = 0;
         for _ in 0..300 {
             let ray = random_ray(&mut rng, &sw, class);
             for opts in OPTS {
-                if let Some(h) = intersect_sweep(class, &sw, &ray, 1e-9, &opts) {
+                if let Some(h) = obj.intersect(&ray, 1e-9, &opts, &mut 0) {
                     hits += 1;
                     let (res, perp, unit) = check_hit(class, &sw, &h);
                     assert!(res < 1e-9, "{name} {opts:?}: residual {res:e} at {h:?}");
@@ -43,10 +49,16 @@ fn normals_point_outward() {
     for (name, class, sw) in shapes() {
         let size = size_of(&sw);
         let eps = 1e-4 * size;
+        let cache = SweepCache::new(class, &sw);
+        let obj = Sweep {
+            class,
+            shape: &sw,
+            cache: cache.as_ref(),
+        };
         let mut checked = 0;
         for _ in 0..300 {
             let ray = random_ray(&mut rng, &sw, class);
-            let Some(h) = intersect_sweep(class, &sw, &ray, 1e-9, &ROBUST) else {
+            let Some(h) = obj.intersect(&ray, 1e-9, &ROBUST, &mut 0) else {
                 continue;
             };
             let out = h.point + h.normal * eps;
@@ -114,6 +126,12 @@ fn circle_sweep_matches_a_cylinder() {
         }
     }
     assert!(dev > 1e-4 && dev < 2e-2, "deviation {dev}");
+    let cache = SweepCache::new(PrimitiveClass::Translation, &sw);
+    let obj = Sweep {
+        class: PrimitiveClass::Translation,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     let mut rng = Rng(3);
     let mut sides = 0;
     let mut caps = 0;
@@ -121,7 +139,7 @@ fn circle_sweep_matches_a_cylinder() {
         let ray = random_ray(&mut rng, &sw, PrimitiveClass::Translation);
         let cyl = cylinder_hit(r, len, &ray);
         for opts in [ROBUST, LAGUERRE] {
-            let got = intersect_sweep(PrimitiveClass::Translation, &sw, &ray, 1e-9, &opts);
+            let got = obj.intersect(&ray, 1e-9, &opts, &mut 0);
             match (cyl, got) {
                 (Some((tc, nc)), Some(h)) => {
                     if nc.z.abs() > 0.5 {
@@ -221,10 +239,16 @@ fn solver_disagreements() -> Vec<(&'static str, usize, usize, usize, usize)> {
     let mut out = vec![];
     for (name, class, sw) in shapes() {
         let (mut hits, mut missed, mut farther, mut nearer) = (0, 0, 0, 0);
+        let cache = SweepCache::new(class, &sw);
+        let obj = Sweep {
+            class,
+            shape: &sw,
+            cache: cache.as_ref(),
+        };
         for _ in 0..2000 {
             let ray = random_ray(&mut rng, &sw, class);
-            let r = intersect_sweep(class, &sw, &ray, 1e-9, &ROBUST);
-            let l = intersect_sweep(class, &sw, &ray, 1e-9, &LAGUERRE);
+            let r = obj.intersect(&ray, 1e-9, &ROBUST, &mut 0);
+            let l = obj.intersect(&ray, 1e-9, &LAGUERRE, &mut 0);
             match (r, l) {
                 (Some(r), Some(l)) => {
                     hits += 1;

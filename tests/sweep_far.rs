@@ -10,7 +10,8 @@
 //! than rounding; the lines are what the distance must not change.)
 
 mod common;
-use raytrace::shapes::sweep::intersect_sweep;
+use raytrace::options::*;
+use raytrace::shapes::sweep::{Sweep, SweepCache};
 use raytrace::shapes::{intersect_block, intersect_cylinder, intersect_prism, intersect_sphere};
 use raytrace::types::*;
 
@@ -41,6 +42,12 @@ fn silhouette(
     let up = w.cross(right);
     let eye = centre + w * dist;
     let half = 1.1 * reach;
+    let cache = SweepCache::new(class, sw);
+    let obj = Sweep {
+        class,
+        shape: sw,
+        cache: cache.as_ref(),
+    };
     let mut out = Vec::with_capacity(PIXELS * PIXELS);
     for j in 0..PIXELS {
         for i in 0..PIXELS {
@@ -52,7 +59,7 @@ fn silhouette(
                 Some(s) => p - dir * s,
                 None => eye,
             };
-            out.push(intersect_sweep(class, sw, &Ray::new(origin, dir), 1e-9, opts).is_some());
+            out.push(obj.intersect(&Ray::new(origin, dir), 1e-9, opts, &mut 0).is_some());
         }
     }
     out

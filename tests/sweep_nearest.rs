@@ -4,8 +4,9 @@
 //! sweeps of Chapter 5 (fig5_6's star, fig5_7's obelisk, fig5_8's goblet).
 
 mod common;
-use raytrace::drt::hashed_uniform;
-use raytrace::shapes::sweep::{intersect_sweep, point_in_contour, sweep_blocks};
+use raytrace::hash::hashed_uniform;
+use raytrace::options::*;
+use raytrace::shapes::sweep::{point_in_contour, Sweep, SweepCache};
 use raytrace::types::*;
 
 const SOLVERS: [Solver; 2] = [Solver::Laguerre, Solver::Robust];
@@ -67,16 +68,28 @@ fn ray(class: PrimitiveClass, sw: &SweepShape, k: u64, flat: bool) -> Ray {
 fn nearest_first_finds_the_nearest_segment_hit() {
     for (deck, flat) in [("fig5_6", true), ("fig5_7", true), ("fig5_8", false)] {
         let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
+        let cache = SweepCache::new(class, &sw);
         let singles: Vec<SweepShape> = (0..sw.segment).map(|i| single(&sw, i)).collect();
+        // Each with the whole contour's cache, as each kept it before
+        // the caches left the records (horizontal rays meet no cap).
+        let [whole, each] = [&sw, &singles[0]].map(|shape| Sweep {
+            class,
+            shape,
+            cache: cache.as_ref(),
+        });
         for solver in SOLVERS {
             let o = opts(solver);
             let mut hits = 0;
             for k in 0..1500 {
                 let ray = ray(class, &sw, k, flat);
-                let whole = intersect_sweep(class, &sw, &ray, 1e-9, &o).map(|h| h.t);
+                let whole = whole.intersect(&ray, 1e-9, &o, &mut 0).map(|h| h.t);
                 let each = singles
                     .iter()
-                    .filter_map(|s| intersect_sweep(class, s, &ray, 1e-9, &o).map(|h| h.t))
+                    .filter_map(|s| {
+                        Sweep { shape: s, ..each }
+                            .intersect(&ray, 1e-9, &o, &mut 0)
+                            .map(|h| h.t)
+                    })
                     .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
                 assert_eq!(whole, each, "{deck} {solver:?} ray {k}");
                 hits += whole.is_some() as usize;
@@ -95,6 +108,12 @@ fn nearest_first_finds_the_nearest_segment_hit() {
 fn the_near_cap_first_is_the_hit_where_it_is_inside() {
     for deck in ["fig5_6", "fig5_7"] {
         let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
+        let cache = SweepCache::new(class, &sw);
+        let obj = Sweep {
+            class,
+            shape: &sw,
+            cache: cache.as_ref(),
+        };
         for solver in SOLVERS {
             let o = opts(solver);
             let (mut inside, mut outside) = (0, 0);
@@ -108,7 +127,7 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
                 }
                 let at = ray.at(t_cap);
                 let scale = 1.0 + (sw.scale - 1.0) * zc / sw.length;
-                let hit = intersect_sweep(class, &sw, &ray, 1e-9, &o);
+                let hit = obj.intersect(&ray, 1e-9, &o, &mut 0);
                 if point_in_contour(&sw.u, &sw.v, at.x / scale, at.y / scale) {
                     let h = hit.expect("the near cap is hit");
                     assert!(
@@ -133,29 +152,35 @@ fn the_near_cap_first_is_the_hit_where_it_is_inside() {
     }
 }
 
-/// `sweep_blocks` answers what the nearest hit answers, before lights at
+/// `Sweep::blocks` answers what the nearest hit answers, before lights at
 /// every distance: in front of the sweep, inside it, behind it.
 #[test]
 fn shadow_query_is_the_nearest_hit_before_the_light() {
     for deck in ["fig5_6", "fig5_7", "fig5_8"] {
         let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
+        let cache = SweepCache::new(class, &sw);
+        let obj = Sweep {
+            class,
+            shape: &sw,
+            cache: cache.as_ref(),
+        };
         for solver in SOLVERS {
             let o = opts(solver);
             let (mut blocked, mut free) = (0, 0);
             for k in 0..1500 {
                 let ray = ray(class, &sw, k, false);
-                let nearest = intersect_sweep(class, &sw, &ray, 1e-9, &o).map(|h| h.t);
+                let nearest = obj.intersect(&ray, 1e-9, &o, &mut 0).map(|h| h.t);
                 let tmax = 3.0 + 6.0 * hashed_uniform(7_000_000 + k);
                 let want = nearest.is_some_and(|t| t < tmax);
                 assert_eq!(
-                    sweep_blocks(class, &sw, &ray, 1e-9, tmax, &o),
+                    obj.blocks(&ray, 1e-9, tmax, &o, &mut 0),
                     want,
                     "{deck} {solver:?} ray {k}"
                 );
                 if let Some(t) = nearest {
                     // Just before and just after the nearest hit.
-                    assert!(!sweep_blocks(class, &sw, &ray, 1e-9, t, &o), "{deck} ray {k}: at t");
-                    assert!(sweep_blocks(class, &sw, &ray, 1e-9, t * (1.0 + 1e-12), &o));
+                    assert!(!obj.blocks(&ray, 1e-9, t, &o, &mut 0), "{deck} ray {k}: at t");
+                    assert!(obj.blocks(&ray, 1e-9, t * (1.0 + 1e-12), &o, &mut 0));
                 }
                 if want {
                     blocked += 1;
@@ -187,6 +212,12 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
         ..thesis
     };
     let (lo, hi) = common::sweep_box(class, &sw);
+    let cache = SweepCache::new(class, &sw);
+    let obj = Sweep {
+        class,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     let (mut hits, mut sides, mut inside_starts) = (0, 0, 0);
     for k in 0..3000 {
         let mut ray = ray(class, &sw, k, false);
@@ -209,8 +240,8 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
             let target = DVec3::new(sw.u[i].value(s), sw.v[i].value(s), z);
             ray = Ray::new(ray.origin, (target - ray.origin).normalize());
         }
-        let a = intersect_sweep(class, &sw, &ray, 1e-9, &thesis);
-        let b = intersect_sweep(class, &sw, &ray, 1e-9, &listing);
+        let a = obj.intersect(&ray, 1e-9, &thesis, &mut 0);
+        let b = obj.intersect(&ray, 1e-9, &listing, &mut 0);
         assert_eq!(a, b, "ray {k}");
         hits += a.is_some() as usize;
         sides += a.is_some_and(|h| h.normal.z == 0.0) as usize;
@@ -230,7 +261,15 @@ fn skipping_segments_outside_the_rays_span_keeps_every_hit() {
 #[test]
 fn listing_boxes_only_order_the_segments() {
     let (class, sw) = common::deck_sweep("fig5_6.deck");
+    // With the whole contour's cache, as the segment kept it before the
+    // caches left the records (a horizontal ray meets no cap).
+    let cache = SweepCache::new(class, &sw);
     let sw = single(&sw, 0);
+    let segment = Sweep {
+        class,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
     let listing = Options {
         fidelity: Fidelity::Listing,
         ..opts(Solver::Robust)
@@ -240,60 +279,77 @@ fn listing_boxes_only_order_the_segments() {
     let target = DVec3::new(cu.value(0.5), cv.value(0.5), 0.5 * sw.length);
     let origin = target - DVec3::new(4.0, 0.3, 0.0);
     let ray = Ray::new(origin, (target - origin).normalize());
-    let want = intersect_sweep(class, &sw, &ray, 1e-9, &listing).expect("the ray meets the segment");
+    let want = segment
+        .intersect(&ray, 1e-9, &listing, &mut 0)
+        .expect("the ray meets the segment");
     // Its box moved to just behind the ray's start, still across its line.
     let mut moved = sw.clone();
     let back = origin - ray.dir * 0.5;
     (moved.u[0].min, moved.u[0].max) = (back.x - 0.1, back.x + 0.1);
     (moved.v[0].min, moved.v[0].max) = (back.y - 0.1, back.y + 0.1);
-    let got = intersect_sweep(class, &moved, &ray, 1e-9, &listing);
+    let moved = Sweep {
+        shape: &moved,
+        ..segment
+    };
+    let got = moved.intersect(&ray, 1e-9, &listing, &mut 0);
     assert_eq!(got.map(|h| h.t), Some(want.t));
     // Thesis fidelity trusts the box, which holds no hit.
-    assert_eq!(intersect_sweep(class, &moved, &ray, 1e-9, &opts(Solver::Robust)), None);
+    assert_eq!(moved.intersect(&ray, 1e-9, &opts(Solver::Robust), &mut 0), None);
 }
 
-/// The bounds a sweep keeps from `prepare_sweeps` (`SweepShape::bounds`)
-/// give every ray the hit it gets when they are made for the ray, to the
-/// bit, for each kind of sweep; and bounds kept for another box are not
-/// used: with the box shrunk to its bottom after they were kept, a ray
-/// through the middle of the object misses, as the new box says.
+/// The bounds a sweep's cache keeps (`SweepCache`) give every ray the hit
+/// it gets when they are made for the ray, to the bit, for each kind of
+/// sweep; and bounds kept for another box are not used: with the box
+/// shrunk to its bottom after they were kept, a ray through the middle of
+/// the object misses, as the new box says.
 #[test]
 fn kept_bounds_answer_as_bounds_made_per_ray_and_only_for_their_box() {
     for deck in ["fig5_6", "fig5_7", "fig5_8"] {
         let (class, sw) = common::deck_sweep(&format!("{deck}.deck"));
-        assert!(sw.bounds.is_some(), "{deck}: prepare_sweeps keeps the bounds");
-        let unkept = SweepShape {
-            bounds: None,
-            ..sw.clone()
+        // The box shrunk to its bottom.
+        let mut shrunk = sw.clone();
+        let b = &mut shrunk.bbox;
+        b.zmax = b.zmin + 0.01 * (b.zmax - b.zmin);
+        let cache = SweepCache::new(class, &sw).expect("a cache");
+        assert!(cache.fits(class, &sw), "{deck}: the cache keeps the bounds");
+        // Made for the shrunk box: its bounds are not taken for `sw`'s
+        // (its cap grid, made with the same segments, is).
+        let unkept = SweepCache::new(class, &shrunk).expect("a cache");
+        assert!(!unkept.fits(class, &sw), "{deck}");
+        let kept = Sweep {
+            class,
+            shape: &sw,
+            cache: Some(&cache),
+        };
+        let made = Sweep {
+            cache: Some(&unkept),
+            ..kept
         };
         for solver in SOLVERS {
             let o = opts(solver);
             let mut hits = 0;
             for k in 0..1000 {
                 let ray = ray(class, &sw, k, false);
-                let kept = intersect_sweep(class, &sw, &ray, 1e-9, &o);
-                let made = intersect_sweep(class, &unkept, &ray, 1e-9, &o);
-                assert_eq!(kept, made, "{deck} {solver:?} ray {k}");
-                let tmax = kept.map_or(1e9, |h| h.t * 1.5);
+                let hit = kept.intersect(&ray, 1e-9, &o, &mut 0);
+                assert_eq!(hit, made.intersect(&ray, 1e-9, &o, &mut 0), "{deck} {solver:?} ray {k}");
+                let tmax = hit.map_or(1e9, |h| h.t * 1.5);
                 assert_eq!(
-                    sweep_blocks(class, &sw, &ray, 1e-9, tmax, &o),
-                    sweep_blocks(class, &unkept, &ray, 1e-9, tmax, &o),
+                    kept.blocks(&ray, 1e-9, tmax, &o, &mut 0),
+                    made.blocks(&ray, 1e-9, tmax, &o, &mut 0),
                     "{deck} {solver:?} shadow ray {k}"
                 );
-                hits += kept.is_some() as usize;
+                hits += hit.is_some() as usize;
             }
             assert!(hits > 200, "{deck} {solver:?}: the rays meet the sweep ({hits})");
         }
-        // The box shrunk to its bottom, the kept bounds left as they were.
-        let mut shrunk = sw.clone();
-        let b = &mut shrunk.bbox;
-        b.zmax = b.zmin + 0.01 * (b.zmax - b.zmin);
+        // The shrunk box with the bounds kept for the whole one.
         let (lo, hi) = common::sweep_box(class, &sw);
         let middle = 0.5 * (lo + hi);
         let through = Ray::new(middle - DVec3::new(0.0, 10.0, 0.0), DVec3::Y);
-        assert!(intersect_sweep(class, &sw, &through, 1e-9, &opts(Solver::Robust)).is_some());
+        let robust = opts(Solver::Robust);
+        assert!(kept.intersect(&through, 1e-9, &robust, &mut 0).is_some());
         assert_eq!(
-            intersect_sweep(class, &shrunk, &through, 1e-9, &opts(Solver::Robust)),
+            Sweep { shape: &shrunk, ..kept }.intersect(&through, 1e-9, &robust, &mut 0),
             None,
             "{deck}: the new box is asked, not the kept bounds"
         );

@@ -235,7 +235,7 @@ pub(super) fn lambda_newton(sum_at: impl Fn(f64) -> (f64, f64), need_sum: f64, t
 mod tests {
     use super::super::{quantum, Intensity, COST_POWER, NEED_POWER, SEARCH_COST};
     use super::*;
-    use crate::drt::hashed_uniform;
+    use crate::hash::hashed_uniform;
 
     /// The allocation as it was first written (separate collections), the
     /// reference the fused loops must give the same counts as. The needs

@@ -1,6 +1,7 @@
-//! `psout FILE…`: shows a raster file as the thesis's PS 390 display did
-//! (1024×864), in a window, or plays several (a film's frames) in order;
-//! `--screenshot OUT.png` writes the screen to a PNG instead. See
+//! `psout FILE…`: shows a raster file (or a PNG or PPM) as the thesis's
+//! PS 390 display did (1024×864), in a window, or plays several (a film's
+//! frames) in order; `--screenshot OUT.png` writes the screen to a PNG
+//! instead. See
 //! docs/psout.md, docs/film.md and the `raytrace::psout` module; the keys
 //! are `raytrace::psout::player`'s.
 //!
@@ -13,13 +14,16 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
+use raytrace::exit::{exit_code, Failure};
+use raytrace::image_file::read_image_file;
 #[cfg(any(feature = "png", feature = "window"))]
 use raytrace::psout;
 use raytrace::psout::{player, Lut};
-use raytrace::raster::{self, Raster};
+use raytrace::raster::Raster;
 
-/// Show a Sun raster file on an emulated PS 390 display (1024×864); several
-/// files (a film's frames, `STEM.*.ras`) are played in order as a film.
+/// Show a Sun raster, PNG or PPM file on an emulated PS 390 display
+/// (1024×864); several files (a film's frames, `STEM.*.ras`) are played in
+/// order as a film.
 #[derive(Parser, Debug)]
 #[command(name = "psout", version, after_help = player::KEYS_HELP)]
 struct Args {
@@ -41,38 +45,25 @@ struct Args {
     /// A film: frames a second (the deck's `film … rate FPS`).
     #[arg(long, value_name = "FPS", default_value_t = 12, value_parser = clap::value_parser!(u32).range(1..=60))]
     rate: u32,
-    /// The raster file to show, or the frames of a film in order.
+    /// The picture to show (a Sun raster, PNG or PPM file), or the frames
+    /// of a film in order.
     #[arg(required = true, value_name = "FILE")]
     files: Vec<PathBuf>,
 }
 
-/// Why psout stops: an exit code and the message for stderr.
-struct Failure {
-    code: u8,
-    message: String,
-}
-
 fn main() -> ExitCode {
     let args = Args::parse();
-    if let Err(e) = raytrace::output::remove_temp_files_on_signals() {
-        eprintln!("psout: cannot watch for SIGINT and SIGTERM: {e}");
-        return ExitCode::from(1);
-    }
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(f) => {
-            eprintln!("psout: {}", f.message);
-            ExitCode::from(f.code)
-        }
-    }
+    exit_code("psout", run(&args))
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
+    raytrace::output::remove_temp_files_on_signals()
+        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
     if let Some(out) = &args.screenshot {
         check_screenshot_name(out)?;
     }
     let lut = args.lut.map(usize::from);
-    let bad = |message: String| Failure { code: 2, message };
+    let bad = Failure::input;
     let frames = if args.files.len() == 1 {
         vec![load(&args.files[0], lut).map_err(bad)?]
     } else {
@@ -84,7 +75,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     };
     let start = match args.frame {
         Some(k) if k as usize > frames.len() => {
-            return Err(bad(format!(
+            return Err(Failure::usage(format!(
                 "--frame {k}: there are {} frame{} (1..{})",
                 frames.len(),
                 if frames.len() == 1 { "" } else { "s" },
@@ -103,23 +94,21 @@ fn run(args: &Args) -> Result<(), Failure> {
 /// A usage error (exit 2) unless `out` is standard output (`-`) or names
 /// a PNG: the format follows the extension, as for `raytrace -o`.
 fn check_screenshot_name(out: &Path) -> Result<(), Failure> {
-    use raytrace::output::{Format, OutputError, STDOUT};
+    use raytrace::output::STDOUT;
+    use raytrace::raster::{Format, FormatError};
     let problem = match Format::of(out) {
         _ if out.as_os_str() == STDOUT => return Ok(()),
         Ok(Format::Png) => return Ok(()),
-        Ok(_) | Err(OutputError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
+        Ok(_) | Err(FormatError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
         Err(e) => e.to_string(),
     };
-    Err(Failure {
-        code: 2,
-        message: format!("--screenshot '{}': {problem}", out.display()),
-    })
+    Err(Failure::usage(format!("--screenshot '{}': {problem}", out.display())))
 }
 
-/// Reads the raster, in lookup-table mode quantised; the message names the
-/// file.
+/// Reads the picture (a Sun raster, PNG or PPM), in lookup-table mode
+/// quantised; the message names the file.
 fn load(path: &Path, lut: Option<usize>) -> Result<Raster, String> {
-    let raster = raster::read_raster_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let raster = read_image_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(match lut {
         Some(n) => Lut::median_cut(&raster.pixels, n).apply(&raster),
         None => raster,
@@ -129,30 +118,24 @@ fn load(path: &Path, lut: Option<usize>) -> Result<Raster, String> {
 #[cfg(feature = "png")]
 fn screenshot(out: &Path, raster: &Raster, zoom: Option<u32>) -> Result<(), Failure> {
     let screen = psout::compose(raster, zoom, (0, 0));
-    raster::write_png(out, &screen.to_raster()).map_err(|e| Failure {
-        code: 1,
-        message: format!("cannot write {}: {e}", out.display()),
-    })
+    raytrace::raster::write_png(out, &screen.to_raster())
+        .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
 }
 
 #[cfg(not(feature = "png"))]
 fn screenshot(_out: &Path, _raster: &Raster, _zoom: Option<u32>) -> Result<(), Failure> {
-    Err(Failure {
-        code: 1,
-        message: "this psout was built without the `png` feature, so --screenshot is not available".into(),
-    })
+    Err(Failure::other(
+        "this psout was built without the `png` feature, so --screenshot is not available",
+    ))
 }
 
 /// The error when no window can be opened: names both ways out.
 fn no_display(reason: &str) -> Failure {
-    Failure {
-        code: 1,
-        message: format!(
-            "cannot open a window ({reason}).\n\
-             Run psout under an X display, e.g. `xvfb-run -s \"-screen 0 1024x864x24\" psout FILE`,\n\
-             or write the screen to a file with `psout --screenshot OUT.png FILE`."
-        ),
-    }
+    Failure::other(format!(
+        "cannot open a window ({reason}).\n\
+         Run psout under an X display, e.g. `xvfb-run -s \"-screen 0 1024x864x24\" psout FILE`,\n\
+         or write the screen to a file with `psout --screenshot OUT.png FILE`."
+    ))
 }
 
 #[cfg(not(feature = "window"))]
@@ -265,10 +248,7 @@ fn show(args: &Args, mut frames: Vec<Raster>, start: Option<usize>) -> Result<()
         }
         window
             .update_with_buffer(&screen.pixels, SCREEN_WIDTH, SCREEN_HEIGHT)
-            .map_err(|e| Failure {
-                code: 1,
-                message: format!("the window failed: {}", window_error(e)),
-            })?;
+            .map_err(|e| Failure::other(format!("the window failed: {}", window_error(e))))?;
     }
     Ok(())
 }
@@ -318,7 +298,7 @@ fn save(path: &Path, screen: &psout::Framebuffer) {
 
 #[cfg(all(feature = "window", feature = "png"))]
 fn screenshot_of(out: &Path, screen: &psout::Framebuffer) -> Result<(), String> {
-    raster::write_png(out, &screen.to_raster()).map_err(|e| e.to_string())
+    raytrace::raster::write_png(out, &screen.to_raster()).map_err(|e| e.to_string())
 }
 
 #[cfg(all(feature = "window", not(feature = "png")))]

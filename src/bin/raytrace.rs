@@ -5,11 +5,17 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-use clap::{Parser, ValueEnum};
+use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use raytrace::output::{Format, OutputError, PendingFile, STDOUT};
-use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
+use raytrace::cli::{DeckInput, RenderArgs};
+use raytrace::exit::{exit_code, Failure};
+use raytrace::film::{frame_path, frame_stem, Frame, FrameRange};
+use raytrace::options::{Options, TimeSampler};
+use raytrace::output::{is_stream, OutputError, PendingFile, STDOUT};
+use raytrace::raster::{Format, FormatError, Raster};
+use raytrace::raytrace::{Prepared, Render, Request};
+use raytrace::scene::{FilmRecord, Scene};
 
 /// The scene rendered when no deck is named: legacy_pascal/decks/nec_morph.deck,
 /// the thesis's own motivating example (§1.2).
@@ -23,8 +29,13 @@ to raster/default.ras and raster/default.png.
 The format of -o follows its extension: .ras a Sun rasterfile (24-bit
 RT_STANDARD, the format the thesis sent to the PS 390 through psout; look at it
 with `psout FILE`), .png a PNG, .ppm or .pnm a netpbm pixmap. `-o -` writes the
-Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`). Only the
-default folder raster/ is created; every output is checked before rendering.
+Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`), and so
+does a device or FIFO named without an extension (-o /dev/null, -o /dev/stdout).
+A film's frames are Sun rasters: -o NAME or -o NAME.ras writes NAME.0001.ras ….
+Only the default folder raster/ is created; every output is checked before
+rendering. When the reader of standard output stops early (`-o - | head -c 10`),
+the rest is dropped quietly and the status is that of the render, 0 when it
+succeeded: the reader has what it wanted, as with any Unix filter.
 
 Exit status: 0 on success; 2 for a usage error (a bad flag or output file name)
 or an error in the deck or an input file (reported as FILE:LINE:COLUMN); 1 for
@@ -40,7 +51,9 @@ the deck has an error, and no temporary file is left behind.";
     after_help = AFTER_HELP
 )]
 struct Cli {
-    /// The scene deck (format: legacy_pascal/DECK.md). Omit it for the embedded default deck.
+    /// The scene deck (format: legacy_pascal/DECK.md), or - to read it from standard input
+    /// (named <stdin> in errors, its texture files relative to the current folder, its
+    /// default output raster/stdin.ras). Omit it for the embedded default deck.
     deck: Option<PathBuf>,
 
     /// The image file to write, its format by its extension (.ras, .png, .ppm, .pnm),
@@ -53,36 +66,8 @@ struct Cli {
     #[arg(long, value_name = "FILE")]
     png: Option<PathBuf>,
 
-    /// Follow the printed listings quirks included (listing) or the thesis text (thesis);
-    /// legacy_pascal/DEVIATIONS.md lists every difference.
-    #[arg(long, value_enum, default_value_t = FidelityArg::Thesis)]
-    fidelity: FidelityArg,
-
-    /// Root solver for sweep objects: the thesis's laguerre, or a robust one that finds every root.
-    #[arg(long, value_enum, default_value_t = SolverArg::Laguerre)]
-    solver: SolverArg,
-
-    /// How each subpixel's time is chosen: the thesis's pattern table with its CLT jitter
-    /// (table), an independent uniform time (random), or one time in each stratum of the
-    /// shutter in a per-pixel order (stratified). adaptive spends the same M² rays a pixel
-    /// on average where each pixel needs them (places and times in pixel and shutter from a
-    /// scrambled Sobol sequence). Only table is the thesis's.
-    #[arg(long, value_enum, default_value_t = SamplerArg::Table)]
-    sampler: SamplerArg,
-
-    /// M×M subpixels a pixel (M² rays a pixel on average for --sampler adaptive), 1..32,
-    /// in place of the deck's `mask` for this run [default: the deck's].
-    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u16).range(1..=MAX_MASK))]
-    mask: Option<u16>,
-
-    /// The image's width and height in pixels, WxH (each 1..8192), in place of the deck's
-    /// `image` record for this run; the view stays, so the picture is the same at another size.
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    size: Option<(usize, usize)>,
-
-    /// Worker threads [default: one per core]; the image is the same for any number.
-    #[arg(long, value_name = "N")]
-    threads: Option<usize>,
+    #[command(flatten)]
+    render: RenderArgs,
 
     /// No progress bar and no summary line.
     #[arg(short, long)]
@@ -94,7 +79,7 @@ struct Cli {
     frames: Option<String>,
 
     /// With a `film` record, also write the frames rendered as one animated PNG (APNG) to
-    /// FILE, each shown for 1/rate s.
+    /// FILE, a name ending in .png or -, each frame shown for 1/rate s.
     #[arg(long, value_name = "FILE")]
     apng: Option<PathBuf>,
 
@@ -103,213 +88,289 @@ struct Cli {
     debug: Option<PathBuf>,
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum FidelityArg {
-    Listing,
-    Thesis,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum SamplerArg {
-    Table,
-    Random,
-    Stratified,
-    Adaptive,
-}
-
-/// The largest `--mask`: 32×32 = 1024 rays a pixel, the chart's reference.
-const MAX_MASK: i64 = 32;
-
-/// The largest side `--size` takes, the deck's `image` limit.
-const MAX_SIDE: usize = 8192;
-
-/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
-fn parse_size(text: &str) -> Result<(usize, usize), String> {
-    let (w, h) = text
-        .split_once(['x', 'X', '×'])
-        .ok_or_else(|| format!("'{text}' is not WxH (e.g. 256x256)"))?;
-    let side = |v: &str, what: &str| match v.trim().parse::<usize>() {
-        Ok(n) if (1..=MAX_SIDE).contains(&n) => Ok(n),
-        _ => Err(format!("the {what} '{v}' is not a whole number in 1..={MAX_SIDE}")),
-    };
-    Ok((side(w, "width")?, side(h, "height")?))
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum SolverArg {
-    Laguerre,
-    Robust,
-}
-
-/// An error and the exit status it ends with.
-struct Failure {
-    code: u8,
-    message: String,
-}
-
-/// A usage error (exit 2, as clap's own), or an input error: a deck or file
-/// that cannot be used.
-fn input_error(message: impl ToString) -> Failure {
-    Failure {
-        code: 2,
-        message: message.to_string(),
-    }
-}
-
-fn other_error(message: impl ToString) -> Failure {
-    Failure {
-        code: 1,
-        message: message.to_string(),
-    }
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Err(e) = raytrace::output::remove_temp_files_on_signals() {
-        eprintln!("raytrace: cannot watch for SIGINT and SIGTERM: {e}");
-        return ExitCode::from(1);
-    }
-    match run(&cli) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(f) => {
-            eprintln!("raytrace: {}", f.message);
-            ExitCode::from(f.code)
-        }
-    }
+    exit_code("raytrace", run(&cli))
 }
 
+/// The folder the default outputs go to, created when they are used.
+const DEFAULT_FOLDER: &str = "raster";
+
+/// Reads the deck, checks and reserves every output, renders the still or
+/// the film's frames (each written as soon as it is done), and prints the
+/// summary.
 fn run(cli: &Cli) -> Result<(), Failure> {
-    let opts = Options {
-        fidelity: match cli.fidelity {
-            FidelityArg::Listing => Fidelity::Listing,
-            FidelityArg::Thesis => Fidelity::Thesis,
-        },
-        solver: match cli.solver {
-            SolverArg::Laguerre => Solver::Laguerre,
-            SolverArg::Robust => Solver::Robust,
-        },
-        sampler: match cli.sampler {
-            SamplerArg::Table => TimeSampler::Table,
-            SamplerArg::Random => TimeSampler::Random,
-            SamplerArg::Stratified => TimeSampler::Stratified,
-            SamplerArg::Adaptive => TimeSampler::Adaptive,
-        },
-    };
-    raytrace::adaptive::check(&opts).map_err(input_error)?;
-
+    raytrace::output::remove_temp_files_on_signals()
+        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    let opts = cli.render.options.options()?;
     let output_format = check_output_names(cli)?;
-
-    // The deck: text, the name its errors carry, the folder its files are relative to.
-    let (source, file_name, deck_dir, stem) = match &cli.deck {
-        Some(path) => {
-            let source =
-                raytrace::deck::read_deck_file(path).map_err(|e| input_error(format!("{}: {e}", path.display())))?;
-            let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            let stem = path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or("out".into());
-            (source, path.display().to_string(), dir, stem)
-        }
-        None => (
-            DEFAULT_DECK.as_bytes().to_vec(),
-            "nec_morph.deck".to_string(),
-            PathBuf::from("legacy_pascal/decks"),
-            "default".to_string(),
-        ),
+    let deck = match &cli.deck {
+        Some(path) => DeckInput::read(path)?,
+        None => DeckInput {
+            source: DEFAULT_DECK.as_bytes().to_vec(),
+            name: "nec_morph.deck".to_string(),
+            dir: PathBuf::from("legacy_pascal/decks"),
+            stem: "default".to_string(),
+        },
     };
-    let output = cli
-        .output
-        .clone()
-        .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{stem}.ras")));
-    let png = cli.png.clone().or_else(|| {
-        cli.deck
-            .is_none()
-            .then(|| Path::new(DEFAULT_FOLDER).join("default.png"))
-    });
+    let prepared = cli.render.scene(&deck, &opts)?;
+    let scene = prepared.scene();
+    let mut job = Job::reserve(cli, scene, &deck, output_format)?;
 
-    let mut scene = raytrace::deck::initialize(&source, &file_name, &deck_dir, opts.fidelity).map_err(input_error)?;
-    if cli.mask.is_some() || cli.size.is_some() {
-        let (w, h) = cli.size.unwrap_or((scene.image.width, scene.image.height));
-        let m = cli.mask.map_or(scene.image.masksize, usize::from);
-        scene.resize(w, h, m);
-    }
-    raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| input_error(format!("{file_name}:{e}")))?;
-
-    // Every output is checked and reserved before the render, so a long
-    // render never ends on a file it cannot write.
-    let film_range = match scene.film {
-        Some(film) => Some(check_film(cli, film, &file_name, &output)?),
-        None => {
-            if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
-                .iter()
-                .find_map(|&(given, flag)| given.then_some(flag))
-            {
-                return Err(input_error(format!(
-                    "{flag} is for a film, and {file_name} has no 'film' record (legacy_pascal/DECK.md, 'film')"
-                )));
-            }
-            None
-        }
-    };
-    if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
-        std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| other_error(format!("{DEFAULT_FOLDER}: {e}")))?;
-    }
-    let reserve = |path: &Path| PendingFile::create(path).map_err(|e| other_error(format!("{}: {e}", path.display())));
-    let raster_file = reserve(&output)?;
-    let png_file = png.as_deref().map(reserve).transpose()?;
-    let debug_file = cli.debug.as_deref().map(reserve).transpose()?;
-
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0))
-        .build()
-        .map_err(other_error)?;
-    if let (Some(film), Some(range)) = (scene.film, film_range) {
-        return run_film(cli, &scene, &opts, &pool, (film, range), &file_name, &output);
-    }
-    let bar = progress_bar(cli.quiet, scene.image.height as u64)?;
-    bar.set_message(format!("tracing {file_name}"));
+    let pool = cli.render.thread_pool()?;
+    let (written, film) = job.summary();
+    let frames = job.frames();
+    let bar = progress_bar(cli.quiet, scene.image.height as u64 * frames.len() as u64)?;
     let started = Instant::now();
-    let render = pool.install(|| raytrace::raytrace::render(&scene, &opts, &|| bar.inc(1)));
-    let elapsed = started.elapsed();
+    let mut rays = 0;
+    for &frame in &frames {
+        bar.set_message(job.tracing(&deck.name, frame));
+        let progress = || bar.inc(1);
+        let request = Request::frame(frame).progress(&progress);
+        let render = pool
+            .install(|| raytrace::raytrace::render(&prepared, &request))
+            .and_then(|r| r.check_finite().map(|()| r))
+            .map_err(|e| Failure::other(format!("{}: {e}", job.what(&deck.name, frame))))?;
+        rays += render.stats.rays;
+        job.write(frame, render, &prepared)?;
+    }
+    let elapsed = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    render
-        .check_finite()
-        .map_err(|e| other_error(format!("{file_name}: {e}")))?;
-
-    raster_file
-        .commit(|w| output_format.write(&render.raster, w))
-        .map_err(|e| other_error(format!("{}: {e}", output.display())))?;
-    if let (Some(file), Some(path)) = (png_file, &png) {
-        file.commit(|w| Format::Png.write(&render.raster, w))
-            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
-    }
-    if let (Some(file), Some(path)) = (debug_file, &cli.debug) {
-        let log = raytrace::raytrace::debug_log(&scene, &render, opts.fidelity);
-        file.commit(|w| w.write_all(log.as_bytes()).map_err(OutputError::from))
-            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
-    }
+    job.finish()?;
     if !cli.quiet {
         let img = &scene.image;
         eprintln!(
-            "raytrace: {} → {}{} ({}×{}, {}, {} rays, {:.2} s)",
-            file_name,
-            output.display(),
-            png.as_ref()
-                .map(|p| format!(" and {}", p.display()))
-                .unwrap_or_default(),
+            "raytrace: {} → {written} ({}{}×{}, {}, {rays} rays, {elapsed:.2} s{})",
+            deck.name,
+            film.as_ref().map(|f| format!("{f}, ")).unwrap_or_default(),
             img.width,
             img.height,
             sampling(&opts, img),
-            render.stats.rays,
-            elapsed.as_secs_f64()
+            film.map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
+                .unwrap_or_default()
         );
     }
     Ok(())
 }
 
-/// The folder the default outputs go to, created when they are used.
-const DEFAULT_FOLDER: &str = "raster";
+/// What a run writes, reserved before the render: one still (its image, a
+/// PNG beside it, the listing's debug log), or the frames of a film (a Sun
+/// raster each, and an animated PNG of them at the end).
+enum Job {
+    Still {
+        /// Taken when written.
+        output: Option<PendingFile>,
+        format: Format,
+        png: Option<PendingFile>,
+        debug: Option<PendingFile>,
+    },
+    Film {
+        film: FilmRecord,
+        range: FrameRange,
+        stem: PathBuf,
+        apng: Option<PendingFile>,
+        /// The frames rendered, kept for the animated PNG.
+        rasters: Vec<Raster>,
+    },
+}
+
+/// What the deck makes: a still in a format, or the frames of a film.
+enum Made {
+    Still(Format),
+    Film(FilmRecord, FrameRange),
+}
+
+/// A file that cannot be written: exit 1, named.
+fn not_written(path: &Path, e: impl std::fmt::Display) -> Failure {
+    Failure::other(format!("{}: {e}", path.display()))
+}
+
+impl Job {
+    /// Checks the flags against the deck (film or still) and reserves every
+    /// output, so a usage error (exit 2) comes first and writes nothing,
+    /// and a long render never ends on a file it cannot write.
+    /// `format` is the one of `-o`, or the error for a still named without
+    /// an extension (a film's frames may be).
+    fn reserve(cli: &Cli, scene: &Scene, deck: &DeckInput, format: Result<Format, Failure>) -> Result<Job, Failure> {
+        let output = cli
+            .output
+            .clone()
+            .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{}.ras", deck.stem)));
+        let png = cli.png.clone().or_else(|| {
+            cli.deck
+                .is_none()
+                .then(|| Path::new(DEFAULT_FOLDER).join("default.png"))
+        });
+        let what = match &scene.film {
+            Some(film) => Made::Film(film.clone(), check_film(cli, film, &deck.name, &output)?),
+            None => {
+                if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
+                    .iter()
+                    .find_map(|&(given, flag)| given.then_some(flag))
+                {
+                    return Err(Failure::usage(format!(
+                        "{flag} is for a film, and {} has no 'film' record (legacy_pascal/DECK.md, 'film')",
+                        deck.name
+                    )));
+                }
+                Made::Still(format?)
+            }
+        };
+        if cli.output.is_none() || (cli.png.is_none() && png.is_some()) {
+            std::fs::create_dir_all(DEFAULT_FOLDER).map_err(|e| not_written(Path::new(DEFAULT_FOLDER), e))?;
+        }
+        let reserve = |path: &Path| PendingFile::create(path).map_err(|e| not_written(path, e));
+        let output = reserve(&output)?;
+        Ok(match what {
+            Made::Film(film, range) => Job::Film {
+                film,
+                range,
+                // The frames go beside `output`, whose folder reserving it
+                // has checked (it is not written itself); the APNG is
+                // reserved now, so a bad name fails before the first frame.
+                stem: frame_stem(output.path()),
+                apng: cli.apng.as_deref().map(reserve).transpose()?,
+                rasters: Vec::new(),
+            },
+            Made::Still(format) => Job::Still {
+                output: Some(output),
+                format,
+                png: png.as_deref().map(reserve).transpose()?,
+                debug: cli.debug.as_deref().map(reserve).transpose()?,
+            },
+        })
+    }
+
+    /// The frames to render, in order.
+    fn frames(&self) -> Vec<Frame> {
+        match self {
+            Job::Still { .. } => vec![Frame::STILL],
+            Job::Film { film, range, .. } => range.numbers().map(|k| film.frame(k)).collect(),
+        }
+    }
+
+    /// The progress bar's message while `frame` is traced.
+    fn tracing(&self, deck: &str, frame: Frame) -> String {
+        match self {
+            Job::Still { .. } => format!("tracing {deck}"),
+            Job::Film { film, .. } => format!("tracing {deck} frame {}/{}", frame.number, film.frames),
+        }
+    }
+
+    /// What an error about `frame`'s pixels names.
+    fn what(&self, deck: &str, frame: Frame) -> String {
+        match self {
+            Job::Still { .. } => deck.to_string(),
+            Job::Film { .. } => format!("{deck}: frame {}", frame.number),
+        }
+    }
+
+    /// Writes what `frame`'s render makes: the still's files, or the
+    /// frame's raster (atomically, at once) kept for the animated PNG.
+    fn write(&mut self, frame: Frame, render: Render, prepared: &Prepared) -> Result<(), Failure> {
+        match self {
+            Job::Still {
+                output,
+                format,
+                png,
+                debug,
+            } => {
+                let format = *format;
+                commit(output, |w| format.write(&render.raster, w))?;
+                commit(png, |w| Format::Png.write(&render.raster, w))?;
+                if debug.is_some() {
+                    let log = raytrace::raytrace::debug_log(prepared, &render);
+                    commit(debug, |w| w.write_all(log.as_bytes()).map_err(OutputError::from))?;
+                }
+            }
+            Job::Film {
+                film,
+                stem,
+                apng,
+                rasters,
+                ..
+            } => {
+                let path = frame_path(stem, frame.number, film.frames);
+                raytrace::raster::outputframe(&path, &render.raster).map_err(|e| not_written(&path, e))?;
+                if apng.is_some() {
+                    rasters.push(render.raster);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// For the summary line: what is written, and for a film which frames.
+    fn summary(&self) -> (String, Option<String>) {
+        let and = |file: &Option<PendingFile>| {
+            file.as_ref()
+                .map(|f| format!(" and {}", f.path().display()))
+                .unwrap_or_default()
+        };
+        match self {
+            Job::Still { output, png, .. } => {
+                let first = output.as_ref().map(|f| f.path().display().to_string());
+                (format!("{}{}", first.unwrap_or_default(), and(png)), None)
+            }
+            Job::Film {
+                film,
+                range,
+                stem,
+                apng,
+                ..
+            } => (
+                format!(
+                    "{} … {}{}",
+                    frame_path(stem, range.first, film.frames).display(),
+                    frame_path(stem, range.last, film.frames).display(),
+                    and(apng)
+                ),
+                Some(format!("frames {}..{} of {}", range.first, range.last, film.frames)),
+            ),
+        }
+    }
+
+    /// Writes the animated PNG of a film.
+    fn finish(self) -> Result<(), Failure> {
+        match self {
+            Job::Film {
+                film,
+                apng: Some(file),
+                rasters,
+                ..
+            } => write_apng(file, &rasters, film.rate),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Writes a reserved file through `write`; an error names the file.
+fn commit<E: From<OutputError> + std::fmt::Display>(
+    file: &mut Option<PendingFile>,
+    write: impl FnOnce(&mut dyn std::io::Write) -> Result<(), E>,
+) -> Result<(), Failure> {
+    match file.take() {
+        Some(f) => {
+            let path = f.path().to_path_buf();
+            f.commit(write).map_err(|e| not_written(&path, e))
+        }
+        None => Ok(()),
+    }
+}
+
+#[cfg(feature = "png")]
+fn write_apng(file: PendingFile, rasters: &[Raster], rate: u32) -> Result<(), Failure> {
+    let path = file.path().to_path_buf();
+    let bytes = raytrace::film::encode_apng(rasters, rate).map_err(|e| not_written(&path, e))?;
+    file.commit(|w| w.write_all(&bytes).map_err(OutputError::from))
+        .map_err(|e| not_written(&path, e))
+}
+
+#[cfg(not(feature = "png"))]
+fn write_apng(_file: PendingFile, _rasters: &[Raster], _rate: u32) -> Result<(), Failure> {
+    Ok(())
+}
+
 /// The progress bar over `rows` rows of pixels (hidden with `--quiet`).
 fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
     if quiet {
@@ -318,28 +379,22 @@ fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
     let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-            .map_err(other_error)?
+            .map_err(Failure::other)?
             .progress_chars("=> "),
     );
     Ok(bar)
 }
 
 /// The flags of a film checked against its `film` record before any output
-/// is reserved, so a usage error (exit 2) comes first and writes nothing:
-/// the frames to render.
-fn check_film(
-    cli: &Cli,
-    film: raytrace::film::FilmRecord,
-    file_name: &str,
-    output: &Path,
-) -> Result<raytrace::film::FrameRange, Failure> {
-    use raytrace::film::FrameRange;
+/// is reserved: the frames to render.
+fn check_film(cli: &Cli, film: &FilmRecord, file_name: &str, output: &Path) -> Result<FrameRange, Failure> {
     let range = match &cli.frames {
-        Some(text) => FrameRange::parse(text, film.frames).map_err(input_error)?,
+        Some(text) => FrameRange::parse(text, film.frames).map_err(Failure::usage)?,
         None => film.all(),
     };
-    if output.as_os_str() == STDOUT || output.extension().is_some_and(|e| !e.eq_ignore_ascii_case("ras")) {
-        return Err(input_error(format!(
+    let ras = |e: &std::ffi::OsStr| e.eq_ignore_ascii_case("ras");
+    if output.as_os_str() == STDOUT || is_stream(output) || output.extension().is_some_and(|e| !ras(e)) {
+        return Err(Failure::usage(format!(
             "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras",
             output.display()
         )));
@@ -357,117 +412,42 @@ fn check_film(
         ),
     ] {
         if given {
-            return Err(input_error(format!(
+            return Err(Failure::usage(format!(
                 "{flag} writes one still, and {file_name} is a film: use {instead}"
             )));
         }
     }
     #[cfg(not(feature = "png"))]
     if cli.apng.is_some() {
-        return Err(input_error(
+        return Err(Failure::usage(
             "--apng: this build has no PNG export (the `png` feature is off)",
         ));
     }
     Ok(range)
 }
 
-/// Renders the frames of a deck with a `film` record: one raster per
-/// frame, `STEM.0001.ras` …, each written (atomically) as soon as it is
-/// done, and with `--apng` one animated PNG of them at the end. Every flag
-/// is checked before the first frame, so a bad one writes nothing.
-fn run_film(
-    cli: &Cli,
-    scene: &raytrace::types::Scene,
-    opts: &Options,
-    pool: &rayon::ThreadPool,
-    (film, range): (raytrace::film::FilmRecord, raytrace::film::FrameRange),
-    file_name: &str,
-    output: &Path,
-) -> Result<(), Failure> {
-    use raytrace::film::{frame_path, frame_stem};
-    let stem = frame_stem(output);
-    // The frames go beside `output`, whose folder `run` has checked; the
-    // APNG is reserved now, so a bad name fails before the first frame.
-    let apng_file = cli
-        .apng
-        .as_deref()
-        .map(|p| PendingFile::create(p).map_err(|e| other_error(format!("{}: {e}", p.display()))))
-        .transpose()?;
-
-    // One bar over every frame's rows; its message names the frame.
-    let bar = progress_bar(cli.quiet, scene.image.height as u64 * u64::from(range.len()))?;
-    let started = Instant::now();
-    let mut rays = 0;
-    let mut rasters = Vec::new();
-    for k in range.numbers() {
-        bar.set_message(format!("tracing {file_name} frame {k}/{}", film.frames));
-        let render = pool.install(|| raytrace::raytrace::render_frame(scene, opts, film.frame(k), &|| bar.inc(1)));
-        render
-            .check_finite()
-            .map_err(|e| other_error(format!("{file_name}: frame {k}: {e}")))?;
-        let path = frame_path(&stem, k, film.frames);
-        raytrace::raster::outputframe(&path, &render.raster)
-            .map_err(|e| other_error(format!("{}: {e}", path.display())))?;
-        rays += render.stats.rays;
-        if cli.apng.is_some() {
-            rasters.push(render.raster);
-        }
-    }
-    let elapsed = started.elapsed();
-    bar.finish_and_clear();
-    #[cfg(feature = "png")]
-    if let (Some(file), Some(apng)) = (apng_file, &cli.apng) {
-        let bytes = raytrace::film::encode_apng(&rasters, film.rate)
-            .map_err(|e| other_error(format!("{}: {e}", apng.display())))?;
-        file.commit(|w| w.write_all(&bytes).map_err(OutputError::from))
-            .map_err(|e| other_error(format!("{}: {e}", apng.display())))?;
-    }
-    #[cfg(not(feature = "png"))]
-    drop(apng_file);
-    if !cli.quiet {
-        let img = &scene.image;
-        eprintln!(
-            "raytrace: {} → {} … {}{} (frames {}..{} of {}, {}×{}, {}, {} rays, {:.2} s, {:.2} s a frame)",
-            file_name,
-            frame_path(&stem, range.first, film.frames).display(),
-            frame_path(&stem, range.last, film.frames).display(),
-            cli.apng
-                .as_ref()
-                .map(|p| format!(" and {}", p.display()))
-                .unwrap_or_default(),
-            range.first,
-            range.last,
-            film.frames,
-            img.width,
-            img.height,
-            sampling(opts, img),
-            rays,
-            elapsed.as_secs_f64(),
-            elapsed.as_secs_f64() / f64::from(range.len())
-        );
-    }
-    Ok(())
-}
-
-/// Checks the output file names before anything is read or written, and
-/// gives the format of `-o`: a usage error (exit 2) when a name has an
-/// extension that names no format or (`--png`) is not a `.png`, or when
-/// more than one output goes to standard output. (An empty name is
-/// refused by the flag parser, also with exit 2.)
-fn check_output_names(cli: &Cli) -> Result<Format, Failure> {
-    let usage =
-        |flag: &str, path: &Path, e: &dyn std::fmt::Display| input_error(format!("{flag} '{}': {e}", path.display()));
-    let stdout = [&cli.output, &cli.png, &cli.debug]
+/// Checks the output file names before anything is read or written
+/// (usage errors, exit 2): a name with an extension that names no format,
+/// a `--png` or `--apng` not ending in `.png`, more than one output to
+/// standard output. (An empty name is refused by the flag parser, also
+/// with exit 2.) Gives the format of `-o`, or the error for a name without
+/// an extension, raised once the deck is read and found to be a still (a
+/// film's frames may be named so).
+fn check_output_names(cli: &Cli) -> Result<Result<Format, Failure>, Failure> {
+    let usage = |flag: &str, path: &Path, e: &dyn std::fmt::Display| {
+        Failure::usage(format!("{flag} '{}': {e}", path.display()))
+    };
+    let stdout = [&cli.output, &cli.png, &cli.debug, &cli.apng]
         .iter()
         .filter(|p| p.as_deref().is_some_and(|p| p.as_os_str() == STDOUT))
         .count();
     if stdout > 1 {
-        return Err(input_error("only one output can go to standard output (-)"));
+        return Err(Failure::usage("only one output can go to standard output (-)"));
     }
     if let Some(png) = cli.png.as_deref().filter(|p| p.as_os_str() != STDOUT) {
         match Format::of(png) {
             Ok(Format::Png) => {}
-            Ok(_) | Err(OutputError::UnknownFormat(_)) => {
+            Ok(_) | Err(FormatError::UnknownFormat(_)) => {
                 return Err(usage(
                     "--png",
                     png,
@@ -477,16 +457,28 @@ fn check_output_names(cli: &Cli) -> Result<Format, Failure> {
             Err(e) => return Err(usage("--png", png, &e)),
         }
     }
-    match cli.output.as_deref() {
-        None => Ok(Format::SunRaster),
-        Some(out) if out.as_os_str() == STDOUT => Ok(Format::SunRaster),
-        Some(out) => Format::of(out).map_err(|e| usage("-o", out, &e)),
+    if let Some(apng) = cli.apng.as_deref().filter(|p| p.as_os_str() != STDOUT) {
+        if !apng.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+            return Err(usage(
+                "--apng",
+                apng,
+                &"--apng writes an animated PNG, so the name must end in .png",
+            ));
+        }
     }
+    Ok(match cli.output.as_deref() {
+        None => Ok(Format::SunRaster),
+        Some(out) => match Format::of_output(out) {
+            Err(e @ FormatError::UnknownFormat(None)) => Err(usage("-o", out, &e)),
+            Err(e) => return Err(usage("-o", out, &e)),
+            Ok(format) => Ok(format),
+        },
+    })
 }
 
 /// The summary line's words for the rays a pixel: M×M subpixels, or the
 /// adaptive sampler's average.
-fn sampling(opts: &Options, img: &raytrace::types::ImageSpec) -> String {
+fn sampling(opts: &Options, img: &raytrace::scene::ImageSpec) -> String {
     match opts.sampler {
         TimeSampler::Adaptive => format!("{} rays a pixel on average, adaptive", img.masksize * img.masksize),
         _ => format!("{}×{} subpixels", img.masksize, img.masksize),

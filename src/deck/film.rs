@@ -2,8 +2,8 @@
 //! (the thesis renders one still; see [`crate::film`]).
 
 use super::{Builder, DeckError};
-use crate::film::{FilmRecord, DEFAULT_RATE, DEFAULT_SHUTTER, MAX_FRAMES, MAX_RATE};
-use crate::types::Pos;
+use crate::scene::Pos;
+use crate::scene::{FilmRecord, DEFAULT_RATE, DEFAULT_SHUTTER, MAX_FRAMES, MAX_RATE};
 
 impl Builder<'_> {
     /// `film FRAMES [shutter S] [rate FPS]`: FRAMES an integer

@@ -16,6 +16,9 @@
 //!   only by `}` and `(*` only by `*)`. A comment separates words like a
 //!   space; the line ends inside a comment do not end a record. A comment
 //!   left open at the end of the deck is an error at its opening bracket.
+//!   An error between the end of a comment that held its own opener and a
+//!   stray closer after it (`{ a { b } c }`) is reported as a comment inside
+//!   a comment, at the inner opener.
 //! - A word is a run of characters other than white space and comment
 //!   openers. Keywords and field names are case-insensitive.
 //! - Outside comments a deck is ASCII: a byte that is not is an error at its
@@ -45,10 +48,10 @@
 //!   `U V` (one row of M integers for `pattern`), and the list ends with a
 //!   line holding `end` alone. Empty and comment-only lines are skipped,
 //!   between records and inside lists.
-//! - Required fields come in DECK.md's order. The optional fields (those in
-//!   brackets) follow them in any order, each at most once; a field given
-//!   twice, a word that is no field of the record, or any extra token is an
-//!   error.
+//! - Fields come in DECK.md's order ("Field order", [`FIELDS`]): the
+//!   required ones in order, then the optional ones (those in brackets) in
+//!   any order, each at most once; a field given twice, a word that is no
+//!   field of the record, or any extra token is an error.
 //! - Records are read top to bottom and may name only what stands above
 //!   them. Surfaces, lights and objects are three kinds of name: a surface
 //!   and an object may share a name, two surfaces (two lights, two objects
@@ -76,7 +79,7 @@
 //!   white. `texture`: FILE is relative to the deck's folder (`deck_dir`;
 //!   an absolute path stays absolute), read with
 //!   `raster::read_raster_file_within` as a raster file of at most
-//!   `types::MAX_TEXELS` texels (texel = byte / 255, kept as bytes); an
+//!   [`MAX_TEXELS`] texels (texel = byte / 255, kept as bytes); an
 //!   empty raster is an error. A
 //!   surface gets at most one `paint` or `texture`, not both.
 //!
@@ -156,9 +159,12 @@
 //! or object of a referring record once it has been found. The position is
 //! that of the offending token; a missing token is reported where it was
 //! expected: at the next token, the end of the line or the end of the deck.
-//! An unknown record, optional field, keyword choice, surface or object
-//! ends with ` — did you mean 'NAME'?` when a valid name is within a third
-//! of its letters (case-insensitive edit distance). A word echoed in a
+//! An unknown record, field, keyword choice, surface or object ends with
+//! ` — did you mean 'NAME'?` when a valid name is within a third of its
+//! letters (case-insensitive edit distance); a field of the record out of
+//! its place ends with ` — 'KA' comes before 'KD'` or ` — the field 'F' is
+//! given twice`. A `texture` file that cannot be read is named as written,
+//! then as joined to `deck_dir` when that differs. A word echoed in a
 //! message is cut after 40 characters, its control characters escaped.
 //! A missing `view` or `image` is reported at the end of the deck.
 
@@ -173,24 +179,42 @@ use std::path::Path;
 
 use glam::DMat3;
 
-use crate::types::{
-    BlurRecord, Expander, Fidelity, ImageSpec, Intensity, KeyframeRecord, LightRecord, MotionRecord, ObjectRecord,
-    PatternRecord, Pos, Scene, SurfaceRecord, View,
+use crate::scene::{
+    BlurRecord, Expander, ImageSpec, KeyframeRecord, LightRecord, MotionRecord, PatternRecord, Pos, Scene, View,
 };
+
+use crate::options::Fidelity;
+
+use crate::types::{Intensity, ObjectRecord, SurfaceRecord};
 pub use lex::MAX_DECK_BYTES;
 use parse::Parser;
 pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
+
+/// The most texels a deck texture may have: 4096 × 4096 (48 MiB), a
+/// sixteenth of a raster's [`crate::raster::MAX_PIXELS`], since a deck may
+/// paste several. The port's bound: the thesis's textures are 256×256.
+pub const MAX_TEXELS: usize = 4096 * 4096;
+
+/// The reading limit of a deck texture ([`MAX_TEXELS`]).
+pub const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
+    pixels: MAX_TEXELS,
+    what: "deck texture",
+};
 
 /// Reads a deck file's bytes for [`initialize`]: at most one byte more than
 /// [`MAX_DECK_BYTES`], so that a file without end (`/dev/zero`, a pipe)
 /// ends with `initialize`'s error for a deck too large, not with all memory
 /// taken.
 pub fn read_deck_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    read_deck(std::fs::File::open(path)?)
+}
+
+/// Reads a deck's bytes from `reader` (standard input, `raytrace -`) as
+/// [`read_deck_file`] does: at most one byte more than [`MAX_DECK_BYTES`].
+pub fn read_deck(reader: impl std::io::Read) -> std::io::Result<Vec<u8>> {
     use std::io::Read;
     let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(MAX_DECK_BYTES as u64 + 1)
-        .read_to_end(&mut bytes)?;
+    reader.take(MAX_DECK_BYTES as u64 + 1).read_to_end(&mut bytes)?;
     Ok(bytes)
 }
 
@@ -220,6 +244,28 @@ pub const RECORDS: &[&str] = &[
     "film",
 ];
 
+/// Each record's field names in DECK.md's order, the required ones first
+/// then the optional ones (a test holds them equal to DECK.md's list): how
+/// a misplaced field is told where it belongs ("'ka' comes before 'kd'")
+/// and a misspelt one its nearest field.
+pub const FIELDS: &[(&str, &[&str])] = &[
+    ("view", &["eye", "look", "screen", "distance"]),
+    ("image", &["mask", "aliasing"]),
+    (
+        "surface",
+        &["color", "ka", "kd", "ks", "kt", "ambient", "reflect", "index"],
+    ),
+    ("paint", &["scale", "color"]),
+    ("sphere", &["at", "radius"]),
+    ("block", &["at", "size"]),
+    ("cylinder", &["at", "radius", "bottom", "top", "axis"]),
+    ("prism", &["at", "height", "axis"]),
+    ("sweep", &["at", "length", "scale", "axis"]),
+    ("motion", &["to", "turn", "via", "law"]),
+    ("keyframe", &["expander"]),
+    ("film", &["shutter", "rate"]),
+];
+
 /// A deck error: where (file, 1-based line and column, the column counting
 /// characters), in which record, and what was wrong.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -238,6 +284,20 @@ pub struct DeckError {
 
 fn name_part(name: &Option<String>) -> String {
     name.as_ref().map(|n| format!(" '{n}'")).unwrap_or_default()
+}
+
+impl DeckError {
+    /// An error at `pos`, in the file it names, in `record` (named `name`).
+    pub fn at(pos: Pos, record: &str, name: Option<String>, message: impl Into<String>) -> DeckError {
+        DeckError {
+            file: pos.file.to_string(),
+            line: pos.line,
+            column: pos.column,
+            record: record.to_string(),
+            name,
+            message: message.into(),
+        }
+    }
 }
 
 /// Reads a deck into a [`Scene`].
@@ -260,18 +320,16 @@ pub fn initialize(
 ) -> Result<Scene, DeckError> {
     let source = source.as_ref();
     if source.len() > MAX_DECK_BYTES {
-        let pos = lex::Cursor::new(source).pos_at(MAX_DECK_BYTES);
-        return Err(DeckError {
-            file: file_name.to_string(),
-            line: pos.line,
-            column: pos.column,
-            record: "deck".to_string(),
-            name: None,
-            message: format!(
+        let pos = lex::Cursor::new(source, file_name.into()).pos_at(MAX_DECK_BYTES);
+        return Err(DeckError::at(
+            pos,
+            "deck",
+            None,
+            format!(
                 "the deck is larger than {} MiB, the most the reader takes",
                 MAX_DECK_BYTES >> 20
             ),
-        });
+        ));
     }
     let mut b = Builder {
         p: Parser::new(source, file_name),
@@ -363,7 +421,7 @@ struct Builder<'a> {
     keyframes: Vec<PendingKeyframe>,
     blur: Option<BlurRecord>,
     pattern: Option<PatternRecord>,
-    film: Option<crate::film::FilmRecord>,
+    film: Option<crate::scene::FilmRecord>,
 }
 
 impl Builder<'_> {
@@ -427,7 +485,7 @@ impl Builder<'_> {
             if !e.deleted && !e.key_rest {
                 final_index[i] = Some(objects.len());
                 objects.push(e.record.clone());
-                object_pos.push(e.pos);
+                object_pos.push(e.pos.clone());
             }
         }
         // The checks of `delete`, `motion` and `keyframe` keep every entry
@@ -437,12 +495,12 @@ impl Builder<'_> {
         let mut motions = Vec::new();
         for m in self.motions {
             let mut record = m.record;
-            record.object = final_index[m.entry].ok_or_else(|| lost(&self.p, record.pos))?;
+            record.object = final_index[m.entry].ok_or_else(|| lost(&self.p, record.pos.clone()))?;
             motions.push(record);
         }
         let mut keyframes = Vec::new();
         for k in self.keyframes {
-            let first = final_index[k.first].ok_or_else(|| lost(&self.p, k.pos))?;
+            let first = final_index[k.first].ok_or_else(|| lost(&self.p, k.pos.clone()))?;
             let rest = k.rest.iter().map(|&i| self.entries[i].record.clone()).collect();
             keyframes.push(KeyframeRecord {
                 pos: k.pos,

@@ -7,7 +7,8 @@ use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use super::parse::Num;
 use super::{Builder, DeckError, ObjEntry};
-use crate::types::{Axis, CurveKind, ObjectRecord, Pos, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
+use crate::scene::Pos;
+use crate::types::{Axis, CurveKind, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// The cosine and sine of an angle in degrees; exact for whole multiples of
 /// 90°, so that quarter turns and `axis` give exact matrices.
@@ -375,7 +376,7 @@ impl Builder<'_> {
                 format!("a prism needs at least 3 vertices, found {}", points.len()),
             ));
         }
-        let vertex = convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex], f.message))?;
+        let vertex = convex_ccw(&points).map_err(|f| self.p.error_at(places[f.vertex].clone(), f.message))?;
         let radius = (max_r2(&vertex) + height * height).sqrt();
         let shape = Shape::Prism {
             orientp,
@@ -507,8 +508,6 @@ impl Builder<'_> {
             scale,
             bbox: Default::default(),
             orientation: 0.0,
-            cap_grid: None,
-            bounds: None,
         });
         self.push_object(
             pos,

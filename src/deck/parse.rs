@@ -4,7 +4,8 @@
 
 use super::lex::{is_integer, is_number, Lexer, Tok, Token};
 use super::DeckError;
-use crate::types::{Pos, STRINGLENGTH};
+use crate::scene::Pos;
+use crate::types::STRINGLENGTH;
 
 /// A number read from the deck, with its text as written (echoed by range
 /// errors).
@@ -21,7 +22,6 @@ pub(super) struct Parser<'a> {
     lexer: Lexer<'a>,
     /// The next token.
     next: Token,
-    file: &'a str,
     /// The record's keyword as DECK.md spells it, or `deck` between records.
     pub record: &'static str,
     /// The record's name, once it has been read and found meaningful.
@@ -101,11 +101,25 @@ fn edit_distance(a: &[char], b: &[char]) -> usize {
 /// The most characters of a word an error echoes.
 const SHOWN_CHARS: usize = 40;
 
+/// The most characters of a path an error echoes: any real path.
+const SHOWN_PATH_CHARS: usize = 256;
+
 /// A word as an error echoes it: quoted, control characters escaped (`\0`,
 /// `\t`, `\x1B`), cut after [`SHOWN_CHARS`] characters with its length.
 pub(super) fn shown(word: &str) -> String {
+    quoted(word, SHOWN_CHARS)
+}
+
+/// A path as an error echoes it: as [`shown`], cut only past
+/// [`SHOWN_PATH_CHARS`] (its end is what tells where it points).
+pub(super) fn shown_path(path: &std::path::Path) -> String {
+    quoted(&path.to_string_lossy(), SHOWN_PATH_CHARS)
+}
+
+/// `word` quoted, control characters escaped, cut after `most` characters.
+fn quoted(word: &str, most: usize) -> String {
     let mut out = String::from("'");
-    for c in word.chars().take(SHOWN_CHARS) {
+    for c in word.chars().take(most) {
         match c {
             '\0' => out.push_str("\\0"),
             '\t' => out.push_str("\\t"),
@@ -116,7 +130,7 @@ pub(super) fn shown(word: &str) -> String {
     }
     out.push('\'');
     let n = word.chars().count();
-    if n > SHOWN_CHARS {
+    if n > most {
         out = format!("{}…' ({n} characters)", &out[..out.len() - 1]);
     }
     out
@@ -132,13 +146,13 @@ fn found(tok: &Tok) -> String {
 }
 
 impl<'a> Parser<'a> {
-    pub fn new(source: &'a [u8], file: &'a str) -> Self {
-        let mut lexer = Lexer::new(source);
+    /// The cursor over `source`, a deck named `file` in errors.
+    pub fn new(source: &'a [u8], file: &str) -> Self {
+        let mut lexer = Lexer::new(source, file.into());
         let next = lexer.next_token();
         Parser {
             lexer,
             next,
-            file,
             record: "deck",
             name: None,
         }
@@ -150,30 +164,26 @@ impl<'a> Parser<'a> {
         self.name = None;
     }
 
-    /// An error at `pos` in the current record.
+    /// An error at `pos` (in the file `pos` names) in the current record;
+    /// one that a nested comment before it explains is reported as that
+    /// comment ([`Lexer::nested_comment`]).
     pub fn error_at(&self, pos: Pos, message: impl Into<String>) -> DeckError {
-        DeckError {
-            file: self.file.to_string(),
-            line: pos.line,
-            column: pos.column,
-            record: self.record.to_string(),
-            name: self.name.clone(),
-            message: message.into(),
-        }
+        let (pos, message) = self.lexer.nested_comment(pos.clone()).unwrap_or((pos, message.into()));
+        DeckError::at(pos, self.record, self.name.clone(), message)
     }
 
     /// The next token; a lexical error surfaces here, in the current record.
     pub fn peek(&self) -> Result<&Token, DeckError> {
         let t = &self.next;
         match &t.tok {
-            Tok::Bad(msg) => Err(self.error_at(t.pos, msg.clone())),
+            Tok::Bad(msg) => Err(self.error_at(t.pos.clone(), msg.clone())),
             _ => Ok(t),
         }
     }
 
     /// Where the next token stands (also for a lexical error).
     pub fn pos(&self) -> Pos {
-        self.next.pos
+        self.next.pos.clone()
     }
 
     /// Moves to the token after the next; the end of the deck and a lexical
@@ -187,7 +197,7 @@ impl<'a> Parser<'a> {
     /// An error at the next token: "expected WHAT, found TOKEN".
     pub fn expected(&self, what: &str) -> DeckError {
         match self.peek() {
-            Ok(t) => self.error_at(t.pos, format!("expected {what}, found {}", found(&t.tok))),
+            Ok(t) => self.error_at(t.pos.clone(), format!("expected {what}, found {}", found(&t.tok))),
             Err(e) => e,
         }
     }
@@ -206,7 +216,7 @@ impl<'a> Parser<'a> {
     pub fn peek_word(&self) -> Result<Option<(String, Pos)>, DeckError> {
         let t = self.peek()?;
         Ok(match &t.tok {
-            Tok::Word(w) => Some((w.clone(), t.pos)),
+            Tok::Word(w) => Some((w.clone(), t.pos.clone())),
             _ => None,
         })
     }
@@ -242,6 +252,19 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// ` — the field 'F' is given twice` when the next word is a field F of
+    /// the record where its optional fields stand: the required fields are
+    /// read by then (an optional one given twice is caught by
+    /// [`Parser::field`] itself).
+    fn given_twice(&self) -> Result<Option<String>, DeckError> {
+        let word = self.peek_word()?.map(|(w, _)| w).unwrap_or_default();
+        Ok(self
+            .record_fields()
+            .iter()
+            .find(|f| word.eq_ignore_ascii_case(f))
+            .map(|f| format!(" — the field '{f}' is given twice")))
+    }
+
     /// A word, whatever it is.
     pub fn word(&mut self, what: &str) -> Result<(String, Pos), DeckError> {
         match self.peek_word()? {
@@ -253,14 +276,51 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// The keyword `kw` (any case).
+    /// The keyword `kw` (any case). Another word gets "expected 'KW',
+    /// found 'WORD'", and then where the field WORD belongs if it is one of
+    /// the record's, or the nearest field if it looks like a slip.
     pub fn keyword(&mut self, kw: &str) -> Result<Pos, DeckError> {
         match self.peek_word()? {
             Some((w, pos)) if w.eq_ignore_ascii_case(kw) => {
                 self.advance();
                 Ok(pos)
             }
-            _ => Err(self.expected(&format!("'{kw}'"))),
+            Some((w, _)) => {
+                let mut e = self.expected(&format!("'{kw}'"));
+                e.message.push_str(&self.field_hint(kw, &w));
+                Err(e)
+            }
+            None => Err(self.expected(&format!("'{kw}'"))),
+        }
+    }
+
+    /// The current record's fields in DECK.md's order ([`super::FIELDS`]).
+    fn record_fields(&self) -> &'static [&'static str] {
+        super::FIELDS
+            .iter()
+            .find(|(record, _)| *record == self.record)
+            .map_or(&[], |(_, fields)| fields)
+    }
+
+    /// What follows "expected 'KW', found 'WORD'" in the current record: a
+    /// field of the record out of its place (DECK.md's order, required
+    /// fields first) is told which comes first, or that it was given
+    /// already; another word gets the nearest of `kw` and the record's
+    /// fields, `kw` first.
+    fn field_hint(&self, kw: &str, word: &str) -> String {
+        let fields = self.record_fields();
+        let place = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
+        match (place(kw), place(word)) {
+            (Some(k), Some(f)) if f > k => format!(" — '{kw}' comes before '{}'", fields[f]),
+            // The fields before `kw` are required ones, read already.
+            (Some(_), Some(f)) => format!(" — the field '{}' is given twice", fields[f]),
+            (None, Some(_)) => String::new(),
+            (_, None) => {
+                let names: Vec<&str> = std::iter::once(kw)
+                    .chain(fields.iter().copied().filter(|f| !f.eq_ignore_ascii_case(kw)))
+                    .collect();
+                did_you_mean(word, &names)
+            }
         }
     }
 
@@ -400,10 +460,19 @@ impl<'a> Parser<'a> {
             .map(|f| format!("'{f}'"))
             .collect();
         let unseen: Vec<&str> = allowed.iter().copied().filter(|f| !seen.contains(f)).collect();
-        if list.is_empty() {
-            Err(self.expected("end of line"))
+        let what = if list.is_empty() {
+            "end of line".to_string()
         } else {
-            Err(self.expected_near(&format!("end of line or {}", list.join(", ")), &unseen))
+            format!("end of line or {}", list.join(", "))
+        };
+        if let Some(twice) = self.given_twice()? {
+            let mut e = self.expected(&what);
+            e.message.push_str(&twice);
+            Err(e)
+        } else if list.is_empty() {
+            Err(self.expected(&what))
+        } else {
+            Err(self.expected_near(&what, &unseen))
         }
     }
 }

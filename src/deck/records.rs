@@ -7,11 +7,10 @@ use glam::DVec3;
 
 use super::objects::rotation;
 use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo, MAX_MAGNITUDE};
+use crate::options::Fidelity;
 use crate::raster::read_raster_file_within;
-use crate::types::{
-    Axis, BlurRecord, Expander, Fidelity, ImageSpec, Law, LightRecord, MotionRecord, Paint, PaintKind, PatternRecord,
-    Pos, SurfaceAttribute, SurfaceRecord, Texture, View,
-};
+use crate::scene::{BlurRecord, Expander, ImageSpec, Law, LightRecord, MotionRecord, PatternRecord, Pos, View};
+use crate::types::{Axis, Paint, PaintKind, SurfaceAttribute, SurfaceRecord, Texture};
 
 /// The largest `blur N`: the CLT sum costs N uniforms a sample.
 const MAX_BLUR: i64 = 1000;
@@ -100,7 +99,7 @@ impl Builder<'_> {
     pub(super) fn view(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("view");
         if let Some((_, first)) = &self.view {
-            return Err(self.second(pos, "view", *first));
+            return Err(self.second(pos, "view", first.clone()));
         }
         self.p.keyword("eye")?;
         let eyept = self.p.vec3("after 'eye'")?;
@@ -135,7 +134,7 @@ impl Builder<'_> {
     pub(super) fn image(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("image");
         if let Some((_, first)) = &self.image {
-            return Err(self.second(pos, "image", *first));
+            return Err(self.second(pos, "image", first.clone()));
         }
         let (width, _) = self.p.integer("for WIDTH", 1, MAX_SIDE)?;
         let (height, _) = self.p.integer("for HEIGHT", 1, MAX_SIDE)?;
@@ -166,7 +165,7 @@ impl Builder<'_> {
     pub(super) fn background(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("background");
         if let Some((_, first)) = &self.background {
-            return Err(self.second(pos, "background", *first));
+            return Err(self.second(pos, "background", first.clone()));
         }
         let c = self.rgb(["for R", "for G", "for B"], false)?;
         self.p.end_of_line()?;
@@ -324,10 +323,21 @@ impl Builder<'_> {
         let i = self.decorated_surface("texture", record_pos)?;
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
-        let raster = read_raster_file_within(&self.deck_dir.join(&file), Texture::LIMIT).map_err(|e| {
+        let path = self.deck_dir.join(&file);
+        let raster = read_raster_file_within(&path, super::TEXTURE_LIMIT).map_err(|e| {
+            // The path as written is relative to the deck's folder: say
+            // where that is, unless it is the same path.
+            let looked = if path.as_os_str() == file.as_str() {
+                String::new()
+            } else {
+                format!("; from the deck's folder, that is {}", super::parse::shown_path(&path))
+            };
             self.p.error_at(
-                file_pos,
-                format!("cannot read the raster file {}: {e}", super::parse::shown(&file)),
+                file_pos.clone(),
+                format!(
+                    "cannot read the raster file {}: {e}{looked}",
+                    super::parse::shown(&file)
+                ),
             )
         })?;
         if raster.width == 0
@@ -570,7 +580,7 @@ impl Builder<'_> {
     pub(super) fn blur(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("blur");
         if let Some(first) = &self.blur {
-            return Err(self.second(pos, "blur", first.pos));
+            return Err(self.second(pos, "blur", first.pos.clone()));
         }
         let (n, _) = self.p.integer("for N", 0, MAX_BLUR)?;
         self.p.end_of_line()?;
@@ -586,7 +596,7 @@ impl Builder<'_> {
     pub(super) fn pattern(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("pattern");
         if let Some(first) = &self.pattern {
-            return Err(self.second(pos, "pattern", first.pos));
+            return Err(self.second(pos, "pattern", first.pos.clone()));
         }
         let (m, _) = self.p.integer("for M", 1, MAX_PATTERN)?;
         self.p.end_of_line()?;

@@ -3,7 +3,8 @@
 //! 2879–3011.
 
 use super::{getdistance, saving, Distarray, OneBased, PaperError, PaperMessage, PaperPair, Sdirection};
-use crate::types::{Coeff, Fidelity, SweepShape, MAXSEGMENTS};
+use crate::options::Fidelity;
+use crate::types::{Coeff, SweepShape, MAXSEGMENTS};
 
 /// `plus(nu; pu, pv: coeff; var tu, tv: sdirection; var k)` (unit
 /// `paper`, OCR lines 2879–2908): "add more points to the object whose

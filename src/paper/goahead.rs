@@ -5,9 +5,9 @@ use super::{
     contour_box, coor, expanding2, getdistance, getmatrix, getpath, patch_range, reparam, saving1, PaperError,
     PaperMessage, PaperPair, Sdirection,
 };
-use crate::types::{
-    Coeff, DVec3, Expander, Fidelity, ObjectRecord, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
-};
+use crate::options::Fidelity;
+use crate::scene::{Expander, Scene};
+use crate::types::{Coeff, DVec3, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// What a count of Burtnyk's rule counts (erratum 10).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -300,8 +300,6 @@ pub fn widen_tbox(scene: &mut Scene, fidelity: Fidelity) {
                 sw.bbox.xmin -= by;
                 sw.bbox.ymax += by;
                 sw.bbox.ymin -= by;
-                // What a ray takes from the box, made again for the new one.
-                sw.bounds = crate::shapes::sweep::QueryBounds::kept(obj.class, sw);
             }
         }
     }
@@ -507,8 +505,6 @@ mod tests {
             scale: 1.0,
             bbox: BoundingBox::default(),
             orientation: 0.0,
-            cap_grid: None,
-            bounds: None,
         }
     }
 

@@ -4,8 +4,9 @@
 //! (b)–(c).
 
 use super::{contour_box, cubic_range, reparam, Distarray, Mh, PaperPair, Sdirection};
+use crate::options::Fidelity;
 use crate::shapes::sweep::orientation;
-use crate::types::{Coeff, Fidelity, ObjectRecord, SweepShape, MAXSEGMENTS};
+use crate::types::{Coeff, ObjectRecord, SweepShape, MAXSEGMENTS};
 
 /// M_h (§2.4.1), the Hermite basis matrix as `initM` fills `M1`: with
 /// T = [t³ t² t 1], T·M_h = (2t³−3t²+1, −2t³+3t², t³−2t²+t, t³−t²), the
@@ -211,7 +212,6 @@ pub fn Hermite(int: &PaperPair, t: f64, obj: &mut SweepShape) {
         Fidelity::Thesis => segments_box(int, obj),
     };
     obj.orientation = orientation(&obj.u, &obj.v);
-    obj.cap_grid = None; // a contour of the moment: its caps are solved
 }
 
 /// `initM` (unit `paper`, §2.4.1, OCR lines 2689–2743): "initialize the
@@ -352,7 +352,6 @@ pub fn do34(time: f64, int: &PaperPair, obj: &mut SweepShape) {
         Fidelity::Thesis => segments_box(int, obj),
     };
     obj.orientation = orientation(&obj.u, &obj.v);
-    obj.cap_grid = None; // a contour of the moment: its caps are solved
 }
 
 /// The in-between contour of pair `int` at `time`, as the `paper = 1`
@@ -437,8 +436,6 @@ mod tests {
             scale: 1.0,
             bbox: Default::default(),
             orientation: 0.0,
-            cap_grid: None,
-            bounds: None,
         };
         let obj = ObjectRecord {
             name: "x".into(),
@@ -451,7 +448,7 @@ mod tests {
             radius: 1.0,
             shape: crate::types::Shape::Sweep(first.clone()),
         };
-        let mut pair = PaperPair::empty(1, &obj, &first, crate::types::Expander::Burtnyk, Fidelity::Thesis);
+        let mut pair = PaperPair::empty(1, &obj, &first, crate::scene::Expander::Burtnyk, Fidelity::Thesis);
         pair.snu = 100;
         let mut out = pair.scratch();
         Hermite(&pair, 0.5, &mut out);

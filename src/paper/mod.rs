@@ -72,10 +72,11 @@ pub use hermite::{
 
 use std::ops::{Index, IndexMut};
 
-use crate::types::{
-    BoundingBox, Coeff, DVec3, Expander, Fidelity, KeyframeRecord, ObjectRecord, Pose, PrimitiveClass, Scene,
-    SweepShape, MAXSEGMENTS,
-};
+use crate::types::{BoundingBox, Coeff, DVec3, ObjectRecord, Pose, PrimitiveClass, SweepShape, MAXSEGMENTS};
+
+use crate::scene::{Expander, KeyframeRecord, Scene};
+
+use crate::options::Fidelity;
 
 /// `Mh`: a 4×4 matrix, `H[i,j]` is `h[i - 1][j - 1]` (row i, column j).
 pub type Mh = [[f64; 4]; 4];
@@ -461,6 +462,30 @@ impl PaperChain {
     pub fn pose(&self, time: f64) -> Pose {
         let (pair, local) = self.locate(time);
         pair.pose(local)
+    }
+
+    /// The box the in-between object's origin (`sphereo`) stays in over
+    /// the shutter times `t0` ≤ t ≤ `t1`: the port's, for bounds over the
+    /// shutter. Within a pair the origin moves along a straight line
+    /// ([`PaperPair::pose`]: FIRST's place plus t·`diff`), so the box of
+    /// its places at `t0`, `t1` and at both sides of each pair boundary
+    /// between holds every place (times past the ends extrapolate the
+    /// first or last pair, as [`chain_time`] does).
+    pub fn centre_bounds(&self, t0: f64, t1: f64) -> BoundingBox {
+        let (a, b) = (t0.min(t1), t0.max(t1));
+        let mut bounds = BoundingBox::EMPTY
+            .holding(self.pose(a).sphereo)
+            .holding(self.pose(b).sphereo);
+        let n = self.pairs.len();
+        for k in 1..n {
+            let boundary = k as f64 / n as f64;
+            if boundary > a && boundary < b {
+                bounds = bounds
+                    .holding(self.pairs[k - 1].pose(1.0).sphereo)
+                    .holding(self.pairs[k].pose(0.0).sphereo);
+            }
+        }
+        bounds
     }
 
     /// The in-between contour at shutter time `time`, into `obj`

@@ -1,18 +1,19 @@
 //! Unit `proc` of the thesis (listing in the OCR text, lines 1437–2035):
 //! `rotatetest`, `floortest`, `startest`, `floorstar` here, in the
 //! listing's order; `laguerre`, `sorting`, `spline`, `outrectp` and
-//! `roottesting` in [`sweep`]; a second root solver, not the thesis's, in
-//! [`robust`].
+//! `roottesting` in [`sweep`]. The port's second root solver, not the
+//! thesis's, stands beside the unit ([`crate::robust`]).
 //!
 //! The pattern procedures of the listing set the global `painting`; here
 //! they return the [`Painting`] they would set, or `None` where the listing
 //! leaves `painting` as it was. The listing reads the pattern scale from the
 //! globals `lengthx`, `lengthy`; here they are arguments.
 
-pub mod robust;
 pub mod sweep;
 
-use crate::types::{Fidelity, Painting, Ray};
+use crate::options::Fidelity;
+
+use crate::types::{Painting, Ray};
 
 /// `3.141592654`, the listing's value of π in `rotatetest`, kept as printed.
 #[allow(clippy::approx_constant)]
@@ -165,7 +166,7 @@ mod tests {
             f64::NAN,
         ];
         for k in 0..4000u64 {
-            let u = crate::drt::hashed_uniform(k) - 0.5;
+            let u = crate::hash::hashed_uniform(k) - 0.5;
             let scale = 10f64.powi((k % 20) as i32 - 3);
             xs.push(u * scale);
             xs.push((u * 64.0).round() / 2.0); // the halves themselves

@@ -14,9 +14,9 @@
 //! argument. Pure outputs of `var` parameters become return values
 //! (`laguerre`'s `total`, `sorting`'s `pos`, `outrectp`'s `outrect`).
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use crate::types::{BoundingBox, Coeff, CurveKind, PrimitiveClass};
 
-use crate::types::{BoundingBox, Coeff, CurveKind, Fidelity, PrimitiveClass};
+use crate::options::Fidelity;
 
 /// The root record of the listing (the element type of `col` and `co2`):
 /// `a` the root, `b` the derivative there (`laguerre` fills it), `c` what
@@ -359,16 +359,6 @@ pub enum RootTest {
     Impossible,
 }
 
-/// How many times [`roottesting`] has answered [`RootTest::Impossible`]
-/// in this process (the listing wrote a line to standard output each
-/// time; the port counts, for the renderer's debug log).
-static ROOTTESTING_IMPOSSIBLE: AtomicU64 = AtomicU64::new(0);
-
-/// The number of `**** impossible ****` events so far (see [`roottesting`]).
-pub fn roottesting_impossible_count() -> u64 {
-    ROOTTESTING_IMPOSSIBLE.load(Ordering::Relaxed)
-}
-
 /// `roottesting(var number: integer; var root: co2; temp: integer)` (unit
 /// `proc`, OCR lines 1988–2017): a ray enters and leaves a closed sweep,
 /// so the roots `root[temp..temp + number]` should be even in number. An
@@ -380,15 +370,14 @@ pub fn roottesting_impossible_count() -> u64 {
 /// is still odd. As printed that cannot happen (an odd count always gains
 /// one), except where the copy has no room: Pascal would stop on a range
 /// error; here the count stays odd and the answer is
-/// [`RootTest::Impossible`], also counted for
-/// [`roottesting_impossible_count`]. Both fidelities alike.
+/// [`RootTest::Impossible`], which the caller sees (the listing's line on
+/// standard output is not written). Both fidelities alike.
 pub fn roottesting(number: &mut usize, root: &mut [Root], temp: usize) -> RootTest {
     if number.is_multiple_of(2) {
         return RootTest::Even;
     }
     let end = temp + *number;
     if end >= root.len() {
-        ROOTTESTING_IMPOSSIBLE.fetch_add(1, Ordering::Relaxed);
         return RootTest::Impossible;
     }
     // `number = 1`: root[temp+2] := root[temp+1]; the odd case picks the
@@ -656,12 +645,10 @@ mod tests {
 
     #[test]
     fn roottesting_impossible_when_no_room() {
-        let before = roottesting_impossible_count();
         let mut r = [rec(1.0, 0.1), rec(2.0, 0.2), rec(3.0, 0.3)];
         let mut n = 3;
         assert_eq!(roottesting(&mut n, &mut r, 0), RootTest::Impossible);
         assert_eq!(n, 3, "the count stays odd");
-        assert!(roottesting_impossible_count() > before);
     }
 
     /// Ascending coefficients of ∏(x − rᵢ), padded to seven.

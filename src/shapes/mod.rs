@@ -18,9 +18,13 @@
 //! away is intersected as exactly as from 10 (the port's extension; the
 //! thesis's eye is never far, DEVIATIONS D20).
 
+mod posed;
 pub mod sweep;
 
-use crate::types::{DVec3, LocalHit, ObjectRecord, Options, Pose, Ray, Shape};
+pub use posed::Posed;
+pub use sweep::{prepare_caches, SweepCache};
+
+use crate::types::{DVec3, LocalHit, ObjectRecord, Ray, Shape};
 
 /// A ray taken near an object: the same line from another origin,
 /// `ray.origin = original.at(shift)`, and `tmin` measured from there.
@@ -409,68 +413,6 @@ fn cylinder_hit(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> 
     best
 }
 
-/// The hit of a world ray with one object standing at `pose`: the
-/// bounding-sphere test (`sphereo`, `radius`), the ray into the local
-/// frame, the shape's own intersection. Returns the local hit (its `t` is
-/// the world parameter).
-pub fn intersect_object(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64, opts: &Options) -> Option<LocalHit> {
-    if !in_bounding_sphere(obj, pose, ray, tmin) {
-        return None;
-    }
-    intersect_shape(obj, &obj.shape, pose, ray, tmin, opts)
-}
-
-/// Does `shape` (as in [`intersect_shape`]) stand on the ray at some t
-/// with `tmin` < t < `tmax`? The shadow ray's question: a sweep answers it
-/// at its first hit before `tmax` ([`sweep::sweep_blocks`]), the other
-/// shapes by their nearest hit. The same answer as
-/// `intersect_shape(..).is_some_and(|h| h.t < tmax)`.
-pub fn shape_blocks(
-    obj: &ObjectRecord,
-    shape: &Shape,
-    pose: &Pose,
-    ray: &Ray,
-    tmin: f64,
-    tmax: f64,
-    opts: &Options,
-) -> bool {
-    match shape {
-        Shape::Sweep(sw) => sweep::sweep_blocks(obj.class, sw, &ray.transformed(&pose.inverse), tmin, tmax, opts),
-        Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&pose.inverse), tmin, tmax),
-        _ => intersect_shape(obj, shape, pose, ray, tmin, opts).is_some_and(|h| h.t < tmax),
-    }
-}
-
-/// Does the ray reach the object's bounding sphere (`sphereo` at `pose`,
-/// `radius`) beyond `tmin`? A cheap rejection before any shape's own test
-/// (§2.1.2 (1)(b), the bounding volume).
-pub fn in_bounding_sphere(obj: &ObjectRecord, pose: &Pose, ray: &Ray, tmin: f64) -> bool {
-    bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin)
-}
-
-/// The hit of a world ray with `shape` (the object's own, or its contour
-/// of the moment when it deforms) standing at `pose`, without the
-/// bounding-sphere test.
-pub fn intersect_shape(
-    obj: &ObjectRecord,
-    shape: &Shape,
-    pose: &Pose,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-) -> Option<LocalHit> {
-    let local = ray.transformed(&pose.inverse);
-    match shape {
-        Shape::Sphere => intersect_sphere(obj.radius, &local, tmin),
-        Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
-        Shape::Cylinder {
-            cylradius, top, bottom, ..
-        } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
-        Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
-        Shape::Sweep(sw) => sweep::intersect_sweep(obj.class, sw, &local, tmin, opts),
-    }
-}
-
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
 /// Padded by a part in 10⁶ so no surface hit is lost.
 fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
@@ -580,7 +522,7 @@ mod tests {
     /// `tmin` from 0 to beyond the sphere.
     #[test]
     fn bounding_sphere_test_as_with_its_root() {
-        use crate::drt::hashed_uniform;
+        use crate::hash::hashed_uniform;
         let with_root = |centre: DVec3, radius: f64, ray: &Ray, tmin: f64| {
             let r = radius * (1.0 + 1e-6) + 1e-9;
             let oc = ray.origin - centre;
@@ -616,7 +558,7 @@ mod tests {
     /// edges, exactly axis-parallel ones included.
     #[test]
     fn block_is_the_six_plane_clip_to_the_bit() {
-        use crate::drt::hashed_uniform;
+        use crate::hash::hashed_uniform;
         let lengths = DVec3::new(2.0, 3.0, 0.5);
         let h = lengths * 0.5;
         let planes = [
@@ -671,7 +613,7 @@ mod tests {
     /// at and beyond the hits; blocks of every order of thinness.
     #[test]
     fn block_blocks_as_the_nearest_hit_before_tmax() {
-        use crate::drt::hashed_uniform;
+        use crate::hash::hashed_uniform;
         let (mut yes, mut no) = (0, 0);
         for k in 0..60_000u64 {
             let r = |j: u64| 2.0 * hashed_uniform(16 * k + j) - 1.0;

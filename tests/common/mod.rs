@@ -1,6 +1,9 @@
 //! Scenes built by hand for the tests, without the deck reader.
 #![allow(dead_code)] // each test file uses a different part of this module
 
+use raytrace::options::*;
+use raytrace::raytrace::{render, Prepared, Render, Request};
+use raytrace::scene::*;
 use raytrace::types::*;
 
 pub mod sweeps;
@@ -98,16 +101,30 @@ pub fn decks() -> &'static std::path::Path {
     std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/legacy_pascal/decks"))
 }
 
-/// A legacy deck read by `initialize` and set up by `prepare`.
+/// A legacy deck as `initialize` reads it (prepared by [`prepare`]).
 pub fn load_deck(name: &str, fidelity: Fidelity) -> Scene {
     let src = std::fs::read_to_string(decks().join(name)).unwrap();
-    let mut scene = raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap();
-    let opts = Options {
-        fidelity,
-        ..Options::default()
-    };
-    raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
-    scene
+    raytrace::deck::initialize(&src, name, decks(), fidelity).unwrap()
+}
+
+/// `scene` prepared with `opts`; a test's scene must prepare.
+pub fn prepare(scene: Scene, opts: Options) -> Prepared {
+    Prepared::new(scene, opts).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The whole still of `scene` rendered with `opts`.
+pub fn render_still(scene: &Scene, opts: &Options) -> Render {
+    render_request(scene, opts, &Request::STILL)
+}
+
+/// `request` of `scene` rendered with `opts`.
+pub fn render_request(scene: &Scene, opts: &Options, request: &Request) -> Render {
+    render(&prepare(scene.clone(), *opts), request).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The whole of film frame `frame` of `scene` rendered with `opts`.
+pub fn render_frame(scene: &Scene, opts: &Options, frame: raytrace::film::Frame) -> Render {
+    render_request(scene, opts, &Request::frame(frame))
 }
 
 /// A raster file from its header fields, colour map and (encoded) data.
@@ -217,8 +234,9 @@ pub fn moving_block(m: usize, height: usize, z_size: f64) -> Scene {
 /// The (first) sweep object of a deck, prepared as the renderer prepares
 /// it: its class and shape.
 pub fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
-    let scene = load_deck(deck, Fidelity::Thesis);
-    scene
+    let prepared = prepare(load_deck(deck, Fidelity::Thesis), Options::default());
+    prepared
+        .scene()
         .objects
         .iter()
         .find_map(|o| match &o.shape {

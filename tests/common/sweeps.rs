@@ -1,8 +1,10 @@
 //! The sweeps, rays and answers the sweep tests share (tests/sweep.rs,
 //! tests/sweep_driver.rs, tests/sweep_cases.rs).
 
+use raytrace::options::*;
 use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
-use raytrace::shapes::sweep::{intersect_sweep, prepare_sweeps};
+use raytrace::scene::*;
+use raytrace::shapes::sweep::{prepare_sweeps, Sweep, SweepCache};
 use raytrace::types::*;
 use std::f64::consts::{PI, TAU};
 
@@ -106,8 +108,6 @@ pub fn raw(curve: CurveKind, points: Vec<[f64; 2]>, length: f64, scale: f64) -> 
         scale,
         bbox: BoundingBox::default(),
         orientation: 0.0,
-        cap_grid: None,
-        bounds: None,
     }
 }
 
@@ -421,8 +421,15 @@ pub fn both() -> [Options; 2] {
     [ROBUST, LAGUERRE]
 }
 
-/// The hit of the ray from `o` along `d` (normalized).
+/// The hit of the ray from `o` along `d` (normalized), with the cache a
+/// render makes for the sweep.
 pub fn hit(class: PrimitiveClass, sw: &SweepShape, o: [f64; 3], d: [f64; 3], opts: &Options) -> Option<LocalHit> {
     let ray = Ray::new(DVec3::from_array(o), DVec3::from_array(d).normalize());
-    intersect_sweep(class, sw, &ray, 1e-9, opts)
+    let cache = SweepCache::new(class, sw);
+    let obj = Sweep {
+        class,
+        shape: sw,
+        cache: cache.as_ref(),
+    };
+    obj.intersect(&ray, 1e-9, opts, &mut 0)
 }

@@ -1,41 +1,21 @@
 //! `tools bench DECK`: a quick timing of a deck's render (medians, never
 //! asserted in tests).
 
-use std::path::Path;
 use std::time::Instant;
 
-use raytrace::types::Options;
+use raytrace::raytrace::Prepared;
 
-/// Renders `deck` once untimed, then `runs` times, and prints the median,
-/// fastest and slowest time and the rays per second; fails if a render
-/// differs from the first. `size` and `mask` override the deck's image.
-pub fn bench(
-    deck: &Path,
-    runs: usize,
-    threads: Option<usize>,
-    opts: &Options,
-    size: Option<(usize, usize)>,
-    mask: Option<usize>,
-) -> Result<(), String> {
-    let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
-    let dir = deck.parent().unwrap_or(Path::new("."));
-    let name = deck.display().to_string();
-    let mut scene = raytrace::deck::initialize(&source, &name, dir, opts.fidelity).map_err(|e| e.to_string())?;
-    if size.is_some() || mask.is_some() {
-        let (w, h) = size.unwrap_or((scene.image.width, scene.image.height));
-        let m = mask.unwrap_or(scene.image.masksize);
-        scene.resize(w, h, m);
-    }
-    raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|e| e.to_string())?;
-    let warm = pool.install(|| raytrace::raytrace::render(&scene, opts, &|| {}));
+/// Renders the prepared `scene` of the deck `name` once untimed, then
+/// `runs` times on `pool`, and prints the median, fastest and slowest time
+/// and the rays per second; fails if a render differs from the first.
+pub fn bench(name: &str, prepared: &Prepared, runs: usize, pool: &rayon::ThreadPool) -> Result<(), String> {
+    let (scene, opts) = (prepared.scene(), prepared.options());
+    let render = || pool.install(|| crate::decks::still(prepared));
+    let warm = render();
     let mut secs = Vec::with_capacity(runs);
     for _ in 0..runs {
         let t = Instant::now();
-        let r = pool.install(|| raytrace::raytrace::render(&scene, opts, &|| {}));
+        let r = render();
         secs.push(t.elapsed().as_secs_f64());
         if r.raster != warm.raster {
             return Err("a render differs from the warm-up: the renderer is not deterministic".into());

@@ -2,7 +2,7 @@
 //!
 //! Panels 1 and 2, time samplers: for each motion-blurred deck of
 //! [`BLUR_DECKS`] and each way of choosing the
-//! subpixel times, the RMSE of the float image (`render_colours`) against
+//! subpixel times, the RMSE of the float image (`Render::colours`) against
 //! a reference of 1024 stratified time samples a pixel (mask 32), against
 //! the median render time (all threads; panel 1) and against the rays a
 //! pixel (panel 2), at 1, 4, 16 and 64 samples a pixel (mask 1, 2, 4, 8;
@@ -22,10 +22,11 @@ use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use raytrace::raytrace::{render, render_colours};
-use raytrace::types::{Fidelity, Options, Scene, Solver, TimeSampler};
+use raytrace::options::{Fidelity, Options, Solver, TimeSampler};
+use raytrace::raytrace::Prepared;
+use raytrace::scene::Scene;
 
-use crate::decks::{prepared, BLUR_DECKS, SOLVER_DECKS};
+use crate::decks::{prepared, still, BLUR_DECKS, SOLVER_DECKS};
 use crate::measure::{differing, interleaved_medians, is_sweep, probe_objects, rmse, silhouette};
 
 /// One way of choosing the subpixel times.
@@ -126,17 +127,17 @@ fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
 /// `runs` interleaved rounds over every render.
 pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> {
     let mut out = Vec::new();
-    let mut jobs: Vec<(Scene, Options)> = Vec::new();
+    let mut jobs: Vec<Prepared> = Vec::new();
     for &deck in BLUR_DECKS {
         let ref_opts = opts(Fidelity::Thesis, Solver::Laguerre, TimeSampler::Stratified);
         let ref_scene = prepared(deck, &ref_opts, Some((size, size, BLUR_REFERENCE_MASK)))?;
         eprintln!("{deck}: reference, {BLUR_REFERENCE_MASK}×{BLUR_REFERENCE_MASK} stratified");
-        let reference = render_colours(&ref_scene, &ref_opts);
+        let reference = still(&ref_scene).colours;
         for (si, s) in SAMPLINGS.iter().enumerate() {
             let o = opts(s.fidelity, Solver::Laguerre, s.sampler);
             for mask in BLUR_MASKS {
                 let scene = prepared(deck, &o, Some((size, size, mask)))?;
-                let e = rmse(&render_colours(&scene, &o), &reference);
+                let e = rmse(&still(&scene).colours, &reference);
                 out.push(BlurPoint {
                     deck,
                     sampling: si,
@@ -144,14 +145,14 @@ pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> 
                     secs: f64::NAN,
                     rmse: e,
                 });
-                jobs.push((scene, o));
+                jobs.push(scene);
             }
         }
     }
     eprintln!("timing {} renders, {runs} rounds", jobs.len());
     let mut closures: Vec<Box<dyn FnMut()>> = jobs
         .iter()
-        .map(|(scene, o)| Box::new(move || drop(std::hint::black_box(render_colours(scene, o)))) as Box<dyn FnMut()>)
+        .map(|scene| Box::new(move || drop(std::hint::black_box(still(scene)))) as Box<dyn FnMut()>)
         .collect();
     let mut refs: Vec<&mut dyn FnMut()> = closures.iter_mut().map(|c| c.as_mut() as &mut dyn FnMut()).collect();
     let secs = interleaved_medians(&mut refs, runs);
@@ -186,35 +187,35 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
         let robust = opts(Fidelity::Thesis, Solver::Robust, TimeSampler::Table);
         let ref_scene = prepared(deck, &robust, Some((size, size, SOLVER_REFERENCE_MASK)))?;
         eprintln!("{deck}: reference, robust at {SOLVER_REFERENCE_MASK}×{SOLVER_REFERENCE_MASK}");
-        let reference = render_colours(&ref_scene, &robust);
-        let sweeps = sweeps_of(&ref_scene);
-        let seen = probe_objects(&ref_scene, PROBE, &robust);
+        let reference = still(&ref_scene).colours;
+        let sweeps = sweeps_of(ref_scene.scene());
+        let seen = probe_objects(&ref_scene, PROBE);
         let sil = silhouette(&seen, |o| sweeps.contains(&o));
         let count = |v: &[bool], only_sil: bool| v.iter().zip(&sil).filter(|(d, s)| **d && (**s || !only_sil)).count();
         let n_sil = sil.iter().filter(|s| **s).count();
         // The cost of a ray is the solver's and the deck's, not the mask's:
         // one timing a solver, on renders at TIMING_MASK, the two solvers
         // interleaved.
-        let timing_scene = prepared(deck, &robust, Some((size, size, TIMING_MASK)))?;
         let solver_opts = [Solver::Laguerre, Solver::Robust].map(|s| opts(Fidelity::Thesis, s, TimeSampler::Table));
-        let rays = solver_opts.map(|o| render(&timing_scene, &o, &|| {}).stats.rays.max(1));
-        let (lag, rob) = (&solver_opts[0], &solver_opts[1]);
+        let (lag, rob) = (
+            prepared(deck, &solver_opts[0], Some((size, size, TIMING_MASK)))?,
+            prepared(deck, &solver_opts[1], Some((size, size, TIMING_MASK)))?,
+        );
+        let rays = [&lag, &rob].map(|p| still(p).stats.rays.max(1));
         let secs = one.install(|| {
             interleaved_medians(
-                &mut [
-                    &mut || drop(std::hint::black_box(render_colours(&timing_scene, lag))),
-                    &mut || drop(std::hint::black_box(render_colours(&timing_scene, rob))),
-                ],
+                &mut [&mut || drop(std::hint::black_box(still(&lag))), &mut || {
+                    drop(std::hint::black_box(still(&rob)))
+                }],
                 runs,
             )
         });
         let per_ray = [secs[0] / rays[0] as f64, secs[1] / rays[1] as f64];
         for mask in SOLVER_MASKS {
-            let scene = prepared(deck, &robust, Some((size, size, mask)))?;
-            let robust_img = render_colours(&scene, &robust);
+            let robust_img = still(&prepared(deck, &robust, Some((size, size, mask)))?).colours;
             for (k, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
                 let o = opts(Fidelity::Thesis, solver, TimeSampler::Table);
-                let img = render_colours(&scene, &o);
+                let img = still(&prepared(deck, &o, Some((size, size, mask)))?).colours;
                 let d_ref = differing(&img, &reference, DIFFER);
                 let d_same = differing(&img, &robust_img, DIFFER);
                 let p = SolverPoint {

@@ -2,9 +2,10 @@
 //! against the deck's sweep objects, with `laguerre` and with the robust
 //! solver. For the stability report (docs/STABILITY.md).
 
-use raytrace::raytrace::{prepare, Camera};
-use raytrace::shapes::intersect_object;
-use raytrace::types::{Options, Shape, Solver};
+use raytrace::options::{Options, Solver};
+use raytrace::raytrace::Camera;
+use raytrace::shapes::Posed;
+use raytrace::types::Shape;
 
 use crate::decks::load;
 
@@ -32,17 +33,25 @@ pub fn deck_misses(deck: &str, size: usize) -> Result<DeckMisses, String> {
     };
     let mut scene = load(deck, lag.fidelity)?;
     scene.resize(size, size, 1);
-    prepare(&mut scene, &lag).map_err(|e| e.to_string())?;
-    let cam = Camera::new(&scene, lag.fidelity);
-    let sweeps: Vec<_> = scene
-        .objects
-        .iter()
-        .filter(|o| matches!(o.shape, Shape::Sweep(_)))
+    let prepared = crate::decks::prepare(scene, &lag)?;
+    let scene = prepared.scene();
+    let cam = Camera::new(scene, lag.fidelity);
+    let caches = prepared.caches();
+    let poses: Vec<_> = scene.objects.iter().map(|o| o.pose()).collect();
+    let sweeps: Vec<Posed> = (0..scene.objects.len())
+        .filter(|&i| matches!(scene.objects[i].shape, Shape::Sweep(_)))
+        .map(|i| Posed {
+            obj: &scene.objects[i],
+            shape: &scene.objects[i].shape,
+            cache: caches[i].as_deref(),
+            pose: &poses[i],
+        })
         .collect();
     let nearest = |ray, opts: &Options| {
         sweeps
             .iter()
-            .filter_map(|o| intersect_object(o, &o.pose(), &ray, 1e-9, opts).map(|h| h.t))
+            .filter(|o| o.meets_bounding_sphere(&ray, 1e-9))
+            .filter_map(|o| o.intersect(&ray, 1e-9, opts, &mut 0).map(|h| h.t))
             .min_by(f64::total_cmp)
     };
     let mut out = DeckMisses::default();

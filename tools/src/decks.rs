@@ -6,7 +6,9 @@
 
 use std::path::{Path, PathBuf};
 
-use raytrace::types::{Fidelity, Options, Scene};
+use raytrace::options::{Fidelity, Options};
+use raytrace::raytrace::{render, Prepared, Render, Request};
+use raytrace::scene::Scene;
 
 /// The decks of Chapter 5, rendered as they are by the benches.
 pub const CHAPTER5: &[&str] = &[
@@ -64,13 +66,23 @@ pub fn load_source(source: &str, file_name: &str, dir: &Path, fidelity: Fidelity
 
 /// A scene ready to render with `opts`: read, resized to `width`×`height`
 /// with `mask`×`mask` subpixels when `size` is given, and prepared.
-pub fn prepared(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Result<Scene, String> {
+pub fn prepared(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Result<Prepared, String> {
     let mut scene = load(name, opts.fidelity)?;
     if let Some((w, h, m)) = size {
         scene.resize(w, h, m);
     }
-    raytrace::raytrace::prepare(&mut scene, opts).map_err(|e| e.to_string())?;
-    Ok(scene)
+    prepare(scene, opts)
+}
+
+/// `scene` prepared with `opts`.
+pub fn prepare(scene: Scene, opts: &Options) -> Result<Prepared, String> {
+    Prepared::new(scene, *opts).map_err(|e| e.to_string())
+}
+
+/// The whole still of a prepared scene (a whole image always renders:
+/// only a window can be refused).
+pub fn still(prepared: &Prepared) -> Render {
+    render(prepared, &Request::STILL).unwrap_or_else(|e| panic!("a whole image: {e}"))
 }
 
 /// The deck of the segment-count bench: a translation sweep whose contour
@@ -118,9 +130,10 @@ mod tests {
     fn circle_sweep_deck_has_n_segments() {
         for n in [4, 8, 15, 30, 60] {
             let text = circle_sweep_deck(n, 16, 16, 1);
-            let mut scene = load_source(&text, "circle", Path::new("."), Fidelity::Thesis).unwrap();
-            raytrace::raytrace::prepare(&mut scene, &Options::default()).unwrap();
-            let sweep = scene
+            let scene = load_source(&text, "circle", Path::new("."), Fidelity::Thesis).unwrap();
+            let prepared = prepare(scene, &Options::default()).unwrap();
+            let sweep = prepared
+                .scene()
                 .objects
                 .iter()
                 .find_map(|o| match &o.shape {

@@ -2,8 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
+use raytrace::options::{Fidelity, Options};
 use raytrace::raster::Raster;
-use raytrace::types::{Fidelity, Options};
 
 /// Writes the [`filmstrip`] of `deck` to the PNG `out`; without `out`,
 /// to `raster/<deck name>_frames.png` (the folder the renders go to, which
@@ -40,18 +40,16 @@ pub fn filmstrip(deck: &Path, times: &[f64], size: usize, fidelity: Fidelity) ->
     };
     let mut scene =
         raytrace::deck::initialize(&source, &deck.display().to_string(), dir, fidelity).map_err(|e| e.to_string())?;
-    raytrace::raytrace::prepare(&mut scene, &opts).map_err(|e| e.to_string())?;
-    let chains = raytrace::raytrace::key_frame_chains(&scene, fidelity).map_err(|e| e.to_string())?;
     scene.image.width = size;
     scene.image.height = size;
+    let prepared = crate::decks::prepare(scene, &opts)?;
     let mut strip = Raster {
         width: size * times.len().max(1),
         height: size,
         pixels: vec![[0; 3]; size * size * times.len().max(1)],
     };
     for (i, &t) in times.iter().enumerate() {
-        let still = raytrace::raytrace::still_at(&scene, &chains, t, fidelity);
-        let r = raytrace::raytrace::render(&still, &opts, &|| {}).raster;
+        let r = crate::decks::still(&prepared.still_at(t)).raster;
         for y in 0..size {
             let row = y * strip.width + i * size;
             strip.pixels[row..row + size].copy_from_slice(&r.pixels[y * size..(y + 1) * size]);

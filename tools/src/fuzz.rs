@@ -23,8 +23,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use raytrace::options::{Fidelity, Options};
 use raytrace::raster::{encode_raster, read_raster};
-use raytrace::types::{Fidelity, Options};
+use raytrace::raytrace::{render, Prepared, Request};
 
 /// The longest error message that is not a finding (a message must cut what
 /// it echoes).
@@ -323,18 +324,20 @@ pub fn check_deck(input: &[u8], dir: &Path) -> Outcome {
     kinds.dedup();
     let kind = format!("{} keyframes {}", kinds.join(" "), scene.keyframes.len());
     let opts = Options::default();
-    match catch_unwind(AssertUnwindSafe(|| raytrace::raytrace::prepare(&mut scene, &opts))) {
-        Err(_) => return Outcome::Finding("prepare panicked".into()),
-        Ok(Err(e)) => return Outcome::Refused(format!("prepare: {}", shape(&e.to_string()))),
-        Ok(Ok(())) => {}
-    }
+    // Preparing does not depend on the image's size.
     scene.image.width = 4;
     scene.image.height = 4;
     scene.image.masksize = 1;
-    match catch_unwind(AssertUnwindSafe(|| raytrace::raytrace::render(&scene, &opts, &|| {}))) {
+    let prepared = match catch_unwind(AssertUnwindSafe(|| Prepared::new(scene, opts))) {
+        Err(_) => return Outcome::Finding("prepare panicked".into()),
+        Ok(Err(e)) => return Outcome::Refused(format!("prepare: {}", shape(&e.to_string()))),
+        Ok(Ok(p)) => p,
+    };
+    match catch_unwind(AssertUnwindSafe(|| render(&prepared, &Request::STILL))) {
         Err(_) => Outcome::Finding("render panicked".into()),
-        Ok(r) if r.nonfinite > 0 => Outcome::Finding(format!("{} of 16 pixels not finite", r.nonfinite)),
-        Ok(_) => Outcome::Accepted(kind),
+        Ok(Err(e)) => Outcome::Finding(format!("a whole image refused: {e}")),
+        Ok(Ok(r)) if r.nonfinite > 0 => Outcome::Finding(format!("{} of 16 pixels not finite", r.nonfinite)),
+        Ok(Ok(_)) => Outcome::Accepted(kind),
     }
 }
 

@@ -4,16 +4,17 @@
 //! [`GALLERY`] is the one table of them: a picture, its deck, how it is
 //! drawn. `cargo run -p tools --release -- gallery` rewrites them all
 //! (after the texture rasters the decks paste, as `tools texture` writes
-//! them); `--check` only compares, and names the pictures that are stale.
+//! them); `--check` only compares, in memory, and names the pictures (and
+//! texture rasters) that are stale: it writes nothing.
 //! The tests hold the README's first picture to a render of the default
 //! deck, so it cannot go stale silently. The chart (docs/speed_accuracy.png)
 //! is measured, not drawn from one deck: `tools chart` makes it.
 
 use std::path::{Path, PathBuf};
 
+use raytrace::options::{Fidelity, Options, Solver};
 use raytrace::psout;
 use raytrace::raster::Raster;
-use raytrace::types::{Fidelity, Options, Solver};
 
 /// How a picture is drawn from its deck.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -218,11 +219,17 @@ pub fn film_frames(deck: &Path, limit: u32) -> Result<(Vec<Raster>, u32), String
     let opts = Options::default();
     let scene = crate::decks::prepared(&deck.display().to_string(), &opts, None)?;
     let film = scene
+        .scene()
         .film
+        .as_ref()
         .ok_or_else(|| format!("{}: no 'film' record", deck.display()))?;
     let frames = (1..=film.frames.min(limit))
-        .map(|k| raytrace::raytrace::render_frame(&scene, &opts, film.frame(k), &|| {}).raster)
-        .collect();
+        .map(|k| {
+            let request = raytrace::raytrace::Request::frame(film.frame(k));
+            raytrace::raytrace::render(&scene, &request).map(|r| r.raster)
+        })
+        .collect::<Result<_, _>>()
+        .map_err(|e| e.to_string())?;
     Ok((frames, film.rate))
 }
 
@@ -258,7 +265,7 @@ pub fn render_deck(deck: &Path, solver: Solver) -> Result<Raster, String> {
         ..Options::default()
     };
     let scene = crate::decks::prepared(&deck.display().to_string(), &opts, None)?;
-    Ok(raytrace::raytrace::render(&scene, &opts, &|| {}).raster)
+    Ok(crate::decks::still(&scene).raster)
 }
 
 /// `left` and `right` side by side, `gap` white columns between them; the
@@ -302,7 +309,8 @@ pub fn pixels_differing(a: &Raster, b: &Raster) -> usize {
 
 /// `tools gallery`: draws the pictures of [`GALLERY`] whose image path
 /// contains one of `only` (all when it is empty) and writes them, or with
-/// `check` compares them with the files and fails naming the stale ones.
+/// `check` compares them with the files, in memory, and fails naming the
+/// stale ones: a check writes nothing.
 pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
     let chosen: Vec<&Picture> = GALLERY
         .iter()
@@ -311,9 +319,14 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
     if chosen.is_empty() {
         return Err(format!("no picture of the gallery matches {only:?}"));
     }
-    // The decks of Figs. 5.3–5.5 paste the texture rasters.
-    crate::textures::write_textures(&root.join("raster"))?;
+    // The decks of Figs. 5.3–5.5 paste the texture rasters: written before
+    // drawing, or checked like the pictures.
     let mut stale = Vec::new();
+    if check {
+        stale.extend(crate::textures::stale_textures(&root.join("raster")));
+    } else {
+        crate::textures::write_textures(&root.join("raster"))?;
+    }
     for picture in chosen {
         // A film is all its frames and its rate; any other picture one raster.
         let (drawn, rate) = match picture.drawing {
@@ -332,7 +345,7 @@ pub fn run(root: &Path, only: &[String], check: bool) -> Result<(), String> {
             };
             println!("{:>7} pixels differ  {}", differ, picture.image);
             if differ > 0 {
-                stale.push(picture.image);
+                stale.push(picture.image.to_string());
             }
         } else if picture.drawing == Drawing::Film {
             raytrace::film::write_apng(&path, &drawn, rate).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -468,8 +481,7 @@ mod tests {
             let opts = Options::default();
             let mut scene = crate::decks::load(deck.to_str().unwrap(), opts.fidelity).unwrap();
             scene.resize(48, 48, 2);
-            raytrace::raytrace::prepare(&mut scene, &opts).unwrap();
-            let drawn = raytrace::raytrace::render(&scene, &opts, &|| {}).raster;
+            let drawn = crate::decks::still(&crate::decks::prepare(scene, &opts).unwrap()).raster;
             let recs = records(deck);
             if let Some((recs_before, drawn_before)) = &before {
                 assert!(
@@ -566,6 +578,47 @@ mod tests {
         b.width = 1;
         b.height = 2;
         assert_eq!(pixels_differing(&a, &b), 2);
+    }
+
+    /// Every file under `dir`, with its bytes.
+    fn files_under(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+        let mut files = Vec::new();
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                files.extend(files_under(&path));
+            } else {
+                files.push((path.clone(), std::fs::read(&path).unwrap()));
+            }
+        }
+        files.sort();
+        files
+    }
+
+    /// `gallery --check` compares in memory: it writes no texture and no
+    /// picture, and names a missing texture and a stale picture.
+    #[test]
+    fn a_check_writes_nothing() {
+        let (root, copy) = (checkout(), tempfile::tempdir().unwrap());
+        let picture = "docs/img/fig5_10_frames.png";
+        for file in ["legacy_pascal/decks/fig5_10.deck", picture] {
+            std::fs::create_dir_all(copy.path().join(file).parent().unwrap()).unwrap();
+            std::fs::copy(root.join(file), copy.path().join(file)).unwrap();
+        }
+        // A picture of another size: every pixel differs.
+        let small = Raster {
+            width: 1,
+            height: 1,
+            pixels: vec![[0; 3]],
+        };
+        raytrace::raster::write_png(&copy.path().join(picture), &small).unwrap();
+        let before = files_under(copy.path());
+        let e = run(copy.path(), &["fig5_10_frames".into()], true).unwrap_err();
+        assert!(
+            e.starts_with("stale: raster/card.tex.ras, raster/nec.tex.ras, docs/img/fig5_10_frames.png;"),
+            "{e}"
+        );
+        assert!(files_under(copy.path()) == before, "the check wrote a file");
     }
 
     /// The commands printed for the pictures name the options they are drawn with.

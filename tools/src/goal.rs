@@ -14,11 +14,12 @@
 
 use std::path::Path;
 
-use raytrace::raytrace::render_colours;
-use raytrace::types::{Fidelity, Intensity, Options, Scene, Solver, TimeSampler};
+use raytrace::options::{Fidelity, Options, Solver, TimeSampler};
+use raytrace::raytrace::Prepared;
+use raytrace::types::Intensity;
 
 use crate::chart::BLUR_REFERENCE_MASK;
-use crate::decks::{prepared, BLUR_DECKS};
+use crate::decks::{prepared, still, BLUR_DECKS};
 use crate::measure::{median, rmse, thread_cpu_secs};
 
 /// The masks of the goal: 16 and 64 rays a pixel.
@@ -59,7 +60,7 @@ fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<Intens
     let o = opts(TimeSampler::Stratified);
     let scene = prepared(deck, &o, Some((size, size, BLUR_REFERENCE_MASK)))?;
     eprintln!("{deck}: reference, {BLUR_REFERENCE_MASK}×{BLUR_REFERENCE_MASK} stratified");
-    let colours = render_colours(&scene, &o);
+    let colours = still(&scene).colours;
     if let Some(f) = &file {
         let bytes: Vec<u8> = colours
             .iter()
@@ -87,9 +88,9 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
         for mask in GOAL_MASKS {
             let t_scene = prepared(deck, &table, Some((size, size, mask)))?;
             let a_scene = prepared(deck, &adaptive, Some((size, size, mask)))?;
-            let rmse_table = rmse(&render_colours(&t_scene, &table), &reference);
-            let rmse_adaptive = rmse(&render_colours(&a_scene, &adaptive), &reference);
-            let secs = cpu_medians(&one, &[(&t_scene, &table), (&a_scene, &adaptive)], runs);
+            let rmse_table = rmse(&still(&t_scene).colours, &reference);
+            let rmse_adaptive = rmse(&still(&a_scene).colours, &reference);
+            let secs = cpu_medians(&one, &[&t_scene, &a_scene], runs);
             let row = GoalRow {
                 deck,
                 mask,
@@ -108,11 +109,11 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
 /// The median CPU seconds of each render on the one thread of `pool`,
 /// `runs` rounds of all of them in turn after an untimed one (NaN for
 /// `runs` 0, the clock where the thread's CPU time cannot be read).
-fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[(&Scene, &Options)], runs: usize) -> Vec<f64> {
-    let time = |scene: &Scene, o: &Options| {
+fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[&Prepared], runs: usize) -> Vec<f64> {
+    let time = |scene: &Prepared| {
         pool.install(|| {
             let (cpu, wall) = (thread_cpu_secs(), std::time::Instant::now());
-            drop(std::hint::black_box(render_colours(scene, o)));
+            drop(std::hint::black_box(still(scene)));
             match (cpu, thread_cpu_secs()) {
                 (Some(a), Some(b)) => b - a,
                 _ => wall.elapsed().as_secs_f64(),
@@ -122,13 +123,13 @@ fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[(&Scene, &Options)], runs: usiz
     if runs == 0 {
         return vec![f64::NAN; jobs.len()];
     }
-    for (scene, o) in jobs {
-        time(scene, o);
+    for scene in jobs {
+        time(scene);
     }
     let mut secs = vec![Vec::with_capacity(runs); jobs.len()];
     for _ in 0..runs {
-        for (k, (scene, o)) in jobs.iter().enumerate() {
-            secs[k].push(time(scene, o));
+        for (k, scene) in jobs.iter().enumerate() {
+            secs[k].push(time(scene));
         }
     }
     secs.iter().map(|s| median(s)).collect()

@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
+use raytrace::options::{Fidelity, Options, TimeSampler};
 use raytrace::raster::{rgbtochars, Raster};
-use raytrace::types::{Fidelity, Options, TimeSampler};
 
 /// Black → red → yellow → white for `f` in [0, 1].
 pub fn heat(f: f64) -> [u8; 3] {
@@ -51,7 +51,8 @@ pub fn draw(deck: &Path, size: usize, mask: usize) -> Result<(Raster, Vec<u32>),
     };
     let name = deck.to_string_lossy();
     let scene = crate::decks::prepared(&name, &opts, Some((size, size, mask)))?;
-    let (colours, counts) = raytrace::raytrace::render_counted(&scene, &opts);
+    let render = crate::decks::still(&scene);
+    let (colours, counts) = (render.colours, render.counts);
     let image = Raster {
         width: size,
         height: size,

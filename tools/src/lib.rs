@@ -1,5 +1,5 @@
 //! The tools of the port, as a library so that the benches
-//! (tools/benches/) share the deck helpers with the command line.
+//! (tools/bench/) share the deck helpers with the command line.
 
 pub mod bench;
 pub mod chart;

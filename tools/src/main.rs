@@ -11,9 +11,11 @@
 //! animated PNG from its frame rasters.
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use raytrace::types::{Fidelity, Options, Solver, TimeSampler};
+use raytrace::cli::{DeckInput, FidelityArg, RenderArgs};
+use raytrace::exit::{exit_code, Failure};
 
 #[derive(Parser)]
 #[command(name = "tools", version, about = "Tools of the TR-88-036 port")]
@@ -45,48 +47,33 @@ enum Command {
         /// Width and height of each frame, in pixels.
         #[arg(long, default_value_t = 160)]
         size: usize,
-        /// Follow the listings instead of the thesis.
-        #[arg(long)]
-        listing: bool,
+        #[command(flatten)]
+        fidelity: FidelityArg,
     },
     /// Draw every picture of the docs again from its deck, with the options
     /// it was made with (the table is tools/src/gallery.rs).
     Gallery {
         /// Only the pictures whose path contains one of these (e.g. fig5_8).
         only: Vec<String>,
-        /// Compare with the files instead of writing; fail if one is stale.
+        /// Compare with the files (and the texture rasters) in memory,
+        /// writing nothing; fail naming the stale ones.
         #[arg(long)]
         check: bool,
         /// List the pictures, their decks and the commands that draw them.
         #[arg(long)]
         list: bool,
     },
-    /// Time renders of a deck: N runs, then the median, fastest and slowest.
+    /// Time renders of a deck: N runs, then the median, fastest and slowest. The render
+    /// flags are raytrace's.
     Bench {
-        /// The deck.
+        /// The deck (- for standard input).
         #[arg(default_value = "legacy_pascal/decks/still_life.deck")]
         deck: PathBuf,
         /// How many timed runs (after one untimed warm-up).
         #[arg(long, default_value_t = 11)]
         runs: usize,
-        /// Worker threads [default: one per core].
-        #[arg(long)]
-        threads: Option<usize>,
-        /// Use the robust root solver instead of laguerre.
-        #[arg(long)]
-        robust: bool,
-        /// Follow the listings instead of the thesis.
-        #[arg(long)]
-        listing: bool,
-        /// How subpixel times are chosen: table (the thesis's), random, stratified, adaptive.
-        #[arg(long, default_value = "table")]
-        sampler: String,
-        /// Render at this mask (M×M subpixels a pixel) instead of the deck's.
-        #[arg(long)]
-        mask: Option<usize>,
-        /// Render at this width and height instead of the deck's.
-        #[arg(long, num_args = 2, value_names = ["WIDTH", "HEIGHT"])]
-        size: Option<Vec<usize>>,
+        #[command(flatten)]
+        render: RenderArgs,
     },
     /// Draw the speed/accuracy chart: time samplers (error against render
     /// time) and root solvers (silhouette pixels wrong against time per ray).
@@ -156,9 +143,9 @@ enum Command {
         /// The SDL file to write.
         #[arg(short, long)]
         out: PathBuf,
-        /// Follow the listings instead of the thesis (the window's height).
-        #[arg(long)]
-        listing: bool,
+        // The listing's window is taller: the fidelity matters to the export.
+        #[command(flatten)]
+        fidelity: FidelityArg,
     },
     /// Render decks with ours and with POV-Ray (the Debian package `povray`),
     /// one thread each, interleaved, at equal samples: CPU ratio and
@@ -204,19 +191,41 @@ enum Command {
     },
 }
 
-fn main() -> Result<(), String> {
-    match Cli::parse().command {
+fn main() -> ExitCode {
+    exit_code("tools", run(Cli::parse().command))
+}
+
+/// `tools bench`: the render flags and the deck as raytrace reads them
+/// (their errors exit 2), then the timed renders.
+fn bench(deck: &std::path::Path, runs: usize, render: &RenderArgs) -> Result<(), Failure> {
+    let opts = render.options.options()?;
+    let deck = DeckInput::read(deck)?;
+    let scene = render.scene(&deck, &opts)?;
+    let pool = render.thread_pool()?;
+    tools::bench::bench(&deck.name, &scene, runs.max(1), &pool).map_err(Failure::other)
+}
+
+/// Runs a command: the render flags' and the decks' errors are the
+/// library's kinds; the tools' own are messages (exit 1).
+fn run(command: Command) -> Result<(), Failure> {
+    let done = match command {
+        Command::Bench { deck, runs, render } => return bench(&deck, runs, &render),
+        Command::Pov { deck, out, fidelity } => {
+            let fidelity = fidelity.fidelity;
+            let scene = tools::decks::load(&deck, fidelity).map_err(Failure::input)?;
+            std::fs::write(&out, tools::pov::scene_sdl(&scene, fidelity))
+                .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
+            println!("wrote {}", out.display());
+            Ok(())
+        }
         Command::Texture { dir } => tools::textures::write_textures(&dir),
         Command::Frames {
             deck,
             out,
             times,
             size,
-            listing,
-        } => {
-            let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
-            tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity)
-        }
+            fidelity,
+        } => tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity),
         Command::Gallery { only, check, list } => {
             if list {
                 for p in tools::gallery::GALLERY {
@@ -225,36 +234,6 @@ fn main() -> Result<(), String> {
                 return Ok(());
             }
             tools::gallery::run(&tools::gallery::checkout(), &only, check)
-        }
-        Command::Bench {
-            deck,
-            runs,
-            threads,
-            robust,
-            listing,
-            sampler,
-            mask,
-            size,
-        } => {
-            let sampler = match sampler.as_str() {
-                "table" => TimeSampler::Table,
-                "random" => TimeSampler::Random,
-                "stratified" => TimeSampler::Stratified,
-                "adaptive" => TimeSampler::Adaptive,
-                other => {
-                    return Err(format!(
-                        "--sampler {other}: expected table, random, stratified or adaptive"
-                    ))
-                }
-            };
-            let opts = Options {
-                fidelity: if listing { Fidelity::Listing } else { Fidelity::Thesis },
-                solver: if robust { Solver::Robust } else { Solver::Laguerre },
-                sampler,
-            };
-            raytrace::adaptive::check(&opts)?;
-            let size = size.map(|s| (s[0].clamp(1, 8192), s[1].clamp(1, 8192)));
-            tools::bench::bench(&deck, runs.max(1), threads, &opts, size, mask.map(|m| m.clamp(1, 64)))
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
@@ -276,14 +255,6 @@ fn main() -> Result<(), String> {
             strip,
             every,
         } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
-        Command::Pov { deck, out, listing } => {
-            let fidelity = if listing { Fidelity::Listing } else { Fidelity::Thesis };
-            let scene = tools::decks::load(&deck, fidelity)?;
-            std::fs::write(&out, tools::pov::scene_sdl(&scene, fidelity))
-                .map_err(|e| format!("{}: {e}", out.display()))?;
-            println!("wrote {}", out.display());
-            Ok(())
-        }
         Command::VsPovray {
             decks,
             size,
@@ -298,7 +269,8 @@ fn main() -> Result<(), String> {
             let decks: Vec<PathBuf> = decks.iter().map(PathBuf::from).collect();
             tools::vs_povray::run(&decks, &set)
         }
-    }
+    };
+    done.map_err(Failure::other)
 }
 
 #[cfg(test)]

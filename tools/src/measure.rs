@@ -2,9 +2,8 @@
 
 use std::time::Instant;
 
-use raytrace::raytrace::Camera;
-use raytrace::trace::{intersect, rest_poses, Snapshot};
-use raytrace::types::{Intensity, Options, PrimitiveClass, Scene};
+use raytrace::raytrace::{first_hit, Camera, Prepared};
+use raytrace::types::{Intensity, PrimitiveClass};
 
 /// The root mean square of the differences of two float images, over
 /// every pixel and channel. Images of different sizes have no RMSE (NaN).
@@ -67,29 +66,22 @@ pub fn is_sweep(class: PrimitiveClass) -> bool {
 /// first object each of its `k`×`k` rays meets (`None`: the background),
 /// through the subpixel centres, objects at rest. The scene's image size is
 /// kept; its mask is ignored (the probe has its own `k`).
-pub fn probe_objects(scene: &Scene, k: usize, opts: &Options) -> Vec<Vec<Option<usize>>> {
+pub fn probe_objects(prepared: &Prepared, k: usize) -> Vec<Vec<Option<usize>>> {
     use rayon::prelude::*;
+    let scene = prepared.scene();
     let mut probe = scene.clone();
     probe.image.masksize = k;
-    let camera = Camera::new(&probe, opts.fidelity);
-    let poses = rest_poses(scene);
+    let camera = Camera::new(&probe, prepared.options().fidelity);
     let (w, h) = (scene.image.width, scene.image.height);
     (0..w * h)
         .into_par_iter()
         .map(|p| {
-            // A snapshot a task: it is not Sync (key-frame objects keep
-            // per-thread scratch); nothing deforms at rest.
-            let snap = Snapshot {
-                scene,
-                poses: &poses,
-                deforming: &[],
-            };
             let (x, y) = (p % w, p / w);
             let mut seen = Vec::with_capacity(k * k);
             for sy in 0..k {
                 for sx in 0..k {
                     let ray = camera.ray((x * k + sx + 1) as f64, (y * k + sy + 1) as f64, 0.0, 0.0);
-                    seen.push(intersect(&snap, &ray, opts).map(|hit| hit.object));
+                    seen.push(first_hit(prepared, &ray, None).map(|hit| hit.object));
                 }
             }
             seen

@@ -27,11 +27,12 @@
 
 use std::fmt::Write as _;
 
+use raytrace::options::Fidelity;
 use raytrace::raytrace::{getangle, translookpt};
+use raytrace::scene::Scene;
 use raytrace::shapes::sweep::segment_points;
 use raytrace::types::{
-    CurveKind, DMat4, DVec3, Fidelity, PrimitiveClass, Scene, Shape, SurfaceAttribute, SurfaceRecord, SweepShape,
-    MAXSEGMENTS,
+    CurveKind, DMat4, DVec3, PrimitiveClass, Shape, SurfaceAttribute, SurfaceRecord, SweepShape, MAXSEGMENTS,
 };
 
 /// A point or vector of our world as POV-Ray's: (x, y, z) → <x, z, y>.
@@ -292,8 +293,6 @@ mod tests {
             scale: 0.5,
             bbox: BoundingBox::default(),
             orientation: 0.0,
-            cap_grid: None,
-            bounds: None,
         }
     }
 

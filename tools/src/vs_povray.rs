@@ -13,8 +13,10 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use raytrace::raytrace::{prepare, render};
-use raytrace::types::{DVec3, Options, Scene, Shape, Solver, SurfaceAttribute};
+use raytrace::options::{Options, Solver};
+use raytrace::raytrace::Prepared;
+use raytrace::scene::Scene;
+use raytrace::types::{DVec3, Shape, SurfaceAttribute};
 
 use crate::decks::{deck_path, load};
 use crate::pov::scene_sdl;
@@ -99,9 +101,9 @@ fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<f64, Strin
 
 /// Our render of `scene` on a one-thread pool; returns its CPU seconds
 /// and the raster's pixels.
-fn ours(pool: &rayon::ThreadPool, scene: &Scene, opts: &Options) -> Result<(f64, Vec<[u8; 3]>), String> {
+fn ours(pool: &rayon::ThreadPool, scene: &Prepared) -> Result<(f64, Vec<[u8; 3]>), String> {
     let before = cpu_seconds()?.0;
-    let r = pool.install(|| render(scene, opts, &|| {}));
+    let r = pool.install(|| crate::decks::still(scene));
     Ok((cpu_seconds()?.0 - before, r.raster.pixels))
 }
 
@@ -158,7 +160,7 @@ fn silhouette_scene(scene: &Scene) -> Scene {
     let keep: Vec<usize> = (0..s.objects.len())
         .filter(|&i| matches!(s.objects[i].shape, Shape::Sweep(_)))
         .collect();
-    s.object_pos = keep.iter().map(|&i| s.object_pos[i]).collect();
+    s.object_pos = keep.iter().map(|&i| s.object_pos[i].clone()).collect();
     s.objects = keep.iter().map(|&i| s.objects[i].clone()).collect();
     s.motions.clear();
     s.keyframes.clear();
@@ -203,15 +205,13 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
     let ppm = dir.join(format!("{stem}.ppm"));
     let mut scenes = Vec::new();
     for s in solvers {
-        let mut sc = base.clone();
-        prepare(&mut sc, &opts(s)).map_err(|e| e.to_string())?;
-        scenes.push(sc);
+        scenes.push(crate::decks::prepare(base.clone(), &opts(s))?);
     }
     let mut ours_t = vec![Vec::new(); solvers.len()];
     let mut pov_t = Vec::new();
     for _ in 0..set.runs {
-        for (k, s) in solvers.iter().enumerate() {
-            ours_t[k].push(ours(pool, &scenes[k], &opts(*s))?.0);
+        for k in 0..solvers.len() {
+            ours_t[k].push(ours(pool, &scenes[k])?.0);
         }
         pov_t.push(povray(&pov, &ppm, set.size, set.mask)?);
     }
@@ -232,9 +232,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
     }
     let mut agree = Vec::new();
     for s in solvers {
-        let mut sc = sil.clone();
-        prepare(&mut sc, &opts(s)).map_err(|e| e.to_string())?;
-        let (_, mine) = ours(pool, &sc, &opts(s))?;
+        let (_, mine) = ours(pool, &crate::decks::prepare(sil.clone(), &opts(s))?)?;
         let union = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) || lit(b)).count();
         let differ = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) != lit(b)).count();
         agree.push((differ, union));

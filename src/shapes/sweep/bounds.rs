@@ -4,16 +4,16 @@
 use super::box_size;
 use crate::types::{BoundingBox, Coeff, DVec3, PrimitiveClass, SweepShape, MAXSEGMENTS};
 
-/// What [`sweep_query`](super::sweep_query) takes from an object's box
-/// for every ray: the size its tolerances are relative to, the padded box
-/// a ray must meet, and the sphere about it that
-/// [`Near`](crate::shapes::Near) re-bases the ray on. Made once for an
-/// object at rest ([`prepare_sweeps`](super::prepare_sweeps)) and kept in
-/// [`SweepShape::bounds`] with the box and class it was made from; a ray
-/// of an object whose box has changed since (an in-between contour's)
-/// makes its own (the port's; the same values either way).
+/// What [`Sweep`](super::Sweep) takes from an object's box for every ray:
+/// the size its tolerances are relative to, the padded box a ray must
+/// meet, and the sphere about it that [`Near`](crate::shapes::Near)
+/// re-bases the ray on. Made once for an object whose box is final
+/// ([`SweepCache`](super::SweepCache)) and kept with the box and class it
+/// was made from; a ray of an object whose box has changed since, or of a
+/// contour of the moment, makes its own (the port's; the same values
+/// either way).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct QueryBounds {
+pub(super) struct QueryBounds {
     class: PrimitiveClass,
     bbox: BoundingBox,
     pub(super) size: f64,
@@ -74,11 +74,9 @@ impl QueryBounds {
     /// size is its box's, which then depend on the box alone (a sweep
     /// without one takes its size from its segments, which may change
     /// under the same box).
-    pub fn kept(class: PrimitiveClass, sweep: &SweepShape) -> Option<std::sync::Arc<QueryBounds>> {
+    pub(super) fn kept(class: PrimitiveClass, sweep: &SweepShape) -> Option<QueryBounds> {
         let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
-        QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n])
-            .filter(|b| b.size == box_size(&b.bbox))
-            .map(std::sync::Arc::new)
+        QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n]).filter(|b| b.size == box_size(&b.bbox))
     }
 
     /// Were these bounds made from this box, for this class?
@@ -89,9 +87,10 @@ impl QueryBounds {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{intersect_sweep, prepare};
+    use super::super::{prepare, Sweep, SweepCache};
     use super::*;
-    use crate::types::{Options, Ray};
+    use crate::options::Options;
+    use crate::types::Ray;
 
     /// A sweep whose box was never filled (all zeros) takes its size from
     /// its segments and is still met; one with no segments at all is not.
@@ -99,10 +98,23 @@ mod tests {
     fn a_sweep_without_a_box_takes_its_size_from_its_segments() {
         let filled =
             prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
+        // The cache made for the filled box: its cap grid holds for the
+        // boxless sweep's segments, its bounds not for its box.
+        let cache = SweepCache::new(PrimitiveClass::Translation, &filled);
         let boxless = SweepShape {
             bbox: BoundingBox::default(),
-            bounds: None,
             ..filled.clone()
+        };
+        assert!(cache
+            .as_ref()
+            .is_some_and(|c| !c.fits(PrimitiveClass::Translation, &boxless)));
+        let meet = |shape: &SweepShape, ray: &Ray, opts: &Options| {
+            let sweep = Sweep {
+                class: PrimitiveClass::Translation,
+                shape,
+                cache: cache.as_ref(),
+            };
+            sweep.intersect(ray, 1e-9, opts, &mut 0)
         };
         let b = QueryBounds::of(PrimitiveClass::Translation, &boxless, &boxless.u, &boxless.v).expect("a size");
         assert_eq!(
@@ -128,8 +140,8 @@ mod tests {
         );
         let ray = Ray::new(DVec3::new(0.0, -5.0, 0.5), DVec3::Y);
         let opts = Options::default();
-        let hit = intersect_sweep(PrimitiveClass::Translation, &boxless, &ray, 1e-9, &opts).expect("met");
-        let want = intersect_sweep(PrimitiveClass::Translation, &filled, &ray, 1e-9, &opts).expect("met");
+        let hit = meet(&boxless, &ray, &opts).expect("met");
+        let want = meet(&filled, &ray, &opts).expect("met");
         assert!((hit.t - want.t).abs() < 1e-9, "{} {}", hit.t, want.t);
         let empty = SweepShape {
             u: vec![],
@@ -137,10 +149,7 @@ mod tests {
             segment: 0,
             ..boxless
         };
-        assert_eq!(
-            intersect_sweep(PrimitiveClass::Translation, &empty, &ray, 1e-9, &opts),
-            None
-        );
+        assert_eq!(meet(&empty, &ray, &opts), None);
     }
 
     /// What a ray takes from a box, pinned on one box for each kind: the

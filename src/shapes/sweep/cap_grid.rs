@@ -194,9 +194,15 @@ impl CapGrid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drt::hashed_uniform;
+    use crate::hash::hashed_uniform;
     use crate::shapes::sweep::prepare::{star_points, translation_sweep};
-    use crate::types::{CurveKind, SweepShape};
+    use crate::shapes::sweep::SweepCache;
+    use crate::types::{CurveKind, PrimitiveClass, SweepShape};
+
+    /// The grid the cache of `sw` as an object of `class` keeps.
+    fn grid_of(class: PrimitiveClass, sw: &SweepShape) -> Option<CapGrid> {
+        SweepCache::new(class, sw).and_then(|c| c.cap_grid)
+    }
 
     /// A contour through `points` (closed uniform B-spline or Bézier).
     fn contour(points: Vec<[f64; 2]>, curve: CurveKind) -> SweepShape {
@@ -236,7 +242,7 @@ mod tests {
     #[test]
     fn the_grid_answers_as_point_in_contour() {
         for (c, sw) in contours().iter().enumerate() {
-            let grid = sw.cap_grid.as_deref().expect("a grid is made with the segments");
+            let grid = grid_of(PrimitiveClass::Translation, sw).expect("a grid is made with the segments");
             let (xmin, xmax, ymin, ymax) = sw.u.iter().zip(&sw.v).fold(
                 (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
                 |(a, b, p, q), (cu, cv)| (a.min(cu.min), b.max(cu.max), p.min(cv.min), q.max(cv.max)),
@@ -275,7 +281,7 @@ mod tests {
     #[test]
     fn nan_is_not_answered_and_the_far_edges_are_outside() {
         let sw = contours().remove(0);
-        let grid = sw.cap_grid.as_deref().expect("a grid");
+        let grid = grid_of(PrimitiveClass::Translation, &sw).expect("a grid");
         assert_eq!(grid.answer(f64::NAN, 0.0), None);
         assert_eq!(grid.answer(0.0, f64::NAN), None);
         assert_eq!(grid.answer(0.0, 0.0), Some(true));
@@ -293,14 +299,18 @@ mod tests {
     #[test]
     fn no_grid_for_a_flat_or_broken_contour() {
         let flat = contour((0..8).map(|k| [k as f64, 2.0]).collect(), CurveKind::Bspline);
-        assert!(flat.cap_grid.is_none());
+        assert!(grid_of(PrimitiveClass::Translation, &flat).is_none());
         let mut broken = contours().remove(0);
         broken.v[3].c = f64::NAN;
         assert!(CapGrid::new(&broken.u, &broken.v).is_none());
         assert!(CapGrid::new(&[], &[]).is_none());
         // A rotation sweep's contour closes no cap: no grid is made for it.
         let mut goblet = contours().remove(0);
-        crate::shapes::sweep::prepare::fill_segments(crate::types::PrimitiveClass::Rotation, &mut goblet);
-        assert!(goblet.cap_grid.is_none());
+        crate::shapes::sweep::prepare::fill_segments(PrimitiveClass::Rotation, &mut goblet);
+        assert!(grid_of(PrimitiveClass::Rotation, &goblet).is_none());
+        assert!(
+            grid_of(PrimitiveClass::Translation, &goblet).is_some(),
+            "the class decides"
+        );
     }
 }

@@ -1,8 +1,8 @@
 //! The contour's own geometry: its tangent, orientation and signed area,
 //! and the cap test [`point_in_contour`].
 
-use super::{asc, may_have_root, norm2, one_crossing, unit_crossings, Crossings};
-use crate::proc::robust::{bernstein_unit_of, real_roots, RealRoots};
+use super::{asc, may_have_root, norm2, one_crossing, unit_crossings, CapGrid, Crossings};
+use crate::robust::{bernstein_unit_of, real_roots, RealRoots};
 use crate::types::{Coeff, SweepShape};
 
 /// The contour's curve direction at s of segment (u, v): the derivative;
@@ -49,7 +49,8 @@ pub fn orientation(u: &[Coeff], v: &[Coeff]) -> f64 {
 }
 
 /// Are the segments `u`, `v` the driver takes from `sw` all of its
-/// segments, those its kept orientation and cap grid were made with?
+/// segments, those its kept orientation and its cache's cap grid were
+/// made with?
 fn all_segments(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> bool {
     u.len() == sw.u.len() && v.len() == sw.v.len()
 }
@@ -66,11 +67,19 @@ pub(super) fn orientation_of(sw: &SweepShape, u: &[Coeff], v: &[Coeff]) -> f64 {
 }
 
 /// [`point_in_contour`] of the segments `u`, `v` the driver takes from
-/// `sw`: answered by the grid made with them ([`SweepShape::cap_grid`])
-/// where it knows and they are all of its segments, else solved.
-pub(super) fn inside_contour(sw: &SweepShape, u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
+/// `sw`: answered by `grid`, made with all of `sw`'s segments
+/// ([`SweepCache`](super::SweepCache)), where it knows and `u`, `v` are
+/// all of them, else solved.
+pub(super) fn inside_contour(
+    grid: Option<&CapGrid>,
+    sw: &SweepShape,
+    u: &[Coeff],
+    v: &[Coeff],
+    x: f64,
+    y: f64,
+) -> bool {
     let whole = all_segments(sw, u, v);
-    match sw.cap_grid.as_ref().filter(|_| whole).and_then(|g| g.answer(x, y)) {
+    match grid.filter(|_| whole).and_then(|g| g.answer(x, y)) {
         Some(inside) => inside,
         None => point_in_contour(u, v, x, y),
     }
@@ -172,21 +181,23 @@ mod tests {
     fn inside_contour_asks_the_grid_for_the_whole_contour_only() {
         let pts = star_points(12, 2.0, 1.0);
         let sw = square(&pts, CurveKind::Bspline);
-        assert!(sw.cap_grid.is_some());
+        let grid = CapGrid::new(&sw.u, &sw.v);
+        assert!(grid.is_some());
+        let grid = grid.as_ref();
         let n = sw.u.len();
         let (mut differ, mut asked) = (0, 0);
         for k in 0..4000u64 {
-            let x = -2.0 + 4.0 * crate::drt::hashed_uniform(2 * k);
-            let y = -2.0 + 4.0 * crate::drt::hashed_uniform(2 * k + 1);
+            let x = -2.0 + 4.0 * crate::hash::hashed_uniform(2 * k);
+            let y = -2.0 + 4.0 * crate::hash::hashed_uniform(2 * k + 1);
             let whole = point_in_contour(&sw.u, &sw.v, x, y);
-            assert_eq!(inside_contour(&sw, &sw.u, &sw.v, x, y), whole);
+            assert_eq!(inside_contour(grid, &sw, &sw.u, &sw.v, x, y), whole);
             for (u, v) in [
                 (&sw.u[..n - 1], &sw.v[..n - 1]),
                 (&sw.u[..], &sw.v[..n - 1]),
                 (&sw.u[..n - 1], &sw.v[..]),
             ] {
                 let open = point_in_contour(u, v, x, y);
-                assert_eq!(inside_contour(&sw, u, v, x, y), open, "({x}, {y})");
+                assert_eq!(inside_contour(grid, &sw, u, v, x, y), open, "({x}, {y})");
                 differ += (open != whole) as usize;
                 asked += 1;
             }

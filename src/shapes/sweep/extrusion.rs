@@ -1,13 +1,11 @@
 //! Translation and conic sweeps: one cubic a segment from the ray's
 //! central projection into the contour's plane, and the end caps.
 
-use super::contour::{inside_contour, orientation_of, tangent};
-use super::{asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::types::{Coeff, DVec3, Fidelity, LocalHit, Options, Ray, SweepShape};
-
-/// The "segment" of a cap hit: after every side segment, so a side hit at
-/// the same t stays the nearest, as when the caps were tried last.
-const CAP: usize = usize::MAX;
+use super::contour::{inside_contour, tangent};
+use super::probe::{Best, Candidates, Probe, CAP};
+use super::{asc, norm2, PARALLEL_TOL, RESIDUAL_TOL};
+use crate::options::Fidelity;
+use crate::types::{DVec3, LocalHit};
 
 /// Translation and conic sweeps.
 ///
@@ -32,258 +30,329 @@ const CAP: usize = usize::MAX;
 /// A translation sweep's side hit at contour point X has
 /// t = (X − o)·d / |d_xy|² (x and y only), so a segment's box bounds its
 /// hits' t from below: the segments are tried in that order.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn extrusion(
-    u: &[Coeff],
-    v: &[Coeff],
-    sw: &SweepShape,
-    conic: bool,
-    size: f64,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-    query: Query,
-) -> Option<LocalHit> {
-    let len = sw.length;
-    if !(len > 0.0 && len.is_finite()) || (conic && !sw.scale.is_finite()) {
-        return None;
-    }
-    let (o, d) = (ray.origin, ray.dir);
-    let dn = d.length();
-    let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
-    let k0 = 1.0 + kappa * o.z;
-    let k1 = kappa * d.z;
-    let apex_z = if kappa != 0.0 { Some(-1.0 / kappa) } else { None };
-    let apex_in = apex_z.is_some_and(|z| (0.0..=len).contains(&z));
-    let hit = |t: f64, normal: DVec3| LocalHit {
-        t,
-        point: o + d * t,
-        normal,
-    };
+pub(super) fn extrusion(mut probe: Probe, conic: bool) -> Option<LocalHit> {
+    Extrusion::new(&probe, conic)?.search(&mut probe);
+    probe.finish()
+}
 
-    // A ray in the plane of the apex: the contour is a point there.
-    if conic && d.z.abs() <= PARALLEL_TOL * dn && k0.abs() <= PARALLEL_TOL {
-        let z = apex_z?;
-        if !apex_in {
+/// What one ray gives a translation or conic sweep's phases (see
+/// [`extrusion`]): the ray's numbers, the sweep's κ, and the line
+/// α U + β V + γ = 0 of the ray's projection.
+// The phases are compiled into `extrusion`, as the closures they were
+// written as before: one function, its numbers kept in registers.
+#[derive(Clone, Copy)]
+struct Extrusion {
+    conic: bool,
+    len: f64,
+    o: DVec3,
+    d: DVec3,
+    dn: f64,
+    kappa: f64,
+    k0: f64,
+    k1: f64,
+    alpha: f64,
+    beta: f64,
+    gamma: f64,
+    nrm: f64,
+    /// The scale of the side polynomial's coefficients.
+    fscale: f64,
+}
+
+impl Extrusion {
+    /// `None` for a sweep of no length, or a conic one of no finite scale:
+    /// nothing to meet.
+    #[inline(always)]
+    fn new(p: &Probe, conic: bool) -> Option<Extrusion> {
+        let (sw, size) = (p.sweep, p.size);
+        let len = sw.length;
+        if !(len > 0.0 && len.is_finite()) || (conic && !sw.scale.is_finite()) {
             return None;
         }
-        let apex = DVec3::new(0.0, 0.0, z);
-        let t = (apex - o).dot(d) / (dn * dn);
-        let miss = (o + d * t - apex).length();
-        return (miss <= RESIDUAL_TOL * size && t > tmin).then(|| hit(t, DVec3::Z));
+        let (o, d) = (p.ray.origin, p.ray.dir);
+        let kappa = if conic { (sw.scale - 1.0) / len } else { 0.0 };
+        let (k0, k1) = (1.0 + kappa * o.z, kappa * d.z);
+        let alpha = k0 * d.y - k1 * o.y;
+        let beta = k1 * o.x - k0 * d.x;
+        let gamma = o.y * d.x - o.x * d.y;
+        let nrm = norm2(alpha, beta);
+        Some(Extrusion {
+            conic,
+            len,
+            o,
+            d,
+            dn: d.length(),
+            kappa,
+            k0,
+            k1,
+            alpha,
+            beta,
+            gamma,
+            nrm,
+            fscale: nrm * size + gamma.abs(),
+        })
     }
 
-    let alpha = k0 * d.y - k1 * o.y;
-    let beta = k1 * o.x - k0 * d.x;
-    let gamma = o.y * d.x - o.x * d.y;
-    let nrm = norm2(alpha, beta);
-    let oxy = norm2(o.x, o.y);
+    /// The phases in turn, each leaving the nearest hit so far in `p`; a
+    /// phase that finds an answer at once ends the search.
+    #[inline(always)]
+    fn search(&self, p: &mut Probe) {
+        let d = self.d;
+        // A ray in the plane of the apex: the contour is a point there.
+        if self.conic && d.z.abs() <= PARALLEL_TOL * self.dn && self.k0.abs() <= PARALLEL_TOL {
+            return self.apex(p);
+        }
+        // The ray's projection is a point: only the caps (and an apex).
+        let oxy = norm2(self.o.x, self.o.y);
+        if self.nrm <= PARALLEL_TOL * (self.k0.abs() * self.dn + self.k1.abs() * oxy) {
+            return self.caps_only(p);
+        }
+        // Filled where it stands: returned, its arrays would be copied.
+        let mut candidates = Candidates::new();
+        self.candidates(p, &mut candidates);
+        // The caps, where the ray's point lies inside the (scaled)
+        // contour. The near cap is tried first: the ray reaches no side
+        // before it (the sides lie between the caps' planes), so when it is
+        // hit it is the nearest hit but for a side at the rim, and the
+        // sides beyond it are skipped. Whatever the order, the hit kept is
+        // the least (t, segment).
+        let caps: &[(f64, f64)] = match d.z {
+            z if z > 0.0 => &[(0.0, -1.0), (self.len, 1.0)],
+            z if z < 0.0 => &[(self.len, 1.0), (0.0, -1.0)],
+            _ => &[],
+        };
+        if let Some(&(zc, nz)) = caps.first() {
+            if self.cap(p, zc, nz) {
+                return;
+            }
+        }
+        if self.sides(p, &candidates) {
+            return;
+        }
+        // The far cap, if it is nearer than what the sides gave.
+        if let Some(&(zc, nz)) = caps.get(1) {
+            self.cap(p, zc, nz);
+        }
+    }
 
-    // The ray's projection is a point: only the caps (and an apex).
-    if nrm <= PARALLEL_TOL * (k0.abs() * dn + k1.abs() * oxy) {
+    /// A ray in the plane of the apex: only the apex, if the sweep reaches
+    /// it.
+    fn apex(&self, p: &mut Probe) {
+        let (o, d) = (self.o, self.d);
+        if self.kappa == 0.0 {
+            return;
+        }
+        let z = -1.0 / self.kappa;
+        if !(0.0..=self.len).contains(&z) {
+            return;
+        }
+        let apex = DVec3::new(0.0, 0.0, z);
+        let t = (apex - o).dot(d) / (self.dn * self.dn);
+        let miss = (o + d * t - apex).length();
+        if miss <= RESIDUAL_TOL * p.size && p.closer(t, CAP) {
+            p.keep(t, DVec3::Z, CAP);
+        }
+    }
+
+    /// A ray whose projection is a point: a cap is hit where that point
+    /// lies inside the contour (or the cap is the apex).
+    fn caps_only(&self, p: &mut Probe) {
+        let (o, d) = (self.o, self.d);
         if d.z == 0.0 {
-            return None;
+            return;
         }
         let t0 = -o.z / d.z;
         let (px, py) = (o.x + t0 * d.x, o.y + t0 * d.y);
-        let inside = inside_contour(sw, u, v, px, py);
-        let mut best: Option<Best> = None;
-        for (zc, nz) in [(0.0, -1.0), (len, 1.0)] {
+        let inside = inside_contour(p.grid, p.sweep, p.u, p.v, px, py);
+        for (zc, nz) in [(0.0, -1.0), (self.len, 1.0)] {
             let t = (zc - o.z) / d.z;
-            let at_apex = conic && sw.scale == 0.0 && zc == len;
-            if (inside || at_apex) && closer(&best, t, tmin, CAP) {
-                best = Some(Best {
+            let at_apex = self.conic && p.sweep.scale == 0.0 && zc == self.len;
+            if (inside || at_apex) && p.closer(t, CAP) {
+                p.best = Some(Best {
                     t,
                     normal: DVec3::new(0.0, 0.0, nz),
                     segment: CAP,
                 });
             }
         }
-        return best.map(|b| hit(b.t, b.normal));
     }
 
-    let mut best: Option<Best> = None;
-    let ztol = 1e-12 * size;
-    let fscale = nrm * size + gamma.abs();
-    let dxy2 = d.x * d.x + d.y * d.y;
-    // Slack on a segment's lower bound: its points may stand 1e-9 of the
-    // size outside its box (the joint slack), rounding far less.
-    let t_pad = 1e-6 * size / dxy2.sqrt();
-    // A bound needs no exact quotient (its slack is t_pad): a product.
-    let per_dxy2 = 1.0 / dxy2;
-    // The t where a side hit may lie: beyond tmin, and where the ray's z is
-    // within the sides' (the hits keep 10⁻¹² of the size beyond the caps;
-    // a thousand times that here, far above rounding).
-    let slab = {
-        let zpad = 1e-9 * size;
+    /// The segments the ray's projection may meet, nearest first.
+    #[inline(always)]
+    fn candidates(&self, p: &Probe, candidates: &mut Candidates) {
+        let (o, d, size) = (self.o, self.d, p.size);
+        let dxy2 = d.x * d.x + d.y * d.y;
+        // Slack on a segment's lower bound: its points may stand 1e-9 of
+        // the size outside its box (the joint slack), rounding far less.
+        let t_pad = 1e-6 * size / dxy2.sqrt();
+        // A bound needs no exact quotient (its slack is t_pad): a product.
+        let per_dxy2 = 1.0 / dxy2;
+        let slab = self.between_caps(p);
+        // Do the segments' boxes hold their segments, so that they bound
+        // the hits' t (D32)?
+        let boxes_hold = match p.opts.fidelity {
+            // Listing (erratum 9): an in-between segment's box is the first
+            // key's widened by 2, which the segment can leave: the boxes
+            // only order the segments, as before D32.
+            Fidelity::Listing => false,
+            // Thesis: each segment's box is its extrema.
+            Fidelity::Thesis => true,
+        };
+        let gpad = 1e-12 * self.fscale;
+        // The box's corners where α X + β Y is least and most: rounding
+        // keeps a product's order, so α·min ≤ α·max when α > 0 (the lesser
+        // of the two products, as a `min` of both would pick), and the
+        // choice is the ray's, made once instead of per segment.
+        let (a_pos, b_pos) = (self.alpha > 0.0, self.beta > 0.0);
+        let span = if boxes_hold && !self.conic {
+            self.span(p, slab)
+        } else {
+            None
+        };
+        for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
+            if let Some(span) = &span {
+                // The four sides at once (`|`, not `||`): one branch, not four.
+                if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
+                    continue;
+                }
+            }
+            // The segment's box against the line α X + β Y + γ = 0.
+            let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
+            let (y_lo, y_hi) = if b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
+            let gmin = self.gamma + self.alpha * x_lo + self.beta * y_lo;
+            let gmax = self.gamma + self.alpha * x_hi + self.beta * y_hi;
+            if gmin > gpad || gmax < -gpad {
+                continue;
+            }
+            let t_lo = if self.conic {
+                f64::NEG_INFINITY
+            } else {
+                let x = if d.x > 0.0 { cu.min } else { cu.max };
+                let y = if d.y > 0.0 { cv.min } else { cv.max };
+                let t_lo = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad;
+                // The box's far corner bounds the hits' t from above: a
+                // segment whose hits all lie at or before tmin, or outside
+                // the span of t where the ray is between the caps, has none
+                // to keep (D32).
+                let x = if d.x > 0.0 { cu.max } else { cu.min };
+                let y = if d.y > 0.0 { cv.max } else { cv.min };
+                let t_hi = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 + t_pad;
+                if boxes_hold && (t_hi < slab.0 || t_lo > slab.1) {
+                    continue;
+                }
+                t_lo
+            };
+            candidates.push(t_lo, i);
+        }
+    }
+
+    /// The t where a side hit may lie: beyond tmin, and where the ray's z
+    /// is within the sides' (the hits keep 10⁻¹² of the size beyond the
+    /// caps; a thousand times that here, far above rounding).
+    #[inline(always)]
+    fn between_caps(&self, p: &Probe) -> (f64, f64) {
+        let (o, d) = (self.o, self.d);
+        let zpad = 1e-9 * p.size;
         let (za, zb) = if d.z == 0.0 {
             (f64::NEG_INFINITY, f64::INFINITY)
         } else {
-            let (a, b) = ((-zpad - o.z) / d.z, (len + zpad - o.z) / d.z);
+            let (a, b) = ((-zpad - o.z) / d.z, (self.len + zpad - o.z) / d.z);
             (a.min(b), a.max(b))
         };
-        (za.max(tmin), zb)
-    };
-    // Do the segments' boxes hold their segments, so that they bound the
-    // hits' t (D32)?
-    let boxes_hold = match opts.fidelity {
-        // Listing (erratum 9): an in-between segment's box is the first
-        // key's widened by 2, which the segment can leave: the boxes only
-        // order the segments, as before D32.
-        Fidelity::Listing => false,
-        // Thesis: each segment's box is its extrema.
-        Fidelity::Thesis => true,
-    };
-    let mut candidates = Candidates::new();
-    let gpad = 1e-12 * fscale;
-    // The box's corners where α X + β Y is least and most: rounding keeps
-    // a product's order, so α·min ≤ α·max when α > 0 (the lesser of the
-    // two products, as a `min` of both would pick), and the choice is the
-    // ray's, made once instead of per segment.
-    let (a_pos, b_pos) = (alpha > 0.0, beta > 0.0);
-    // Where the ray runs between the caps' planes, its projection is the
-    // piece of the line from A to B: a segment whose box keeps away from
-    // that piece's box has no hit to keep (D32; a thousand times the
-    // bound's slack t_pad).
-    let span = (boxes_hold && !conic && slab.0.is_finite() && slab.1.is_finite()).then(|| {
-        let (ax, ay) = (o.x + slab.0 * d.x, o.y + slab.0 * d.y);
-        let (bx, by) = (o.x + slab.1 * d.x, o.y + slab.1 * d.y);
-        let p = 1e-6 * size;
-        [ax.min(bx) - p, ax.max(bx) + p, ay.min(by) - p, ay.max(by) + p]
-    });
-    for i in 0..u.len() {
-        let (cu, cv) = (&u[i], &v[i]);
-        if let Some(span) = &span {
-            // The four sides at once (`|`, not `||`): one branch, not four.
-            if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
-                continue;
-            }
-        }
-        // The segment's box against the line α X + β Y + γ = 0.
-        let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
-        let (y_lo, y_hi) = if b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
-        let gmin = gamma + alpha * x_lo + beta * y_lo;
-        let gmax = gamma + alpha * x_hi + beta * y_hi;
-        if gmin > gpad || gmax < -gpad {
-            continue;
-        }
-        let t_lo = if conic {
-            f64::NEG_INFINITY
-        } else {
-            let x = if d.x > 0.0 { cu.min } else { cu.max };
-            let y = if d.y > 0.0 { cv.min } else { cv.max };
-            let t_lo = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad;
-            // The box's far corner bounds the hits' t from above: a segment
-            // whose hits all lie at or before tmin, or outside the span of
-            // t where the ray is between the caps, has none to keep (D32).
-            let x = if d.x > 0.0 { cu.max } else { cu.min };
-            let y = if d.y > 0.0 { cv.max } else { cv.min };
-            let t_hi = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 + t_pad;
-            if boxes_hold && (t_hi < slab.0 || t_lo > slab.1) {
-                continue;
-            }
-            t_lo
-        };
-        candidates.push(t_lo, i);
+        (za.max(p.tmin), zb)
     }
-    // The caps, where the ray's point lies inside the (scaled) contour.
-    // The near cap is tried first: the ray reaches no side before it (the
-    // sides lie between the caps' planes), so when it is hit it is the
-    // nearest hit but for a side at the rim, and the sides beyond it are
-    // skipped. Whatever the order, the hit kept is the least (t, segment).
-    // The box holds the contour (at z = 0, where a conic's is unscaled).
-    let cbox = &sw.bbox;
-    let boxed = cbox.xmin < cbox.xmax && cbox.ymin < cbox.ymax;
-    let pad = 1e-9 * size;
-    let cap = |zc: f64, nz: f64, best: &mut Option<Best>| -> bool {
-        let k = 1.0 + kappa * zc;
+
+    /// Where the ray runs between the caps' planes (`slab`), its projection
+    /// is the piece of the line from A to B: a segment whose box keeps away
+    /// from that piece's box, padded here (a thousand times the slack of a
+    /// segment's bound on t), has no hit to keep (D32). `None` where the
+    /// piece is not finite.
+    #[inline(always)]
+    fn span(&self, p: &Probe, slab: (f64, f64)) -> Option<[f64; 4]> {
+        let (o, d) = (self.o, self.d);
+        (slab.0.is_finite() && slab.1.is_finite()).then(|| {
+            let (ax, ay) = (o.x + slab.0 * d.x, o.y + slab.0 * d.y);
+            let (bx, by) = (o.x + slab.1 * d.x, o.y + slab.1 * d.y);
+            let pad = 1e-6 * p.size;
+            [ax.min(bx) - pad, ax.max(bx) + pad, ay.min(by) - pad, ay.max(by) + pad]
+        })
+    }
+
+    /// The cap in the plane z = `zc` (outward normal z = `nz`), kept where
+    /// the ray's point there lies inside the (scaled) contour and is
+    /// nearer than the hit so far; true when it is an answer at once.
+    #[inline(always)]
+    fn cap(&self, p: &mut Probe, zc: f64, nz: f64) -> bool {
+        let (o, d) = (self.o, self.d);
+        let k = 1.0 + self.kappa * zc;
         if k == 0.0 {
             return false; // the cap is the apex: a ray through it took the path above
         }
         let t = (zc - o.z) / d.z;
-        if !closer(best, t, tmin, CAP) || query.past(t, &None) {
+        if !p.closer(t, CAP) || p.query.past(t, &None) {
             return false;
         }
-        let p = o + d * t;
+        let at = o + d * t;
         // A translation sweep's k is 1: x / 1 is x, without the division.
-        let (x, y) = if conic { (p.x / k, p.y / k) } else { (p.x, p.y) };
-        // Outside the contour's box the contour test answers no (every
-        // segment is skipped, or crossed an even number of times): asked
-        // only inside it.
+        let (x, y) = if self.conic { (at.x / k, at.y / k) } else { (at.x, at.y) };
+        // The box holds the contour (at z = 0, where a conic's is
+        // unscaled). Outside it the contour test answers no (every segment
+        // is skipped, or crossed an even number of times): asked only
+        // inside it.
+        let cbox = &p.sweep.bbox;
+        let boxed = cbox.xmin < cbox.xmax && cbox.ymin < cbox.ymax;
+        let pad = 1e-9 * p.size;
         if (boxed && (x < cbox.xmin - pad || x > cbox.xmax + pad || y < cbox.ymin - pad || y > cbox.ymax + pad))
-            || !inside_contour(sw, u, v, x, y)
+            || !inside_contour(p.grid, p.sweep, p.u, p.v, x, y)
         {
             return false;
         }
-        *best = Some(Best {
-            t,
-            normal: DVec3::new(0.0, 0.0, nz),
-            segment: CAP,
-        });
-        true
-    };
-    let caps: &[(f64, f64)] = match d.z {
-        z if z > 0.0 => &[(0.0, -1.0), (len, 1.0)],
-        z if z < 0.0 => &[(len, 1.0), (0.0, -1.0)],
-        _ => &[],
-    };
-    if let Some(&(zc, nz)) = caps.first() {
-        if cap(zc, nz, &mut best) && query.done(best.map_or(f64::INFINITY, |b| b.t)) {
-            return best.map(|b| hit(b.t, b.normal));
-        }
-    }
-    for (t_lo, i) in candidates.iter() {
-        if query.past(t_lo, &best) {
-            break;
-        }
-        let (cu, cv) = (&u[i], &v[i]);
-        let (pu, pv) = (asc(cu), asc(cv));
-        let mut f = [0.0; 7];
-        for k in 0..4 {
-            f[k] = alpha * pu[k] + beta * pv[k];
-        }
-        f[0] += gamma;
-        if negligible(&f, fscale) {
-            continue; // a straight segment along the ray's projection: grazing
-        }
-        let found = solve(3, &f, opts);
-        for &s0 in &found.s[..found.count] {
-            let s = polish(3, &f, s0);
-            let (uu, vv) = (cu.value(s), cv.value(s));
-            let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
-            let den = ex * ex + ey * ey;
-            if den.is_nan() || den <= 1e-24 * dn * dn {
-                continue; // the ray runs along the generator through this point
-            }
-            let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
-            let p = o + d * t;
-            let k = 1.0 + kappa * p.z;
-            let residual = norm2(p.x - k * uu, p.y - k * vv);
-            if residual <= RESIDUAL_TOL * size && p.z >= -ztol && p.z <= len + ztol && closer(&best, t, tmin, i) {
-                let (tu, tv) = tangent(cu, cv, s, size);
-                let normal = DVec3::new(tv, -tu, kappa * (tu * vv - tv * uu)) * k.signum();
-                if query.done(t) {
-                    return Some(hit(t, normal));
-                }
-                best = Some(Best { t, normal, segment: i });
-            }
-        }
+        p.keep(t, DVec3::new(0.0, 0.0, nz), CAP)
     }
 
-    // The far cap, if it is nearer than what the sides gave.
-    if let Some(&(zc, nz)) = caps.get(1) {
-        cap(zc, nz, &mut best);
+    /// The sides: each candidate segment's cubic, nearest first, until no
+    /// hit beyond can matter; true when a hit is an answer at once.
+    #[inline(always)]
+    fn sides(&self, p: &mut Probe, candidates: &Candidates) -> bool {
+        for (t_lo, i) in candidates.iter() {
+            if p.past(t_lo) {
+                break;
+            }
+            let (pu, pv) = (asc(&p.u[i]), asc(&p.v[i]));
+            let mut f = [0.0; 7];
+            for k in 0..4 {
+                f[k] = self.alpha * pu[k] + self.beta * pv[k];
+            }
+            f[0] += self.gamma;
+            if p.roots(3, &f, self.fscale, |p, s| self.side(p, i, s)) {
+                return true;
+            }
+        }
+        false
     }
 
-    let b = best?;
-    if matches!(query.want, Want::Before(_)) {
-        return Some(hit(b.t, b.normal)); // the caller needs only its t
+    /// The hit of root s of segment i's cubic, kept if it lies on the
+    /// surface between the caps and is the nearest so far; true when it is
+    /// an answer at once.
+    #[inline(always)]
+    fn side(&self, p: &mut Probe, i: usize, s: f64) -> bool {
+        let (o, d, k0, k1) = (self.o, self.d, self.k0, self.k1);
+        let (cu, cv) = (&p.u[i], &p.v[i]);
+        let (uu, vv) = (cu.value(s), cv.value(s));
+        let (ex, ey) = (d.x - k1 * uu, d.y - k1 * vv);
+        let den = ex * ex + ey * ey;
+        if den.is_nan() || den <= 1e-24 * self.dn * self.dn {
+            return false; // the ray runs along the generator through this point
+        }
+        let t = (ex * (k0 * uu - o.x) + ey * (k0 * vv - o.y)) / den;
+        let at = o + d * t;
+        let k = 1.0 + self.kappa * at.z;
+        let residual = norm2(at.x - k * uu, at.y - k * vv);
+        let ztol = 1e-12 * p.size;
+        if residual <= RESIDUAL_TOL * p.size && at.z >= -ztol && at.z <= self.len + ztol && p.closer(t, i) {
+            let (tu, tv) = tangent(cu, cv, s, p.size);
+            let normal = DVec3::new(tv, -tu, self.kappa * (tu * vv - tv * uu)) * k.signum();
+            return p.keep(t, normal, i);
+        }
+        false
     }
-    let normal = if b.segment == CAP {
-        b.normal
-    } else {
-        b.normal * orientation_of(sw, u, v)
-    };
-    let normal = normal.try_normalize()?;
-    Some(hit(b.t, normal))
 }

@@ -32,33 +32,38 @@
 //!
 //! Everything per ray is allocation-free (fixed arrays).
 //!
-//! The files: this one the driver ([`intersect_sweep`]) and what the
-//! kinds share (the solvers' call, the Bernstein pre-test, the tolerances);
-//! `extrusion` translation and conic sweeps; `revolve` rotation sweeps;
-//! `contour` the contour's own geometry (the cap test, orientation,
-//! tangents); `prepare` the coefficients and boxes from the control points.
+//! The files: this one the driver ([`Sweep`]) and what the kinds share
+//! (the solvers' call, the Bernstein pre-test, the tolerances); `probe`
+//! one ray's search of one object (the nearest hit so far, the candidate
+//! segments, the hit finished); `extrusion` translation and conic sweeps;
+//! `revolve` rotation sweeps; `contour` the contour's own geometry (the
+//! cap test, orientation, tangents); `prepare` the coefficients and boxes
+//! from the control points; `cache` what is kept of an object whose
+//! contour keeps its shape (`cap_grid` its cap test's grid, `bounds` what
+//! a ray takes from its box).
 
 mod bounds;
+mod cache;
 mod cap_grid;
 mod contour;
 mod extrusion;
 mod prepare;
+mod probe;
 mod revolve;
 
-pub use bounds::QueryBounds;
-pub use cap_grid::CapGrid;
+pub use cache::{prepare_caches, SweepCache};
 pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{prepare_sweeps, segment_points};
 
-use std::cell::Cell;
-
 use super::Near;
-use crate::proc::robust::{bernstein, bernstein_unit_of, newton_until, polygon_crossing, real_roots};
+use crate::options::{Options, Solver};
 use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
-use crate::types::{
-    BoundingBox, Coeff, DVec3, LocalHit, Options, PrimitiveClass, Ray, Solver, SweepShape, MAXSEGMENTS,
-};
+use crate::robust::{bernstein, bernstein_unit_of, newton_until, polygon_crossing, real_roots};
+use crate::types::{BoundingBox, Coeff, DVec3, LocalHit, PrimitiveClass, Ray, SweepShape, MAXSEGMENTS};
+use bounds::QueryBounds;
+use cap_grid::CapGrid;
 use extrusion::extrusion;
+use probe::{Probe, Query, Want};
 use revolve::revolve;
 
 /// Roots are kept in [−this, 1 + this], so that a ray through a joint is
@@ -133,8 +138,10 @@ pub(super) struct Found {
 ///
 /// The cubic's count is made where the call is (most segments end
 /// there); the rest of the work is [`solve_further`].
+///
+/// `searched` counts the polynomials searched ([`solve_further`]).
 #[inline(always)]
-pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
+pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options, searched: &mut u64) -> Found {
     let mut crosses = false;
     if n == 3 {
         let b = bernstein_unit_of::<3>(a);
@@ -149,36 +156,24 @@ pub(super) fn solve(n: usize, a: &[f64; 7], opts: &Options) -> Found {
             Crossings::Unknown => {}
         }
     }
-    solve_further(n, a, crosses, opts)
-}
-
-thread_local! {
-    /// The polynomials this thread has searched with `laguerre` or the
-    /// robust solver (past the pre-tests that settle most of them): what
-    /// makes one ray dearer than another in a scene of sweeps, counted for
-    /// the adaptive sampler ([`searched`]).
-    static SEARCHED: Cell<u64> = const { Cell::new(0) };
-}
-
-/// The polynomials this thread has searched so far (see `SEARCHED`): the
-/// difference across a ray is the searches that ray (with its shadow rays)
-/// made. A ray is traced on one thread, so the count is the same for any
-/// number of threads.
-pub fn searched() -> u64 {
-    SEARCHED.with(Cell::get)
+    solve_further(n, a, crosses, opts, searched)
 }
 
 /// [`solve`] past the cubic's count: `laguerre` behind its Bernstein
 /// pre-test (unless the polynomial is known to `cross` [−δ, 1 + δ]), or
-/// the robust solver.
+/// the robust solver. Each polynomial past the pre-tests (which settle
+/// most of them) is counted in `searched`: what makes one ray dearer than
+/// another in a scene of sweeps, which the adaptive sampler weighs. A ray
+/// is traced on one thread, so its count is the same for any number of
+/// threads.
 #[inline(never)]
-fn solve_further(n: usize, a: &[f64; 7], crosses: bool, opts: &Options) -> Found {
+fn solve_further(n: usize, a: &[f64; 7], crosses: bool, opts: &Options, searched: &mut u64) -> Found {
     let mut out = Found { count: 0, s: [0.0; 6] };
     let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
     if opts.solver == Solver::Laguerre && !crosses && !may_have_root(n, a, lo, hi) {
         return out;
     }
-    SEARCHED.with(|k| k.set(k.get() + 1));
+    *searched += 1;
     match opts.solver {
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
@@ -239,7 +234,7 @@ pub(super) enum Crossings {
 }
 
 /// What the Bernstein coefficients on [0, 1] `b[..=n]`
-/// ([`bernstein_unit`](crate::proc::robust::bernstein_unit), no shift: the
+/// ([`bernstein_unit`](crate::robust::bernstein_unit), no shift: the
 /// cheap half of [`bernstein`]) tell of the roots in [−δ, 1 + δ]
 /// (δ = [`JOINT_SLACK`]) when each is beyond 10⁻⁷ of the largest. On the
 /// slack p strays from its values on [0, 1] by at most δ·max|p′| ≤
@@ -272,6 +267,10 @@ pub(super) fn unit_crossings(n: usize, b: &[f64; 7]) -> Crossings {
 /// crosses 0, as [`real_roots`] would take it on [−δ, 1 + δ], but without
 /// counting again; stopped after a Newton step of at most `settle`
 /// ([`newton_until`]; 0: at rounding).
+// Out of line, as the compiler left it before the phases of `extrusion`
+// were methods: inlined there (with `newton_until`), it took fig5_7 3 %
+// more time (interleaved A/B, robust solver).
+#[inline(never)]
 pub(super) fn one_crossing(n: usize, a: &[f64; 7], b: &[f64; 7], settle: f64) -> f64 {
     newton_until(a, n, 0.0, 1.0, b[0], polygon_crossing(n, b), settle)
 }
@@ -318,214 +317,128 @@ pub(super) fn box_size(b: &BoundingBox) -> f64 {
         .fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
-/// The intersection of a ray with a sweep object: the nearest hit with
-/// t > `tmin`, with its unit outward normal, in the object's local frame.
-///
-/// Reconstructed from van Wijk 1984 and the thesis's §2.3, §2.5, §3.3 (see
-/// the module doc). The sweep's `u`, `v` and `bbox` must be filled
-/// ([`prepare_sweeps`], or the key-frame code for in-between shapes), and
-/// each `u[i]`, `v[i]` must bound its segment with `min`, `max`.
-///
-/// Special cases, each on its own path:
-/// - translation, a ray parallel to the axis: its projection is a point,
-///   inside the contour or not; only the caps can be hit;
-/// - conic, a ray through the apex: the same, with the point the ray's
-///   central projection from the apex; a ray in the plane of the apex
-///   (where the contour shrinks to a point) can only touch the apex;
-/// - rotation, a ray along the axis (constant radius): U(s) = r, a cubic;
-///   a ray perpendicular to the axis (constant height): V(s) = z, a cubic,
-///   then the ray's two crossings of the circle of radius U(s).
-///
-/// The ray is taken [`Near`] the object's box first, so the polynomials'
-/// coefficients are of the object's size whatever the eye's distance.
-///
-/// The segments the ray's line may meet are tried nearest first, by a
-/// lower bound on their hits' t (translation: from the segment's box along
-/// the ray's projection; rotation: from its height range), and the rest
-/// skipped once the bound passes the nearest hit so far: the same nearest
-/// hit as trying them all (of two at one t, the lower segment's). In
-/// thesis fidelity, where the boxes hold their segments, a translation
-/// sweep's segments whose boxes put every hit before `tmin` or outside the
-/// span of the ray between the caps' planes are not tried at all (D32).
-/// The caps of a contour that keeps its shape are answered by its
-/// [`CapGrid`] where no segment passes.
-///
-/// Each root gives its hit from the better conditioned equation, is
-/// polished, and is rejected unless the hit lies on the surface (within
-/// 1e-9 of the object's size); so a spurious root of either solver (the
-/// listing's `laguerre` can return one, erratum 7) never becomes a hit.
-#[inline(always)]
-pub fn intersect_sweep(
-    class: PrimitiveClass,
-    sweep: &SweepShape,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-) -> Option<LocalHit> {
-    sweep_query(class, sweep, ray, tmin, opts, Want::Nearest)
+/// A sweep object as the driver meets it, in its local frame: its class,
+/// its shape (the object's own, or its contour of the moment when it
+/// deforms) and the cache made with that shape ([`SweepCache`]; `None`
+/// for a contour of the moment, whose caps are then solved and whose
+/// bounds are made per ray).
+#[derive(Clone, Copy, Debug)]
+pub struct Sweep<'a> {
+    pub class: PrimitiveClass,
+    pub shape: &'a SweepShape,
+    pub cache: Option<&'a SweepCache>,
 }
 
-/// Does the ray meet the sweep object at some t with `tmin` < t < `tmax`?
-/// The shadow ray's question (a light `tmax` away): the answer of
-/// [`intersect_sweep`] (its nearest hit lies before `tmax`), reached by
-/// stopping at the first hit before `tmax` instead of the nearest.
-#[inline(always)]
-pub fn sweep_blocks(
-    class: PrimitiveClass,
-    sweep: &SweepShape,
-    ray: &Ray,
-    tmin: f64,
-    tmax: f64,
-    opts: &Options,
-) -> bool {
-    sweep_query(class, sweep, ray, tmin, opts, Want::Before(tmax)).is_some_and(|h| h.t < tmax)
-}
-
-/// What a caller asks of the sweep driver.
-#[derive(Clone, Copy)]
-pub(super) enum Want {
-    /// The nearest hit.
-    Nearest,
-    /// Whether a hit lies before this t of the caller's ray (a shadow ray's
-    /// light): the first hit found before it is returned, else the nearest
-    /// (or none); the normal is not turned by the orientation.
-    Before(f64),
-}
-
-/// The question of [`Want`] in the frame of the ray [`Near`] the object,
-/// whose t is the caller's less `shift`.
-#[derive(Clone, Copy)]
-pub(super) struct Query {
-    pub(super) want: Want,
-    pub(super) shift: f64,
-}
-
-impl Query {
-    /// Is a hit at t (near frame) an answer at once? Before the caller's
-    /// `tmax`, compared as the caller would compare the hit it gets back.
-    pub(super) fn done(&self, t: f64) -> bool {
-        matches!(self.want, Want::Before(tmax) if t + self.shift < tmax)
+impl Sweep<'_> {
+    /// The intersection of a ray with the sweep object: the nearest hit
+    /// with t > `tmin`, with its unit outward normal, in the object's local
+    /// frame. `searched` counts the polynomials searched past the solvers'
+    /// pre-tests.
+    ///
+    /// Reconstructed from van Wijk 1984 and the thesis's §2.3, §2.5, §3.3
+    /// (see the module doc). The sweep's `u`, `v` and `bbox` must be filled
+    /// ([`prepare_sweeps`], or the key-frame code for in-between shapes),
+    /// and each `u[i]`, `v[i]` must bound its segment with `min`, `max`.
+    ///
+    /// Special cases, each on its own path:
+    /// - translation, a ray parallel to the axis: its projection is a
+    ///   point, inside the contour or not; only the caps can be hit;
+    /// - conic, a ray through the apex: the same, with the point the ray's
+    ///   central projection from the apex; a ray in the plane of the apex
+    ///   (where the contour shrinks to a point) can only touch the apex;
+    /// - rotation, a ray along the axis (constant radius): U(s) = r, a
+    ///   cubic; a ray perpendicular to the axis (constant height):
+    ///   V(s) = z, a cubic, then the ray's two crossings of the circle of
+    ///   radius U(s).
+    ///
+    /// The ray is taken [`Near`] the object's box first, so the
+    /// polynomials' coefficients are of the object's size whatever the
+    /// eye's distance.
+    ///
+    /// The segments the ray's line may meet are tried nearest first, by a
+    /// lower bound on their hits' t (translation: from the segment's box
+    /// along the ray's projection; rotation: from its height range), and
+    /// the rest skipped once the bound passes the nearest hit so far: the
+    /// same nearest hit as trying them all (of two at one t, the lower
+    /// segment's). In thesis fidelity, where the boxes hold their segments,
+    /// a translation sweep's segments whose boxes put every hit before
+    /// `tmin` or outside the span of the ray between the caps' planes are
+    /// not tried at all (D32). The caps of a contour that keeps its shape
+    /// are answered by its cache's cap grid where no segment passes.
+    ///
+    /// Each root gives its hit from the better conditioned equation, is
+    /// polished, and is rejected unless the hit lies on the surface
+    /// (within 1e-9 of the object's size); so a spurious root of either
+    /// solver (the listing's `laguerre` can return one, erratum 7) never
+    /// becomes a hit.
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray, tmin: f64, opts: &Options, searched: &mut u64) -> Option<LocalHit> {
+        self.query(ray, tmin, opts, Want::Nearest, searched)
     }
 
-    /// Can no hit at t ≥ `t_lo` (near frame) matter? Beyond the nearest hit
-    /// so far, or beyond the caller's `tmax`.
-    pub(super) fn past(&self, t_lo: f64, best: &Option<Best>) -> bool {
-        best.is_some_and(|b| t_lo > b.t) || matches!(self.want, Want::Before(tmax) if t_lo + self.shift >= tmax)
+    /// Does the ray meet the sweep object at some t with `tmin` < t <
+    /// `tmax`? The shadow ray's question (a light `tmax` away): the answer
+    /// of [`Sweep::intersect`] (its nearest hit lies before `tmax`),
+    /// reached by stopping at the first hit before `tmax` instead of the
+    /// nearest.
+    #[inline(always)]
+    pub fn blocks(&self, ray: &Ray, tmin: f64, tmax: f64, opts: &Options, searched: &mut u64) -> bool {
+        self.query(ray, tmin, opts, Want::Before(tmax), searched)
+            .is_some_and(|h| h.t < tmax)
     }
-}
 
-#[inline(always)]
-fn sweep_query(
-    class: PrimitiveClass,
-    sweep: &SweepShape,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-    want: Want,
-) -> Option<LocalHit> {
-    let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
-    if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
-        return None;
-    }
-    let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
-    let computed;
-    let bounds = match &sweep.bounds {
-        Some(b) if b.holds(class, &sweep.bbox) => b,
-        _ => {
-            computed = QueryBounds::of(class, sweep, u, v)?;
-            &computed
+    #[inline(always)]
+    fn query(&self, ray: &Ray, tmin: f64, opts: &Options, want: Want, searched: &mut u64) -> Option<LocalHit> {
+        let (class, sweep) = (self.class, self.shape);
+        let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
+        if n == 0 || !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
+            return None;
         }
-    };
-    let (size, lo, hi) = (bounds.size, bounds.lo, bounds.hi);
-    // Every polynomial below is formed from the ray near the object.
-    let near = Near::of(ray, tmin, bounds.centre, bounds.radius2);
-    let (ray, tmin) = (&near.ray, near.tmin);
-    if bounds.boxed && !ray_meets_box(ray, tmin, lo, hi) {
-        return None;
-    }
-    let query = Query {
-        want,
-        shift: near.shift,
-    };
-    near.back(match class {
-        PrimitiveClass::Rotation => revolve(u, v, sweep, size, ray, tmin, opts, query),
-        _ => extrusion(
+        let (u, v) = (&sweep.u[..n], &sweep.v[..n]);
+        let computed;
+        let bounds = match self.cache.and_then(|c| c.bounds.as_ref()) {
+            Some(b) if b.holds(class, &sweep.bbox) => b,
+            _ => {
+                // Borrowed where it was made: moved out of the `Option`,
+                // it was copied (a `memcpy` of its fields just written).
+                computed = QueryBounds::of(class, sweep, u, v);
+                computed.as_ref()?
+            }
+        };
+        let (size, lo, hi) = (bounds.size, bounds.lo, bounds.hi);
+        // Every polynomial below is formed from the ray near the object.
+        let near = Near::of(ray, tmin, bounds.centre, bounds.radius2);
+        if bounds.boxed && !ray_meets_box(&near.ray, near.tmin, lo, hi) {
+            return None;
+        }
+        let probe = Probe {
+            sweep,
             u,
             v,
-            sweep,
-            class == PrimitiveClass::Conic,
+            grid: self.cache.and_then(|c| c.cap_grid.as_ref()),
             size,
-            ray,
-            tmin,
+            ray: near.ray,
+            tmin: near.tmin,
             opts,
-            query,
-        ),
-    })
-}
-
-/// The nearest hit so far, and the segment it is on.
-#[derive(Clone, Copy)]
-pub(super) struct Best {
-    pub(super) t: f64,
-    pub(super) normal: DVec3,
-    pub(super) segment: usize,
-}
-
-/// Is a hit at t on `segment` the new nearest? Of two hits at one t, the
-/// one on the lower segment: the answer of trying the segments in their
-/// order, whatever order they are tried in.
-pub(super) fn closer(best: &Option<Best>, t: f64, tmin: f64, segment: usize) -> bool {
-    t > tmin && best.is_none_or(|b| t < b.t || (t == b.t && segment < b.segment))
-}
-
-// A segment's index fits the byte `Candidates` keeps it in.
-const _: () = assert!(MAXSEGMENTS <= u8::MAX as usize + 1);
-
-/// Segments a ray may meet, tried nearest first: each with a lower bound
-/// on the t of its hits (−∞ where none is known).
-pub(super) struct Candidates {
-    len: usize,
-    t_lo: [f64; MAXSEGMENTS],
-    segment: [u8; MAXSEGMENTS],
-}
-
-impl Candidates {
-    pub(super) fn new() -> Self {
-        Candidates {
-            len: 0,
-            t_lo: [0.0; MAXSEGMENTS],
-            segment: [0; MAXSEGMENTS],
-        }
-    }
-
-    /// Adds `segment`, whose hits lie at t ≥ `t_lo`, keeping the list in
-    /// ascending `t_lo` (ties in segment order): insertion into a list of a
-    /// few entries.
-    pub(super) fn push(&mut self, t_lo: f64, segment: usize) {
-        if self.len == MAXSEGMENTS {
-            return;
-        }
-        let mut k = self.len;
-        while k > 0 && self.t_lo[k - 1] > t_lo {
-            self.t_lo[k] = self.t_lo[k - 1];
-            self.segment[k] = self.segment[k - 1];
-            k -= 1;
-        }
-        self.t_lo[k] = t_lo;
-        self.segment[k] = segment as u8; // < MAXSEGMENTS = 60
-        self.len += 1;
-    }
-
-    pub(super) fn iter(&self) -> impl Iterator<Item = (f64, usize)> + '_ {
-        (0..self.len).map(|k| (self.t_lo[k], self.segment[k] as usize))
+            query: Query {
+                want,
+                shift: near.shift,
+            },
+            best: None,
+            searched,
+        };
+        near.back(match class {
+            PrimitiveClass::Rotation => revolve(probe),
+            _ => extrusion(probe, class == PrimitiveClass::Conic),
+        })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drt::hashed_uniform;
-    use crate::proc::robust::poly_from_roots;
+    use crate::hash::hashed_uniform;
+    use crate::robust::poly_from_roots;
 
     /// What the Bernstein count says of a cubic is what the robust solver
     /// finds on [−δ, 1 + δ]: no root, or the one root, to 1e-12; on cubics
@@ -571,8 +484,8 @@ mod tests {
         );
     }
 
-    /// `searched` counts the polynomials the solvers search, and only
-    /// those: not a cubic the Bernstein count settles, nor one `laguerre`'s
+    /// `solve` counts the polynomials the solvers search, and only those:
+    /// not a cubic the Bernstein count settles, nor one `laguerre`'s
     /// pre-test turns away; one each for the rest, with either solver.
     #[test]
     fn searched_counts_the_searches() {
@@ -581,9 +494,9 @@ mod tests {
             ..Options::default()
         };
         let searches = |p: &[f64; 7], n: usize, solver| {
-            let before = searched();
-            solve(n, p, &opts(solver));
-            searched() - before
+            let mut searched = 0;
+            solve(n, p, &opts(solver), &mut searched);
+            searched
         };
         // No root near [0, 1]: the count settles it for both solvers.
         let far = poly_from_roots(&[3.0, 4.0, 5.0], 1.0);
@@ -626,14 +539,14 @@ mod tests {
                 continue;
             }
             checked += 1;
-            let robust = solve(3, &p, &opts(Solver::Robust));
+            let robust = solve(3, &p, &opts(Solver::Robust), &mut 0);
             assert_eq!(robust.count, 1);
             assert_eq!(robust.s[0], one_crossing(3, &p, &b, SIDE_SETTLE));
             let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
             let mut root = [Root::default(); LAGUERRE_ROOTS];
             let total = laguerre(3, &p, hi, lo, &mut root, opts(Solver::Laguerre).fidelity);
             let own: Vec<f64> = root[..total.min(6)].iter().map(|r| r.a).collect();
-            let lag = solve(3, &p, &opts(Solver::Laguerre));
+            let lag = solve(3, &p, &opts(Solver::Laguerre), &mut 0);
             assert_eq!(&lag.s[..lag.count], &own[..], "cubic {k}");
         }
         assert!(checked > 500, "{checked}");
@@ -653,13 +566,21 @@ mod tests {
                 points.reverse();
             }
             let sw = prepare::translation_sweep(points, CurveKind::Bspline, 1.0);
-            let kept = &sw;
-            assert_eq!(kept.orientation, want);
-            let unknown = SweepShape {
+            let cache = SweepCache::new(PrimitiveClass::Translation, &sw);
+            let kept = Sweep {
+                class: PrimitiveClass::Translation,
+                shape: &sw,
+                cache: cache.as_ref(),
+            };
+            assert_eq!(sw.orientation, want);
+            let unknown_shape = SweepShape {
                 orientation: 0.0,
-                cap_grid: None,
-                bounds: None,
-                ..kept.clone()
+                ..sw.clone()
+            };
+            let unknown = Sweep {
+                shape: &unknown_shape,
+                cache: None,
+                ..kept
             };
             let mut hits = 0;
             for k in 0..400u64 {
@@ -671,8 +592,8 @@ mod tests {
                         solver,
                         ..Options::default()
                     };
-                    let a = intersect_sweep(PrimitiveClass::Translation, kept, &ray, 1e-9, &opts);
-                    let b = intersect_sweep(PrimitiveClass::Translation, &unknown, &ray, 1e-9, &opts);
+                    let a = kept.intersect(&ray, 1e-9, &opts, &mut 0);
+                    let b = unknown.intersect(&ray, 1e-9, &opts, &mut 0);
                     assert_eq!(a, b, "ray {k}");
                     hits += a.is_some() as usize;
                 }

@@ -1,13 +1,11 @@
 //! The coefficients and boxes of the sweep objects, from their control
 //! points (`spline`), before any ray.
 
-use super::cap_grid::CapGrid;
 use super::contour::orientation;
-use super::QueryBounds;
+use crate::options::Fidelity;
 use crate::proc::sweep::spline;
-use crate::types::{
-    BoundingBox, Coeff, CurveKind, DVec3, Fidelity, PrimitiveClass, Scene, Shape, SweepShape, MAXSEGMENTS,
-};
+use crate::scene::Scene;
+use crate::types::{BoundingBox, Coeff, CurveKind, DVec3, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// The four control points of segment i: B-spline points i … i+3
 /// (wrapping), Bezier P[3i] … P[3i+3 mod 3k].
@@ -49,11 +47,6 @@ pub(super) fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> Bound
         sw.v.push(cv);
     }
     sw.orientation = orientation(&sw.u, &sw.v);
-    sw.cap_grid = match class {
-        // The (radius, height) contour of a rotation sweep closes no cap.
-        PrimitiveClass::Rotation => None,
-        _ => CapGrid::new(&sw.u, &sw.v).map(std::sync::Arc::new),
-    };
     sbox
 }
 
@@ -86,8 +79,6 @@ pub(super) fn translation_sweep(points: Vec<[f64; 2]>, curve: CurveKind, length:
         scale: 1.0,
         bbox: BoundingBox::default(),
         orientation: 0.0,
-        cap_grid: None,
-        bounds: None,
     };
     let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
     sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);
@@ -206,15 +197,5 @@ pub fn prepare_sweeps(scene: &mut Scene, fidelity: Fidelity) {
         // Thesis (§3.3): "the bounding box of each picture" — each
         // object keeps its own.
         Fidelity::Thesis => {}
-    }
-    // The boxes are final: what every ray takes from them, made once.
-    for obj in objects
-        .iter_mut()
-        .chain(keyframes.iter_mut().flat_map(|k| k.rest.iter_mut()))
-    {
-        let class = obj.class;
-        if let Shape::Sweep(sw) = &mut obj.shape {
-            sw.bounds = QueryBounds::kept(class, sw);
-        }
     }
 }

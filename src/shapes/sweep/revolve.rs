@@ -1,13 +1,12 @@
 //! Rotation sweeps: one sextic a segment from the ray's hyperbola in the
 //! (radius, height) plane, with `outrectp` as the segment's bounding test.
 
-use super::contour::{orientation_of, tangent};
-use super::{
-    asc, closer, negligible, norm2, polish, solve, Best, Candidates, Query, Want, JOINT_SLACK, PARALLEL_TOL,
-    RESIDUAL_TOL,
-};
+use super::contour::tangent;
+use super::probe::{Candidates, Probe};
+use super::{asc, norm2, JOINT_SLACK, PARALLEL_TOL, RESIDUAL_TOL};
+use crate::options::Solver;
 use crate::proc::sweep::outrectp;
-use crate::types::{Coeff, DVec3, LocalHit, Options, Ray, Solver, SweepShape};
+use crate::types::{Coeff, DVec3, LocalHit, Ray};
 
 /// U(s), V(s) of segment (u, v), and the 2-D residual (radius, height) of
 /// the ray point at t against that contour point of the rotation sweep.
@@ -105,189 +104,206 @@ pub(super) fn sextic(cu: &Coeff, cv: &Coeff, ray: &Ray) -> [f64; 7] {
 /// heights measured from o_z). On the contour r = U(s), w = V(s) − o_z:
 ///   A (V − o_z)² + B d_z (V − o_z) + d_z² (C − U²) = 0,
 /// a sextic in s.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn revolve(
-    u: &[Coeff],
-    v: &[Coeff],
-    sw: &SweepShape,
-    size: f64,
-    ray: &Ray,
-    tmin: f64,
-    opts: &Options,
-    query: Query,
-) -> Option<LocalHit> {
-    let (o, d) = (ray.origin, ray.dir);
-    let dn = d.length();
-    let a = d.x * d.x + d.y * d.y;
-    let b = 2.0 * (o.x * d.x + o.y * d.y);
-    let c = o.x * o.x + o.y * o.y;
-    let pad = 1e-9 * size;
-    let along = a.sqrt() <= PARALLEL_TOL * dn;
-    let across = d.z.abs() <= PARALLEL_TOL * dn;
-    let mut best: Option<Best> = None;
-    // Each root s is tried with three t (its height's, and the circle's two
-    // crossings), of which one is the hit. A root of the robust solver is
-    // the sextic's to rounding, so the others start far from the surface
-    // and cannot polish to a hit of theirs (such a hit would be another
-    // root, tried on its own): they are dropped before the polish. A root
-    // of `laguerre` may be rough, and every start is polished, as before.
-    let give_up = match opts.solver {
-        Solver::Robust => 1e-3 * size,
-        Solver::Laguerre => f64::INFINITY,
-    };
-    // Whether the hit polished from (s, t) on segment i is an answer at once.
-    let consider = |i: usize, s: f64, t: f64, best: &mut Option<Best>| -> bool {
+pub(super) fn revolve(mut probe: Probe) -> Option<LocalHit> {
+    let r = Revolve::new(&probe);
+    // Filled where it stands: returned, its arrays would be copied.
+    let mut candidates = Candidates::new();
+    r.candidates(&probe, &mut candidates);
+    r.sides(&mut probe, &candidates);
+    probe.finish()
+}
+
+/// What one ray gives a rotation sweep's phases (see [`revolve`]): the
+/// ray's numbers and its hyperbola in the (radius, height) plane.
+// The phases are compiled into `revolve`, as the closures they were
+// written as before: one function, its numbers kept in registers.
+#[derive(Clone, Copy)]
+struct Revolve {
+    o: DVec3,
+    d: DVec3,
+    a: f64,
+    b: f64,
+    c: f64,
+    // Along the axis (the ray keeps the radius √C), or perpendicular to
+    // it (the height o_z): the special cases.
+    along: bool,
+    across: bool,
+    /// Starts farther than this from the surface are not polished.
+    give_up: f64,
+    // √C, and the radius of the ray's closest approach to the axis.
+    rc: f64,
+    hu: f64,
+    // `outrectp`'s hyperbola, and the height of its vertex.
+    ha: f64,
+    hb: f64,
+    hc: f64,
+    hd: f64,
+    hv: f64,
+}
+
+impl Revolve {
+    #[inline(always)]
+    fn new(p: &Probe) -> Revolve {
+        let (o, d) = (p.ray.origin, p.ray.dir);
+        let dn = d.length();
+        let a = d.x * d.x + d.y * d.y;
+        let b = 2.0 * (o.x * d.x + o.y * d.y);
+        let c = o.x * o.x + o.y * o.y;
+        // Each root s is tried with three t (its height's, and the circle's
+        // two crossings), of which one is the hit. A root of the robust
+        // solver is the sextic's to rounding, so the others start far from
+        // the surface and cannot polish to a hit of theirs (such a hit
+        // would be another root, tried on its own): they are dropped before
+        // the polish. A root of `laguerre` may be rough, and every start is
+        // polished, as before.
+        let give_up = match p.opts.solver {
+            Solver::Robust => 1e-3 * p.size,
+            Solver::Laguerre => f64::INFINITY,
+        };
+        let dz = d.z;
+        let (ha, hb, hc, hd) = (a, b * dz, c * dz * dz, dz * dz);
+        Revolve {
+            o,
+            d,
+            a,
+            b,
+            c,
+            along: a.sqrt() <= PARALLEL_TOL * dn,
+            across: d.z.abs() <= PARALLEL_TOL * dn,
+            give_up,
+            rc: c.sqrt(),
+            hu: (c - b * b / (4.0 * a)).max(0.0).sqrt(),
+            ha,
+            hb,
+            hc,
+            hd,
+            hv: -hb / (2.0 * ha),
+        }
+    }
+
+    /// The segments whose bounds the ray passes, nearest first.
+    #[inline(always)]
+    fn candidates(&self, p: &Probe, candidates: &mut Candidates) {
+        let (o, size) = (self.o, p.size);
+        let pad = 1e-9 * size;
+        // Slack on a segment's lower bound on t from its heights: a hit's
+        // height is V(s) to 1e-9 of the size, with s 1e-9 outside [0, 1].
+        let t_pad = 1e-6 * size / self.d.z.abs();
+        for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
+            if cu.max.abs().max(cu.min.abs()) <= 1e-12 * size {
+                continue; // a segment on the axis sweeps no surface
+            }
+            let t_lo = if self.along {
+                // Along the axis: the ray keeps the radius √C.
+                if cu.min > self.rc + pad || cu.max < self.rc - pad {
+                    continue;
+                }
+                f64::NEG_INFINITY
+            } else if self.across {
+                // Perpendicular to the axis: the ray keeps the height o_z.
+                if cv.min > o.z + pad || cv.max < o.z - pad || cu.max < self.hu - pad {
+                    continue;
+                }
+                f64::NEG_INFINITY
+            } else {
+                let pu = Coeff {
+                    min: cu.min - pad,
+                    max: cu.max + pad,
+                    ..*cu
+                };
+                let pv = Coeff {
+                    min: cv.min - o.z - pad,
+                    max: cv.max - o.z + pad,
+                    ..*cv
+                };
+                if outrectp(&pu, &pv, self.ha, self.hb, self.hc, self.hd, self.hu, self.hv) {
+                    continue;
+                }
+                ((cv.min - o.z) / self.d.z).min((cv.max - o.z) / self.d.z) - t_pad
+            };
+            candidates.push(t_lo, i);
+        }
+    }
+
+    /// Each candidate segment's polynomial, nearest first, until no hit
+    /// beyond can matter or one is an answer at once: along the axis
+    /// U(s) = √C, a cubic, t from the height; perpendicular to it
+    /// V(s) = o_z, a cubic, t from the circle of radius U(s); else the
+    /// sextic, t from the better conditioned of the height and the radius
+    /// equations (each tried, and what lands on the surface kept).
+    #[inline(always)]
+    fn sides(&self, p: &mut Probe, candidates: &Candidates) {
+        let size = p.size;
+        for (t_lo, i) in candidates.iter() {
+            if p.past(t_lo) {
+                break;
+            }
+            let (cu, cv) = (&p.u[i], &p.v[i]);
+            let answered = if self.along {
+                let mut poly = [0.0; 7];
+                poly[..4].copy_from_slice(&asc(cu));
+                poly[0] -= self.rc;
+                p.roots(3, &poly, size, |p, s| self.at_height(p, i, s))
+            } else if self.across {
+                let mut poly = [0.0; 7];
+                poly[..4].copy_from_slice(&asc(cv));
+                poly[0] -= self.o.z;
+                p.roots(3, &poly, size, |p, s| self.on_circle(p, i, s))
+            } else {
+                let poly = sextic(cu, cv, &p.ray);
+                let pscale = self.a * size * size + self.hd * (size * size + self.c);
+                p.roots(6, &poly, pscale, |p, s| {
+                    self.at_height(p, i, s) || self.on_circle(p, i, s)
+                })
+            };
+            if answered {
+                return;
+            }
+        }
+    }
+
+    /// Root s of segment i with the t of its height.
+    #[inline(always)]
+    fn at_height(&self, p: &mut Probe, i: usize, s: f64) -> bool {
+        self.consider(p, i, s, (p.v[i].value(s) - self.o.z) / self.d.z)
+    }
+
+    /// Root s of segment i with the two t where the ray crosses the circle
+    /// of radius U(s) (A t² + B t + C = U²), if it does.
+    #[inline(always)]
+    fn on_circle(&self, p: &mut Probe, i: usize, s: f64) -> bool {
+        let r = p.u[i].value(s);
+        let (a, b) = (self.a, self.b);
+        let cc = self.c - r * r;
+        let disc = b * b - 4.0 * a * cc;
+        if disc < 0.0 {
+            return false;
+        }
+        let q = -0.5 * (b + b.signum() * disc.sqrt());
+        let (t1, t2) = if q == 0.0 {
+            let t = -b / (2.0 * a);
+            (t, t)
+        } else {
+            (q / a, cc / q)
+        };
+        self.consider(p, i, s, t1) || self.consider(p, i, s, t2)
+    }
+
+    /// The hit polished from (s, t) on segment i, kept if it lies on the
+    /// surface and is the nearest so far; true when it is an answer at
+    /// once.
+    #[inline(always)]
+    fn consider(&self, p: &mut Probe, i: usize, s: f64, t: f64) -> bool {
         if !t.is_finite() {
             return false;
         }
-        let (cu, cv) = (&u[i], &v[i]);
-        let (s, t, res) = polish_revolve(cu, cv, ray, s, t, give_up);
-        if res <= RESIDUAL_TOL * size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && closer(best, t, tmin, i) {
-            let normal = revolve_normal(cu, cv, s, ray.at(t), size);
-            *best = Some(Best { t, normal, segment: i });
-            return query.done(t);
+        let (cu, cv) = (&p.u[i], &p.v[i]);
+        let (s, t, res) = polish_revolve(cu, cv, &p.ray, s, t, self.give_up);
+        if res <= RESIDUAL_TOL * p.size && (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s) && p.closer(t, i) {
+            let normal = revolve_normal(cu, cv, s, p.ray.at(t), p.size);
+            return p.keep(t, normal, i);
         }
         false
-    };
-    // Both crossings of the circle of radius r (A t² + B t + C = r²).
-    let circle = |r: f64| -> Option<(f64, f64)> {
-        let cc = c - r * r;
-        let disc = b * b - 4.0 * a * cc;
-        if disc < 0.0 {
-            return None;
-        }
-        let q = -0.5 * (b + b.signum() * disc.sqrt());
-        if q == 0.0 {
-            let t = -b / (2.0 * a);
-            return Some((t, t));
-        }
-        Some((q / a, cc / q))
-    };
-    let rc = c.sqrt();
-    let hu = (c - b * b / (4.0 * a)).max(0.0).sqrt();
-    let dz = d.z;
-    let (ha, hb, hc, hd) = (a, b * dz, c * dz * dz, dz * dz);
-    let hv = -hb / (2.0 * ha);
-    // Slack on a segment's lower bound on t from its heights: a hit's
-    // height is V(s) to 1e-9 of the size, with s 1e-9 outside [0, 1].
-    let t_pad = 1e-6 * size / dz.abs();
-
-    // The segments whose bounds the ray passes, nearest first.
-    let mut candidates = Candidates::new();
-    for i in 0..u.len() {
-        let (cu, cv) = (&u[i], &v[i]);
-        if cu.max.abs().max(cu.min.abs()) <= 1e-12 * size {
-            continue; // a segment on the axis sweeps no surface
-        }
-        let t_lo = if along {
-            // Along the axis: the ray keeps the radius √C.
-            if cu.min > rc + pad || cu.max < rc - pad {
-                continue;
-            }
-            f64::NEG_INFINITY
-        } else if across {
-            // Perpendicular to the axis: the ray keeps the height o_z.
-            if cv.min > o.z + pad || cv.max < o.z - pad || cu.max < hu - pad {
-                continue;
-            }
-            f64::NEG_INFINITY
-        } else {
-            let pu = Coeff {
-                min: cu.min - pad,
-                max: cu.max + pad,
-                ..*cu
-            };
-            let pv = Coeff {
-                min: cv.min - o.z - pad,
-                max: cv.max - o.z + pad,
-                ..*cv
-            };
-            if outrectp(&pu, &pv, ha, hb, hc, hd, hu, hv) {
-                continue;
-            }
-            ((cv.min - o.z) / dz).min((cv.max - o.z) / dz) - t_pad
-        };
-        candidates.push(t_lo, i);
-    }
-
-    for (t_lo, i) in candidates.iter() {
-        if query.past(t_lo, &best) {
-            break;
-        }
-        let (cu, cv) = (&u[i], &v[i]);
-        if along {
-            // U(s) = √C, a cubic; t from the height.
-            let mut p = [0.0; 7];
-            p[..4].copy_from_slice(&asc(cu));
-            p[0] -= rc;
-            if negligible(&p, size) {
-                continue;
-            }
-            let found = solve(3, &p, opts);
-            for &s in &found.s[..found.count] {
-                let s = polish(3, &p, s);
-                if consider(i, s, (cv.value(s) - o.z) / d.z, &mut best) {
-                    return best.map(|h| hit(ray, h));
-                }
-            }
-        } else if across {
-            // V(s) = o_z, a cubic; t from the circle of radius U(s).
-            let mut p = [0.0; 7];
-            p[..4].copy_from_slice(&asc(cv));
-            p[0] -= o.z;
-            if negligible(&p, size) {
-                continue;
-            }
-            let found = solve(3, &p, opts);
-            for &s in &found.s[..found.count] {
-                let s = polish(3, &p, s);
-                if let Some((t1, t2)) = circle(cu.value(s)) {
-                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
-                        return best.map(|h| hit(ray, h));
-                    }
-                }
-            }
-        } else {
-            let p = sextic(cu, cv, ray);
-            let pscale = a * size * size + hd * (size * size + c);
-            if negligible(&p, pscale) {
-                continue;
-            }
-            let found = solve(6, &p, opts);
-            for &s in &found.s[..found.count] {
-                let s = polish(6, &p, s);
-                // The better conditioned of the height and the radius
-                // equations: try each, keep what lands on the surface.
-                if consider(i, s, (cv.value(s) - o.z) / dz, &mut best) {
-                    return best.map(|h| hit(ray, h));
-                }
-                if let Some((t1, t2)) = circle(cu.value(s)) {
-                    if consider(i, s, t1, &mut best) || consider(i, s, t2, &mut best) {
-                        return best.map(|h| hit(ray, h));
-                    }
-                }
-            }
-        }
-    }
-    let bst = best?;
-    if matches!(query.want, Want::Before(_)) {
-        return Some(hit(ray, bst)); // the caller needs only its t
-    }
-    // The contour's orientation turns the normal out: once, for the hit kept.
-    let normal = (bst.normal * orientation_of(sw, u, v)).try_normalize()?;
-    Some(LocalHit {
-        t: bst.t,
-        point: ray.at(bst.t),
-        normal,
-    })
-}
-
-/// A hit as it stands (the normal not yet turned out).
-fn hit(ray: &Ray, b: Best) -> LocalHit {
-    LocalHit {
-        t: b.t,
-        point: ray.at(b.t),
-        normal: b.normal,
     }
 }
 

@@ -357,9 +357,9 @@ fn run(cli: &Cli) -> Result<bool, String> {
         let path = work.join(&s.file);
         let original = std::fs::read_to_string(&path).map_err(|e| e.to_string())?;
         let thesis = if s.file.starts_with("src/bin") {
-            "raytrace::types::Fidelity::Thesis"
+            "raytrace::options::Fidelity::Thesis"
         } else {
-            "crate::types::Fidelity::Thesis"
+            "crate::options::Fidelity::Thesis"
         };
         let mutated = format!("{}{thesis}{}", &original[..s.range.0], &original[s.range.1..]);
         std::fs::write(&path, mutated).map_err(|e| e.to_string())?;

@@ -1,8 +1,8 @@
 //! The key-frame families: random rays against the in-between shapes of
 //! the key-frame decks, the robust solver's hit the reference.
 
-use raytrace::shapes::sweep::intersect_sweep;
-use raytrace::types::{DVec3, Fidelity, Options, PrimitiveClass, Ray};
+use raytrace::options::{Fidelity, Options};
+use raytrace::types::{DVec3, PrimitiveClass, Ray};
 
 use super::rays::box_size;
 use super::{Method, RayCase, RayFamily, Rng, TestSweep};
@@ -21,8 +21,9 @@ pub const KEYFRAME_DECKS: [(&str, &str); 3] = [
 pub fn keyframe_shapes() -> Result<Vec<(String, Vec<TestSweep>)>, String> {
     let mut out = Vec::new();
     for (deck, how) in KEYFRAME_DECKS {
-        let scene = crate::decks::prepared(deck, &Options::default(), None)?;
-        let chains = raytrace::raytrace::key_frame_chains(&scene, Fidelity::Thesis).map_err(|e| e.to_string())?;
+        let prepared = crate::decks::prepared(deck, &Options::default(), None)?;
+        let scene = prepared.scene();
+        let chains = raytrace::raytrace::key_frame_chains(scene, Fidelity::Thesis).map_err(|e| e.to_string())?;
         let mut shapes = Vec::new();
         for (k, chain) in &chains {
             let class = scene.objects[scene.keyframes[*k].first].class;
@@ -35,6 +36,7 @@ pub fn keyframe_shapes() -> Result<Vec<(String, Vec<TestSweep>)>, String> {
                     name: format!("{deck} at t = {t}"),
                     class,
                     sweep,
+                    cache: None, // a contour of the moment
                     size,
                 });
             }
@@ -85,7 +87,7 @@ pub fn keyframe_families(shapes: &[(String, Vec<TestSweep>)], per: usize) -> Vec
                 .map(|k| {
                     let ts = &list[k % list.len()];
                     let ray = random_ray(&mut rng, ts);
-                    let truth = intersect_sweep(ts.class, &ts.sweep, &ray, 1e-9, &robust).map(|h| h.t);
+                    let truth = ts.object().intersect(&ray, 1e-9, &robust, &mut 0).map(|h| h.t);
                     RayCase { sweep: ts, ray, truth }
                 })
                 .collect();

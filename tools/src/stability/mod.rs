@@ -5,7 +5,7 @@
 //!   [0, 1] by `laguerre` (listing and thesis fidelity) and by
 //!   `real_roots` (the robust solver);
 //! - geometric families: constructed rays against constructed sweeps,
-//!   intersected by `intersect_sweep` with each solver, where the true
+//!   intersected by `Sweep::intersect` with each solver, where the true
 //!   first hit is known by construction (a ray tangent to, or aimed from
 //!   outside at a point of, a convex sweep; a cap or an apex) or
 //!   analytically (rotation sweeps of straight segments, which are exact
@@ -19,7 +19,7 @@
 //! `keyframe` the key-frame ones, `tally` counts what each method
 //! does on them, `report` writes the tables.
 
-use raytrace::types::{Fidelity, Options, Solver};
+use raytrace::options::{Fidelity, Options, Solver};
 
 mod keyframe;
 mod rays;
@@ -99,4 +99,4 @@ impl Rng {
     }
 }
 
-pub use raytrace::proc::robust::poly_from_roots as poly;
+pub use raytrace::robust::poly_from_roots as poly;

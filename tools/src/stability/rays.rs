@@ -4,7 +4,10 @@
 use std::fmt::Write;
 use std::path::Path;
 
-use raytrace::types::{Coeff, DVec3, Fidelity, Options, PrimitiveClass, Ray, Shape, SweepShape};
+use raytrace::shapes::sweep::{Sweep, SweepCache};
+use raytrace::types::{Coeff, DVec3, PrimitiveClass, Ray, Shape, SweepShape};
+
+use raytrace::options::{Fidelity, Options};
 
 use super::{Rng, GRAZE};
 
@@ -14,8 +17,22 @@ pub struct TestSweep {
     pub name: String,
     pub class: PrimitiveClass,
     pub sweep: SweepShape,
+    /// The cache a render makes for it (`None` for a contour of the
+    /// moment).
+    pub cache: Option<SweepCache>,
     /// The largest coordinate of its box: the scale of the hit tolerance.
     pub size: f64,
+}
+
+impl TestSweep {
+    /// The sweep as its driver meets it, with its cache.
+    pub fn object(&self) -> Sweep<'_> {
+        Sweep {
+            class: self.class,
+            shape: &self.sweep,
+            cache: self.cache.as_ref(),
+        }
+    }
 }
 
 /// A sweep from a deck record: `class` and `curve` as the deck spells
@@ -44,10 +61,12 @@ pub fn test_sweep(
         let _ = writeln!(deck, "{:.17} {:.17}", p[0], p[1]);
     }
     deck.push_str("end\n");
-    let mut scene = crate::decks::load_source(&deck, name, Path::new("."), Fidelity::Thesis)
+    let scene = crate::decks::load_source(&deck, name, Path::new("."), Fidelity::Thesis)
         .unwrap_or_else(|e| panic!("the constructed sweep {name} is a valid deck: {e}"));
-    raytrace::raytrace::prepare(&mut scene, &Options::default())
-        .unwrap_or_else(|e| panic!("the constructed sweep {name} prepares: {e}"));
+    let mut scene = crate::decks::prepare(scene, &Options::default())
+        .unwrap_or_else(|e| panic!("the constructed sweep {name} prepares: {e}"))
+        .scene()
+        .clone();
     let obj = scene.objects.pop().expect("one object");
     let Shape::Sweep(sweep) = obj.shape else {
         panic!("{name} is a sweep")
@@ -56,6 +75,7 @@ pub fn test_sweep(
     TestSweep {
         name: name.to_string(),
         class: obj.class,
+        cache: SweepCache::new(obj.class, &sweep),
         sweep,
         size,
     }

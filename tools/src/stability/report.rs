@@ -236,11 +236,11 @@ pub fn run(out: &Path) -> Result<(), String> {
     let _ = writeln!(
         report,
         "\n## Constructed rays against constructed sweeps\n\n{per_ray} rays a kind of ray (fixed seeds; where \
-         each tilt is a family of its own, shared evenly among the tilts), each intersected by `shapes::sweep::intersect_sweep` with the method's solver. A hit is the true one \
+         each tilt is a family of its own, shared evenly among the tilts), each intersected by `shapes::sweep::Sweep::intersect` with the method's solver. A hit is the true one \
          within {HIT_TOL:.0e} of the object's size (its largest box coordinate); \"missed\" counts no hit \
          or a farther one (a hole, or the surface behind), \"spurious\" a hit where there is none or a \
          nearer one. Worst error: the largest |t − t_true| of the hits found, relative to the size. \
-         Time: one call of `intersect_sweep` (every segment's polynomial, the polish and the checks).\n"
+         Time: one call of `Sweep::intersect` (every segment's polynomial, the polish and the checks).\n"
     );
     report.push_str(TABLE_HEAD);
     let mut truths = String::new();
@@ -317,7 +317,7 @@ Written by `cargo run -p tools --release -- stability` (tools/src/stability/); e
 fixed seed, so the counts are the same on every run; the times are not (medians on a shared 2-core \
 machine). Three methods: `laguerre` as printed (§2.5, 4 steps from the fixed starts 0.98/n, …) in \
 listing and thesis fidelity (erratum 7 parts them: the derivative stored and the zero-denominator \
-guards), and the robust solver (`proc::robust::real_roots`, `--solver robust`). \
+guards), and the robust solver (`robust::real_roots`, `--solver robust`). \
 docs/laguerre_misses.md has laguerre's miss rates on random polynomials and random rays; this report \
 takes the hard cases one family at a time.\n";
 

@@ -2,8 +2,8 @@
 //! [0, 1] by `laguerre` and by the robust solver, and how the roots found
 //! are matched to the true ones.
 
-use raytrace::proc::robust::real_roots;
 use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
+use raytrace::robust::real_roots;
 
 use super::{poly, Method, Rng};
 

@@ -2,8 +2,6 @@
 
 use std::time::Instant;
 
-use raytrace::shapes::sweep::intersect_sweep;
-
 use super::{match_roots, solve, Method, PolyFamily, RayFamily, HIT_TOL, ROOT_TOL, ROUGH_TOL};
 use crate::measure::median;
 
@@ -104,7 +102,11 @@ pub fn tally_rays(method: Method, fam: &RayFamily) -> Tally {
         ..Tally::default()
     };
     for case in &fam.cases {
-        let got = intersect_sweep(case.sweep.class, &case.sweep.sweep, &case.ray, 1e-9, &opts).map(|h| h.t);
+        let got = case
+            .sweep
+            .object()
+            .intersect(&case.ray, 1e-9, &opts, &mut 0)
+            .map(|h| h.t);
         let tol = HIT_TOL * case.sweep.size;
         if case.truth.is_some() {
             t.truths += 1;
@@ -123,13 +125,11 @@ pub fn tally_rays(method: Method, fam: &RayFamily) -> Tally {
     }
     t.ns = time_per_case(fam.cases.len(), || {
         for case in &fam.cases {
-            std::hint::black_box(intersect_sweep(
-                case.sweep.class,
-                &case.sweep.sweep,
-                std::hint::black_box(&case.ray),
-                1e-9,
-                &opts,
-            ));
+            std::hint::black_box(
+                case.sweep
+                    .object()
+                    .intersect(std::hint::black_box(&case.ray), 1e-9, &opts, &mut 0),
+            );
         }
     });
     t

@@ -1,4 +1,4 @@
-//! The renderer's benches (`cargo bench -p tools`), with criterion:
+//! The renderer's benches (`cargo bench -p tools-bench`), with criterion:
 //! - `chapter5/DECK`: each deck of Chapter 5 as it is (256×256, 2×2);
 //! - `rays/DECK/SOLVER`: rays a second on the three sweep kinds (fig5_6
 //!   translation, fig5_7 conic, fig5_8 rotation) for each root solver;
@@ -8,7 +8,7 @@
 //!   15, 30, 60 points at 256×256, 2×2;
 //! - `solver/DEGREE/SOLVER`: one solve of a cubic and of a sextic with
 //!   separated roots in [0, 1], by `laguerre` and by the robust solver;
-//! - `sweep/KIND/SOLVER`: one `intersect_sweep` call a ray, on the sweep of
+//! - `sweep/KIND/SOLVER`: one `Sweep::intersect` call a ray, on the sweep of
 //!   fig5_6, fig5_7 and fig5_8 with rays aimed into its box.
 //!
 //! Sample counts are modest (10 samples, 3 s) so that the whole run takes a
@@ -20,12 +20,13 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput};
-use raytrace::proc::robust::{poly_from_roots, real_roots};
+use raytrace::options::{Fidelity, Options, Solver};
 use raytrace::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
-use raytrace::raytrace::{prepare, render};
-use raytrace::shapes::sweep::intersect_sweep;
-use raytrace::types::{DVec3, Fidelity, Options, Ray, Scene, Shape, Solver};
-use tools::decks::{circle_sweep_deck, load_source, prepared, CHAPTER5, SWEEP_KINDS};
+use raytrace::raytrace::Prepared;
+use raytrace::robust::{poly_from_roots, real_roots};
+use raytrace::shapes::sweep::{Sweep, SweepCache};
+use raytrace::types::{DVec3, Ray, Shape};
+use tools::decks::{circle_sweep_deck, load_source, prepare, prepared, still, CHAPTER5, SWEEP_KINDS};
 
 fn modest<M: criterion::measurement::Measurement>(g: &mut BenchmarkGroup<'_, M>) {
     g.sample_size(10)
@@ -33,13 +34,13 @@ fn modest<M: criterion::measurement::Measurement>(g: &mut BenchmarkGroup<'_, M>)
         .measurement_time(Duration::from_secs(3));
 }
 
-fn scene(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Scene {
+fn scene(name: &str, opts: &Options, size: Option<(usize, usize, usize)>) -> Prepared {
     prepared(name, opts, size).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 /// Primary and secondary rays of one render.
-fn rays_of(scene: &Scene, opts: &Options) -> u64 {
-    render(scene, opts, &|| {}).stats.rays
+fn rays_of(scene: &Prepared) -> u64 {
+    still(scene).stats.rays
 }
 
 fn chapter5(c: &mut Criterion) {
@@ -48,7 +49,7 @@ fn chapter5(c: &mut Criterion) {
     let opts = Options::default();
     for &name in CHAPTER5 {
         let s = scene(name, &opts, None);
-        g.bench_function(name, |b| b.iter(|| render(black_box(&s), &opts, &|| {})));
+        g.bench_function(name, |b| b.iter(|| still(black_box(&s))));
     }
     g.finish();
 }
@@ -63,7 +64,7 @@ fn rays(c: &mut Criterion) {
                 ..Options::default()
             };
             let s = scene(name, &opts, None);
-            g.throughput(Throughput::Elements(rays_of(&s, &opts)));
+            g.throughput(Throughput::Elements(rays_of(&s)));
             let id = format!(
                 "{name}/{}",
                 if solver == Solver::Laguerre {
@@ -72,7 +73,7 @@ fn rays(c: &mut Criterion) {
                     "robust"
                 }
             );
-            g.bench_function(id, |b| b.iter(|| render(black_box(&s), &opts, &|| {})));
+            g.bench_function(id, |b| b.iter(|| still(black_box(&s))));
         }
     }
     g.finish();
@@ -85,9 +86,7 @@ fn resolution(c: &mut Criterion) {
     for (w, h) in [(128, 128), (256, 256), (512, 512), (1024, 864)] {
         let s = scene("fig5_9", &opts, Some((w, h, 2)));
         g.throughput(Throughput::Elements((w * h) as u64));
-        g.bench_function(format!("fig5_9/{w}x{h}"), |b| {
-            b.iter(|| render(black_box(&s), &opts, &|| {}))
-        });
+        g.bench_function(format!("fig5_9/{w}x{h}"), |b| b.iter(|| still(black_box(&s))));
     }
     g.finish();
 }
@@ -98,12 +97,10 @@ fn segments(c: &mut Criterion) {
     let opts = Options::default();
     for n in [4, 8, 15, 30, 60] {
         let text = circle_sweep_deck(n, 256, 256, 2);
-        let mut s = load_source(&text, &format!("circle{n}"), Path::new("."), Fidelity::Thesis)
+        let s = load_source(&text, &format!("circle{n}"), Path::new("."), Fidelity::Thesis)
+            .and_then(|s| prepare(s, &opts))
             .unwrap_or_else(|e| panic!("circle {n}: {e}"));
-        prepare(&mut s, &opts).unwrap_or_else(|e| panic!("circle {n}: {e}"));
-        g.bench_function(format!("circle/{n}"), |b| {
-            b.iter(|| render(black_box(&s), &opts, &|| {}))
-        });
+        g.bench_function(format!("circle/{n}"), |b| b.iter(|| still(black_box(&s))));
     }
     g.finish();
 }
@@ -134,10 +131,16 @@ fn sweep(c: &mut Criterion) {
     modest(&mut g);
     for (&name, kind) in SWEEP_KINDS.iter().zip(["translation", "conic", "rotation"]) {
         let s = scene(name, &Options::default(), None);
-        let Some(obj) = s.objects.iter().find(|o| matches!(o.shape, Shape::Sweep(_))) else {
+        let Some(obj) = s.scene().objects.iter().find(|o| matches!(o.shape, Shape::Sweep(_))) else {
             continue;
         };
         let Shape::Sweep(sw) = &obj.shape else { continue };
+        let cache = SweepCache::new(obj.class, sw);
+        let sweep = Sweep {
+            class: obj.class,
+            shape: sw,
+            cache: cache.as_ref(),
+        };
         // 64 rays from 8 units off the box's centre, aimed across the box.
         let b = &sw.bbox;
         let (lo, hi) = (DVec3::new(b.xmin, b.ymin, b.zmin), DVec3::new(b.xmax, b.ymax, b.zmax));
@@ -159,7 +162,7 @@ fn sweep(c: &mut Criterion) {
             g.bench_function(format!("{kind}/{sname}"), |bch| {
                 bch.iter(|| {
                     rays.iter()
-                        .filter(|r| intersect_sweep(obj.class, sw, black_box(r), 1e-9, &opts).is_some())
+                        .filter(|r| sweep.intersect(black_box(r), 1e-9, &opts, &mut 0).is_some())
                         .count()
                 })
             });

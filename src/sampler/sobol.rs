@@ -1,12 +1,28 @@
-//! The 3-D Sobol sequence of the adaptive sampler's samples (place in the
-//! pixel, time) and its Owen scramble, apart from the allocation and the
-//! passes that use them.
+//! The Sobol sequence of the adaptive sampler's samples (place in the
+//! pixel, time, and the further dimensions) and its Owen scramble, apart
+//! from the allocation and the passes that use them.
 
-/// The Sobol sequence's direction numbers, 32 bits, of dimensions 0–2:
-/// dimension 0 is the van der Corput sequence; dimensions 1 and 2 come
-/// from the primitive polynomials x + 1 and x² + x + 1 with initial
-/// numbers m = (1) and (1, 3) (Joe & Kuo 2008's first two rows).
-const DIRECTIONS: [[u32; 32]; 3] = [van_der_corput(), directions(1, 0, [1, 0]), directions(2, 1, [1, 3])];
+/// The dimensions with direction numbers here: 0–1 the place in the pixel,
+/// 2 the time, 3–9 further dimensions (a lens point, a light point, a gloss
+/// turn and one to spare); past them a sampler draws independent uniforms.
+pub const SOBOL_DIMENSIONS: usize = 10;
+
+/// The Sobol sequence's direction numbers, 32 bits: dimension 0 is the van
+/// der Corput sequence; dimensions 1–9 come from Joe & Kuo 2008's first
+/// nine rows (new-joe-kuo-6.21201: degree s, the polynomial's inner
+/// coefficients a, the initial numbers m).
+const DIRECTIONS: [[u32; 32]; SOBOL_DIMENSIONS] = [
+    van_der_corput(),
+    directions(1, 0, [1, 0, 0, 0, 0]),
+    directions(2, 1, [1, 3, 0, 0, 0]),
+    directions(3, 1, [1, 3, 1, 0, 0]),
+    directions(3, 2, [1, 1, 1, 0, 0]),
+    directions(4, 1, [1, 1, 3, 3, 0]),
+    directions(4, 4, [1, 3, 5, 13, 0]),
+    directions(5, 2, [1, 1, 5, 5, 17]),
+    directions(5, 4, [1, 1, 5, 5, 5]),
+    directions(5, 7, [1, 1, 7, 11, 19]),
+];
 
 const fn van_der_corput() -> [u32; 32] {
     let mut v = [0u32; 32];
@@ -21,7 +37,7 @@ const fn van_der_corput() -> [u32; 32] {
 /// Direction numbers of the polynomial of degree `s` whose inner
 /// coefficients are the bits of `a` (highest first), initial numbers `m`:
 /// v_k = a_1 v_{k−1} ⊕ … ⊕ a_{s−1} v_{k−s+1} ⊕ v_{k−s} ⊕ (v_{k−s} ≫ s).
-const fn directions(s: usize, a: u32, m: [u32; 2]) -> [u32; 32] {
+const fn directions(s: usize, a: u32, m: [u32; 5]) -> [u32; 32] {
     let mut v = [0u32; 32];
     let mut k = 0;
     while k < 32 {
@@ -60,7 +76,7 @@ const fn sobol_by_bits(j: u32, d: usize) -> u32 {
 }
 
 /// [`sobol_by_bits`] of each byte of an index at each of its four places,
-/// for each dimension, with the bits already reversed for
+/// for the place and the time (dimensions 0–2, every sample's), with the bits already reversed for
 /// [`owen_scramble_reversed`]: a point is then four lookups instead of a loop over
 /// its bits with a branch each (the loop was 7 % of an adaptive render).
 const SOBOL_BYTES: [[[u32; 256]; 4]; 3] = sobol_bytes();
@@ -83,17 +99,23 @@ const fn sobol_bytes() -> [[[u32; 256]; 4]; 3] {
     t
 }
 
-/// Point `j` of Sobol dimension `d` with its bits reversed (the sequence
-/// is linear over bits, so the bytes' points XOR together).
-pub(super) fn sobol_reversed(j: u32, d: usize) -> u32 {
-    let t = &SOBOL_BYTES[d];
-    let [b0, b1, b2, b3] = j.to_le_bytes();
-    t[0][b0 as usize] ^ t[1][b1 as usize] ^ t[2][b2 as usize] ^ t[3][b3 as usize]
+/// Point `j` of Sobol dimension `d` (< [`SOBOL_DIMENSIONS`]) with its bits
+/// reversed: for the place and the time by the byte tables (the sequence is
+/// linear over bits, so the bytes' points XOR together), for the further
+/// dimensions by the direction numbers.
+pub fn sobol_reversed(j: u32, d: usize) -> u32 {
+    match SOBOL_BYTES.get(d) {
+        Some(t) => {
+            let [b0, b1, b2, b3] = j.to_le_bytes();
+            t[0][b0 as usize] ^ t[1][b1 as usize] ^ t[2][b2 as usize] ^ t[3][b3 as usize]
+        }
+        None => sobol_by_bits(j, d).reverse_bits(),
+    }
 }
 
 /// Point `j` of Sobol dimension `d`, as 32 bits of [0, 1).
 #[cfg(test)]
-pub(super) fn sobol(j: u32, d: usize) -> u32 {
+pub(crate) fn sobol(j: u32, d: usize) -> u32 {
     sobol_reversed(j, d).reverse_bits()
 }
 
@@ -103,7 +125,7 @@ pub(super) fn sobol(j: u32, d: usize) -> u32 {
 /// even numbers carry upward only), so each digit of the point is flipped
 /// by a function of the digits above it, as Owen's scramble does; the
 /// point's bits in their own order come back.
-pub(super) fn owen_scramble_reversed(reversed: u32, seed: u32) -> u32 {
+pub fn owen_scramble_reversed(reversed: u32, seed: u32) -> u32 {
     let mut v = reversed;
     v = v.wrapping_add(seed);
     v ^= v.wrapping_mul(0x6c50_b47c);
@@ -142,6 +164,32 @@ mod tests {
             counts[cell] += 1;
         }
         counts
+    }
+
+    /// Every dimension, the further ones too, is a (0, 1)-sequence: each
+    /// aligned block of 2^k points holds one point in each of the 2^k
+    /// strata of [0, 1), so every dimension a shading step draws is as well
+    /// spread as the time. The dimensions differ from one another.
+    #[test]
+    fn every_dimension_is_stratified() {
+        for d in 0..SOBOL_DIMENSIONS {
+            for k in 1..=9u32 {
+                for block in [0u32, 1, 5] {
+                    let n = 1u32 << k;
+                    let mut seen = vec![false; n as usize];
+                    for j in block * n..(block + 1) * n {
+                        let cell = (sobol(j, d) >> (32 - k)) as usize;
+                        assert!(!seen[cell], "dim {d}, k {k}, block {block}: two in stratum {cell}");
+                        seen[cell] = true;
+                    }
+                }
+            }
+        }
+        for a in 0..SOBOL_DIMENSIONS {
+            for b in a + 1..SOBOL_DIMENSIONS {
+                assert!((1..64).any(|j| sobol(j, a) != sobol(j, b)), "dims {a} and {b}");
+            }
+        }
     }
 
     /// The first 2^k points of the place in the pixel (dimensions 0 and 1)

@@ -15,7 +15,7 @@
 //! multiplicity. The roots of p′ come the same way from p″, down to a
 //! linear polynomial.
 //!
-//! Chosen with `--solver robust` ([`Solver::Robust`](crate::types::Solver)).
+//! Chosen with `--solver robust` ([`Solver::Robust`](crate::options::Solver)).
 //! Allocation-free: fixed arrays of seven coefficients and six roots.
 
 /// The highest degree [`real_roots`] takes (the rotation sweep's sextic).

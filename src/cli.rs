@@ -1,0 +1,300 @@
+//! The command line's words for a render, defined once for every program
+//! that renders (`raytrace`, the tools, the binaries to come): the choices
+//! of [`Options`] (`--fidelity`, `--solver`, `--sampler`, the library's own
+//! enums), the image's size and the threads (`--mask`, `--size`,
+//! `--threads`), and the deck a command names (a file, or `-` for standard
+//! input). Each flattens into a program's `clap` parser; what goes wrong is
+//! a [`Failure`] whose kind gives the exit status. The port's.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+
+use crate::exit::Failure;
+use crate::options::{Fidelity, Options, Solver, TimeSampler};
+use crate::raytrace::Prepared;
+use crate::scene::Scene;
+
+/// `--fidelity`: the listing or the thesis.
+#[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FidelityArg {
+    /// Where the printed listings and the thesis text disagree, which to follow
+    /// (legacy_pascal/DEVIATIONS.md lists every difference).
+    #[arg(long, value_enum, default_value_t)]
+    pub fidelity: Fidelity,
+}
+
+/// `--fidelity`, `--solver`, `--sampler`: the [`Options`] of a render.
+#[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OptionArgs {
+    #[command(flatten)]
+    pub fidelity: FidelityArg,
+
+    /// The root solver of the sweep objects.
+    #[arg(long, value_enum, default_value_t)]
+    pub solver: Solver,
+
+    /// How each subpixel's time (and with adaptive, its place) is chosen; only
+    /// table is the thesis's.
+    #[arg(long, value_enum, default_value_t)]
+    pub sampler: TimeSampler,
+}
+
+impl OptionArgs {
+    /// The options, or a usage error for a pair that does not go together
+    /// ([`crate::adaptive::check`]).
+    pub fn options(&self) -> Result<Options, Failure> {
+        let opts = Options {
+            fidelity: self.fidelity.fidelity,
+            solver: self.solver,
+            sampler: self.sampler,
+        };
+        crate::adaptive::check(&opts).map_err(Failure::usage)?;
+        Ok(opts)
+    }
+}
+
+/// The largest `--mask`: 32×32 = 1024 rays a pixel, the chart's reference.
+pub const MAX_MASK: u16 = 32;
+
+/// The largest side `--size` takes, the deck's `image` limit.
+pub const MAX_SIDE: usize = 8192;
+
+/// The most `--threads`: more than the cores of any machine the port has
+/// met (rows are the work shared out, so threads past the cores only add
+/// start-up time), and few enough that a slip such as `--threads 10000` is
+/// refused at once rather than starting ten thousand threads.
+pub const MAX_THREADS: u16 = 256;
+
+/// The flags of a render: its [`Options`], the image's size and mask in
+/// place of the deck's, and the worker threads.
+#[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub options: OptionArgs,
+
+    /// M×M subpixels a pixel (M² rays a pixel on average for --sampler adaptive), 1..32,
+    /// in place of the deck's `mask` for this run [default: the deck's].
+    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_MASK)))]
+    pub mask: Option<u16>,
+
+    /// The image's width and height in pixels, WxH (each 1..8192), in place of the deck's
+    /// `image` record for this run; the view stays, so the picture is the same at another size.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(usize, usize)>,
+
+    /// Worker threads, 1..256, or 0 for one per core [default: one per core]. The image
+    /// is the same for any number; rows are shared out, so more threads than cores only
+    /// cost start-up time, and more than 256 is refused as a slip.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=i64::from(MAX_THREADS)))]
+    pub threads: Option<u16>,
+}
+
+/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
+pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let (w, h) = text
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("'{text}' is not WxH (e.g. 256x256)"))?;
+    let side = |v: &str, what: &str| match v.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_SIDE).contains(&n) => Ok(n),
+        _ => Err(format!("the {what} '{v}' is not a whole number in 1..={MAX_SIDE}")),
+    };
+    Ok((side(w, "width")?, side(h, "height")?))
+}
+
+impl RenderArgs {
+    /// The scene of `deck` as these flags render it: read with their
+    /// fidelity, resized by `--size` and `--mask`, and prepared. Its
+    /// errors are input errors (exit 2), each naming its FILE:LINE:COLUMN.
+    pub fn scene(&self, deck: &DeckInput, opts: &Options) -> Result<Prepared, Failure> {
+        let mut scene = deck.initialize(opts.fidelity)?;
+        if self.mask.is_some() || self.size.is_some() {
+            let (w, h) = self.size.unwrap_or((scene.image.width, scene.image.height));
+            let m = self.mask.map_or(scene.image.masksize, usize::from);
+            scene.resize(w, h, m);
+        }
+        Prepared::new(scene, *opts).map_err(Failure::input)
+    }
+
+    /// The pool of `--threads` workers (one per core without it, or with 0).
+    pub fn thread_pool(&self) -> Result<rayon::ThreadPool, Failure> {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(self.threads.map_or(0, usize::from))
+            .build()
+            .map_err(Failure::other)
+    }
+}
+
+/// The deck argument that means standard input.
+pub const STDIN: &str = "-";
+
+/// The name a deck read from standard input has in errors.
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// A deck as a command names it, read: its text, the name its errors give,
+/// the folder its files (textures) are relative to, and the stem the
+/// default output is named by.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DeckInput {
+    pub source: Vec<u8>,
+    /// The file name as the user gave it, or [`STDIN_NAME`].
+    pub name: String,
+    /// The deck's folder; the current folder for standard input.
+    pub dir: PathBuf,
+    /// The file name without its extension; `stdin` for standard input.
+    pub stem: String,
+}
+
+impl DeckInput {
+    /// Reads the deck at `path`, or standard input for `-` ([`STDIN`]),
+    /// at most one byte past the reader's limit ([`crate::deck::MAX_DECK_BYTES`]).
+    /// A deck that cannot be read is an input error naming it.
+    pub fn read(path: &Path) -> Result<DeckInput, Failure> {
+        if path.as_os_str() == STDIN {
+            return DeckInput::from_reader(std::io::stdin().lock(), STDIN_NAME, Path::new(""), "stdin")
+                .map_err(|e| Failure::input(format!("{STDIN_NAME}: {e}")));
+        }
+        let source =
+            crate::deck::read_deck_file(path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?;
+        Ok(DeckInput {
+            source,
+            name: path.display().to_string(),
+            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            stem: path
+                .file_stem()
+                .map_or("out".into(), |s| s.to_string_lossy().into_owned()),
+        })
+    }
+
+    /// The deck's text as bytes from any reader (standard input, a test's
+    /// buffer), named `name` in errors, its files relative to `dir`.
+    pub fn from_reader(reader: impl Read, name: &str, dir: &Path, stem: &str) -> std::io::Result<DeckInput> {
+        Ok(DeckInput {
+            source: crate::deck::read_deck(reader)?,
+            name: name.to_string(),
+            dir: dir.to_path_buf(),
+            stem: stem.to_string(),
+        })
+    }
+
+    /// The scene the deck describes ([`crate::deck::initialize`]); an
+    /// error is an input error at its FILE:LINE:COLUMN.
+    pub fn initialize(&self, fidelity: Fidelity) -> Result<Scene, Failure> {
+        crate::deck::initialize(&self.source, &self.name, &self.dir, fidelity).map_err(Failure::input)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser, Debug)]
+    struct Cli {
+        #[command(flatten)]
+        render: RenderArgs,
+    }
+
+    fn parse(args: &[&str]) -> Result<RenderArgs, clap::Error> {
+        Cli::try_parse_from(std::iter::once("t").chain(args.iter().copied())).map(|c| c.render)
+    }
+
+    #[test]
+    fn no_flags_are_the_defaults() {
+        let args = parse(&[]).unwrap();
+        assert_eq!(args, RenderArgs::default());
+        assert_eq!(args.options.options().unwrap(), Options::default());
+    }
+
+    #[test]
+    fn the_library_enums_are_the_values() {
+        let args = parse(&["--fidelity", "listing", "--solver", "robust", "--sampler", "stratified"]).unwrap();
+        let opts = args.options.options().unwrap();
+        assert_eq!(
+            (opts.fidelity, opts.solver, opts.sampler),
+            (Fidelity::Listing, Solver::Robust, TimeSampler::Stratified)
+        );
+        assert!(parse(&["--sampler", "sobol"]).is_err());
+    }
+
+    #[test]
+    fn adaptive_with_the_listing_is_a_usage_error() {
+        let args = parse(&["--fidelity", "listing", "--sampler", "adaptive"]).unwrap();
+        let e = args.options.options().unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Usage);
+        assert!(e.message.contains("--sampler adaptive"), "{e}");
+    }
+
+    #[test]
+    fn threads_are_bounded_and_zero_is_one_per_core() {
+        assert_eq!(parse(&["--threads", "256"]).unwrap().threads, Some(256));
+        assert_eq!(parse(&["--threads", "0"]).unwrap().threads, Some(0));
+        assert!(parse(&["--threads", "257"]).is_err());
+        assert!(parse(&["--threads", "10000"]).is_err());
+        let cores = rayon::ThreadPoolBuilder::new().build().unwrap().current_num_threads();
+        let pool = parse(&["--threads", "0"]).unwrap().thread_pool().unwrap();
+        assert_eq!(pool.current_num_threads(), cores);
+        let pool = parse(&["--threads", "3"]).unwrap().thread_pool().unwrap();
+        assert_eq!(pool.current_num_threads(), 3);
+    }
+
+    #[test]
+    fn mask_and_size_are_checked() {
+        let args = parse(&["--mask", "32", "--size", "64x48"]).unwrap();
+        assert_eq!((args.mask, args.size), (Some(32), Some((64, 48))));
+        for bad in [
+            ["--mask", "0"],
+            ["--mask", "33"],
+            ["--size", "64"],
+            ["--size", "0x4"],
+            ["--size", "4x8193"],
+        ] {
+            assert!(parse(&bad).is_err(), "{bad:?}");
+        }
+        assert_eq!(parse_size("8192×1"), Ok((8192, 1)));
+        assert_eq!(parse_size("2X3"), Ok((2, 3)));
+    }
+
+    /// A deck whose `pattern` (2×2) does not fit its mask (1): the error
+    /// `prepare` raises names the file from the record's position, with
+    /// no prefix added by the caller.
+    #[test]
+    fn a_render_error_names_file_line_and_column() {
+        let deck = DeckInput {
+            source: b"view eye 0 -10 3 look 0 0 0 screen 4 distance 5\nimage 4 4 mask 1\npattern 2\n 0 3\n 2 1\nend\n"
+                .to_vec(),
+            name: "dir/t.deck".into(),
+            dir: PathBuf::from("dir"),
+            stem: "t".into(),
+        };
+        let args = parse(&[]).unwrap();
+        let e = args.scene(&deck, &Options::default()).unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Input);
+        assert!(
+            e.message
+                .starts_with("dir/t.deck:3:1: pattern: the pattern table is 2×2"),
+            "{e}"
+        );
+        // --mask 2 makes it fit.
+        let args = parse(&["--mask", "2"]).unwrap();
+        assert!(args.scene(&deck, &Options::default()).is_ok());
+    }
+
+    #[test]
+    fn a_deck_from_a_reader_keeps_its_name_folder_and_stem() {
+        let deck = DeckInput::from_reader(&b"view"[..], STDIN_NAME, Path::new(""), "stdin").unwrap();
+        assert_eq!(deck.source, b"view");
+        assert_eq!((deck.dir.as_os_str(), deck.stem.as_str()), ("".as_ref(), "stdin"));
+        let e = deck.initialize(Fidelity::Thesis).unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Input);
+        assert!(e.message.starts_with("<stdin>:1:"), "{e}");
+    }
+
+    #[test]
+    fn a_missing_deck_file_is_an_input_error_naming_it() {
+        let e = DeckInput::read(Path::new("/nonexistent/x.deck")).unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Input);
+        assert!(e.message.starts_with("/nonexistent/x.deck: "), "{e}");
+    }
+}

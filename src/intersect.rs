@@ -1,0 +1,283 @@
+//! Which object a ray meets: the one seam every way of finding it plugs
+//! into. [`nearest`] for the rays `raytrace` shades, [`for_each_blocker`]
+//! for the shadow rays (a `crystal` object lets light through, so a plain
+//! yes or no is not enough). The backend is the original's loop over the
+//! object table ([`Aggregate::Linear`]); structures over the objects are
+//! the port's and go beside it.
+//!
+//! What every backend answers as the loop does, written down: of two hits
+//! at the same t, the object earlier in the table (the lower index) is the
+//! nearest ([`closer`]); a shadow ray is stopped by any opaque object on
+//! it, whichever is found first, and otherwise passes each `crystal`
+//! object on it, taken in the table's order (the product of their
+//! transmittances is then the same to the bit).
+
+use std::cell::{Cell, Ref, RefCell};
+use std::ops::ControlFlow;
+use std::sync::Arc;
+
+use crate::options::Options;
+use crate::paper::PaperChain;
+use crate::scene::Scene;
+use crate::shapes::{Posed, SweepCache};
+use crate::types::{LocalHit, Pose, Ray, Shape, SurfaceAttribute};
+
+/// The scene at one instant of the shutter: the read-only scene and what
+/// was prepared for it, where each of its objects stands then (`poses[i]`
+/// for `scene.objects[i]`), and the contours of the objects that deform.
+/// What `motionblur` wrote into the shared records, the port keeps here.
+#[derive(Clone, Copy, Debug)]
+pub struct Snapshot<'a> {
+    pub scene: &'a Scene,
+    pub opts: &'a Options,
+    pub poses: &'a [Pose],
+    /// The in-between objects' contours of the instant.
+    pub deforming: &'a [Deforming<'a>],
+    /// For each object, its index in `deforming` if it deforms.
+    pub deforming_of: &'a [Option<usize>],
+    /// What `shapes` prepared for each object's own shape.
+    pub caches: &'a [Option<Arc<SweepCache>>],
+    pub aggregate: &'a Aggregate,
+}
+
+/// An in-between object of a key-frame chain (§3.2): its contour at the
+/// snapshot's time. `motionblur` computed it for every ray (`do34` or
+/// `Hermite`); here it is computed the first time a ray of the instant
+/// reaches the object's bounding sphere, and kept for the instant's other
+/// rays, since most rays never come near the object (DEVIATIONS D19).
+#[derive(Debug)]
+pub struct Deforming<'a> {
+    /// Index into `scene.objects`.
+    pub object: usize,
+    chain: &'a PaperChain,
+    time: Cell<f64>,
+    ready: Cell<bool>,
+    contour: RefCell<Shape>,
+}
+
+impl<'a> Deforming<'a> {
+    /// Scratch for the in-between object `object` of `chain`.
+    pub fn new(object: usize, chain: &'a PaperChain) -> Self {
+        Deforming {
+            object,
+            chain,
+            time: Cell::new(0.0),
+            ready: Cell::new(false),
+            contour: RefCell::new(Shape::Sweep(chain.scratch())),
+        }
+    }
+
+    /// A new instant: the contour is due again.
+    pub fn at(&self, time: f64) {
+        self.time.set(time);
+        self.ready.set(false);
+    }
+
+    /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
+    /// (`PaperChain::inbetween`), on first use.
+    pub fn contour(&self) -> Ref<'_, Shape> {
+        if !self.ready.get() {
+            if let Shape::Sweep(sw) = &mut *self.contour.borrow_mut() {
+                self.chain.inbetween(self.time.get(), sw);
+            }
+            self.ready.set(true);
+        }
+        self.contour.borrow()
+    }
+}
+
+impl Snapshot<'_> {
+    /// `f` of object `i` as it stands at this instant (its own shape and
+    /// what was prepared for it, or its contour of the moment when it
+    /// deforms), for a ray that reaches its bounding sphere beyond `tmin`;
+    /// `None` for one that does not.
+    #[inline]
+    fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
+        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
+        let mut at_rest = Posed {
+            obj,
+            shape: &obj.shape,
+            cache: None,
+            pose,
+        };
+        if !at_rest.meets_bounding_sphere(ray, tmin) {
+            return None;
+        }
+        // Only a sweep has a cache: the others need not look.
+        if matches!(obj.shape, Shape::Sweep(_)) {
+            at_rest.cache = self.caches[i].as_deref();
+        }
+        match self.deforming_of[i] {
+            None => f(&at_rest),
+            Some(d) => {
+                let contour = self.deforming[d].contour();
+                f(&Posed {
+                    shape: &contour,
+                    cache: None,
+                    ..at_rest
+                })
+            }
+        }
+    }
+}
+
+/// What an object does to a shadow ray that meets it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadow {
+    /// Stops it (every surface but the three below).
+    Opaque,
+    /// Lets kt·colour of the light through (`crystal`).
+    Crystal,
+    /// Casts no shadow (`light` and `background` surfaces).
+    None,
+}
+
+impl Shadow {
+    /// What the objects of `scene` do to shadow rays, by their surfaces (an
+    /// object without a surface record, as in a test's scene, is opaque).
+    pub fn of(scene: &Scene) -> Vec<Shadow> {
+        let kind = |surface: usize| match scene.surfaces.get(surface).map(|s| s.surface) {
+            Some(SurfaceAttribute::Light | SurfaceAttribute::Background) => Shadow::None,
+            Some(SurfaceAttribute::Crystal) => Shadow::Crystal,
+            _ => Shadow::Opaque,
+        };
+        scene.objects.iter().map(|o| kind(o.surface)).collect()
+    }
+}
+
+/// How the objects a ray may meet are found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Aggregate {
+    /// The original's loop: every object of the table in turn, each behind
+    /// its bounding sphere. `casters` are the objects a shadow ray can be
+    /// stopped or dimmed by, in order, with what they do to it.
+    Linear { casters: Vec<(usize, Shadow)> },
+}
+
+impl Aggregate {
+    /// The loop over `scene`'s objects.
+    pub fn linear(scene: &Scene) -> Aggregate {
+        let casters = Shadow::of(scene)
+            .into_iter()
+            .enumerate()
+            .filter(|&(_, s)| s != Shadow::None)
+            .collect();
+        Aggregate::Linear { casters }
+    }
+}
+
+/// Is hit `a` (its t, its object's index) nearer than hit `b`? The lesser
+/// t; of equal t, the lower index, as the original's loop keeps the first
+/// it met.
+pub fn closer(a: (f64, usize), b: (f64, usize)) -> bool {
+    a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
+}
+
+/// The nearest hit of `ray` beyond `tmin` with the snapshot's objects, and
+/// the object's index ([`closer`]). `searched` counts the polynomial
+/// searches the sweeps made.
+#[inline]
+pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
+    match snap.aggregate {
+        Aggregate::Linear { .. } => {
+            let mut best: Option<(usize, LocalHit)> = None;
+            for i in 0..snap.scene.objects.len() {
+                let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
+                    continue;
+                };
+                if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
+                    best = Some((i, h));
+                }
+            }
+            best
+        }
+    }
+}
+
+/// What stands on a shadow ray between `tmin` and `tmax`: `Break` if an
+/// opaque object does (no light passes); else `f` is called with the index
+/// of every `crystal` object on it, in the object table's order, and the
+/// answer is `Continue`.
+#[inline]
+pub fn for_each_blocker(
+    snap: &Snapshot,
+    ray: &Ray,
+    tmin: f64,
+    tmax: f64,
+    searched: &mut u64,
+    mut f: impl FnMut(usize),
+) -> ControlFlow<()> {
+    match snap.aggregate {
+        Aggregate::Linear { casters } => {
+            for &(i, shadow) in casters {
+                let blocks = snap
+                    .posed(i, ray, tmin, |p| {
+                        p.blocks(ray, tmin, tmax, snap.opts, searched).then_some(())
+                    })
+                    .is_some();
+                match (blocks, shadow) {
+                    (false, _) | (_, Shadow::None) => {}
+                    (true, Shadow::Crystal) => f(i),
+                    (true, Shadow::Opaque) => return ControlFlow::Break(()),
+                }
+            }
+            ControlFlow::Continue(())
+        }
+    }
+}
+
+/// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
+/// scene in which nothing moves.
+pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
+    scene.objects.iter().map(|o| o.pose()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::Fidelity;
+
+    /// An object that deforms is met as its contour of the moment, without
+    /// a cache (its caps solved, its bounds made per ray), though its key
+    /// shape has one; the same object at rest is met with its cache.
+    #[test]
+    fn a_deforming_object_is_met_without_a_cache() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
+        let src = std::fs::read_to_string(dir.join("fig5_10.deck")).unwrap();
+        let mut scene = crate::deck::initialize(&src, "fig5_10.deck", &dir, Fidelity::Thesis).unwrap();
+        crate::shapes::sweep::prepare_sweeps(&mut scene, Fidelity::Thesis);
+        let caches = crate::shapes::prepare_caches(&scene);
+        let record = &scene.keyframes[0];
+        let chain = PaperChain::from_keyframe(&scene, record, Fidelity::Thesis).unwrap();
+        let first = record.first;
+        assert!(caches[first].is_some(), "the key shape has a cache");
+        let poses = rest_poses(&scene);
+        let deforming = [Deforming::new(first, &chain)];
+        deforming[0].at(0.5);
+        let mut deforming_of = vec![None; scene.objects.len()];
+        deforming_of[first] = Some(0);
+        let opts = Options::default();
+        let aggregate = Aggregate::linear(&scene);
+        let snap = Snapshot {
+            scene: &scene,
+            opts: &opts,
+            poses: &poses,
+            deforming: &deforming,
+            deforming_of: &deforming_of,
+            caches: &caches,
+            aggregate: &aggregate,
+        };
+        let eye = scene.view.eyept;
+        let toward = Ray::new(eye, (poses[first].sphereo - eye).normalize());
+        let cached = |snap: &Snapshot| snap.posed(first, &toward, 1e-9, |p| Some(p.cache.is_some()));
+        assert_eq!(cached(&snap), Some(false));
+        let at_rest = vec![None; scene.objects.len()];
+        assert_eq!(
+            cached(&Snapshot {
+                deforming_of: &at_rest,
+                ..snap
+            }),
+            Some(true)
+        );
+    }
+}

@@ -1,0 +1,96 @@
+//! What moves over the shutter, each kind of motion in one place: where it
+//! puts its object at a time ([`Moving::pose`]) and where it can put the
+//! object's origin over an interval of time ([`Moving::centre_bounds`]).
+//!
+//! Two kinds, as the main program has them: an object of the motion table
+//! (`motionblur`'s non-key-frame branch: the user's path and law of §3.2.2,
+//! or in `listing` fidelity the fixed slide of erratum 3, both in
+//! [`crate::drt`]), and the in-between object of a key-frame chain (the
+//! `paper = 1` branch: its pose from `goahead`'s `diff` and `diffangle`,
+//! [`PaperChain::pose`]; its contour is made where a ray needs it,
+//! `crate::intersect::Deforming`). The arrangement is the port's: the
+//! listing's `motionblur` does both for every ray.
+
+use crate::drt::{motion_bounds, motionblur, Isblur};
+use crate::options::Fidelity;
+use crate::paper::PaperChain;
+use crate::scene::{MotionRecord, Scene};
+use crate::types::{BoundingBox, ObjectRecord, Pose};
+
+/// How much wider than the exact bounds [`Moving::centre_bounds`] are,
+/// relative to the size of their coordinates: a path's point is a cubic
+/// of sums of products, whose rounding is a few units in the last place
+/// of its largest term (2⁻⁵² ≈ 2·10⁻¹⁶).
+pub const ROUNDING: f64 = 1e-12;
+
+/// How an object moves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Motion {
+    /// The object's `motion` record (§3.2.2).
+    Path(MotionRecord),
+    /// The chain of key shapes of `keyframe` record `record` (§3.2): the
+    /// object is the chain's in-between object (FIRST's record).
+    Chain { record: usize, chain: PaperChain },
+}
+
+/// An object that moves, and how.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moving {
+    /// Index into `scene.objects`.
+    pub object: usize,
+    pub motion: Motion,
+}
+
+impl Moving {
+    /// Where the object stands at film time `time`, from `rest`, its record
+    /// as the deck left it: `motionblur` of its path, or its chain's pose.
+    pub fn pose(&self, rest: &ObjectRecord, time: f64, fidelity: Fidelity) -> Pose {
+        match &self.motion {
+            Motion::Path(record) => motionblur(rest, record, time, fidelity),
+            Motion::Chain { chain, .. } => chain.pose(time),
+        }
+    }
+
+    /// The box the object's origin (`sphereo`) stays in over the film times
+    /// `t0` ≤ t ≤ `t1` (the object itself lies within its `radius` of it):
+    /// the motion's own bounds, widened by [`ROUNDING`] of their size so
+    /// that they hold the origin as [`Moving::pose`] computes it, rounding
+    /// and all.
+    pub fn centre_bounds(&self, rest: &ObjectRecord, t0: f64, t1: f64, fidelity: Fidelity) -> BoundingBox {
+        let b = match &self.motion {
+            Motion::Path(record) => motion_bounds(rest, record, t0, t1, fidelity),
+            Motion::Chain { chain, .. } => chain.centre_bounds(t0, t1),
+        };
+        let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+            .iter()
+            .fold(1.0f64, |m, v| m.max(v.abs()));
+        b.widened(ROUNDING * size)
+    }
+
+    /// The chain, for the in-between object of a key-frame chain.
+    pub fn chain(&self) -> Option<&PaperChain> {
+        match &self.motion {
+            Motion::Path(_) => None,
+            Motion::Chain { chain, .. } => Some(chain),
+        }
+    }
+}
+
+/// The objects of the motion table that move, in the object table's
+/// order: the main program's `if not Isblur(tableindex, motionmatrix)`
+/// asked once for each object before the scanline loop (not for every
+/// ray: the answer does not change), with the motion table made of the
+/// deck's `motion` records (`motionmatrix`). Each gets its record.
+pub fn paths(scene: &Scene) -> Vec<Moving> {
+    let motionmatrix: Vec<usize> = scene.motions.iter().map(|mo| mo.object).collect();
+    (0..scene.objects.len())
+        .filter(|&i| !Isblur(i, &motionmatrix))
+        .filter_map(|i| {
+            let record = scene.motions.iter().find(|mo| mo.object == i)?;
+            Some(Moving {
+                object: i,
+                motion: Motion::Path(record.clone()),
+            })
+        })
+        .collect()
+}

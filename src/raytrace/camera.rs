@@ -1,0 +1,154 @@
+//! The camera of the main program (reconstructed: the thesis prints the
+//! calls, not the procedures): `getangle`, the angles of the line of
+//! sight; `translookpt`, a point of the screen to the world; and where on
+//! the screen a subpixel lies (DEVIATIONS D5).
+
+use crate::options::Fidelity;
+use crate::scene::{Scene, View};
+use crate::types::{DVec3, Ray};
+
+/// `getangle(sinz, cosz, sinx, cosx)`: the angles of the world → view
+/// rotation. Reconstructed from the main program, which negates both sines
+/// "for inverse rotations in translookpt": the view frame has the eye at
+/// its origin, looks along −y (the screen plane is `ypt := -scrndistance`)
+/// with z up; the world → view rotation turns about z by −β (the azimuth of
+/// the line of sight), then about x by −α (its elevation).
+pub fn getangle(view: &View) -> (f64, f64, f64, f64) {
+    let f = (view.lookpt - view.eyept).normalize();
+    // f = Rz(β)·Rx(α)·(0, −1, 0) = (sinβ cosα, −cosβ cosα, −sinα).
+    let cos_a = (f.x * f.x + f.y * f.y).sqrt();
+    let (sin_a, sin_b, cos_b) = (-f.z, f.x / cos_a, -f.y / cos_a);
+    // The world → view angles are −β and −α.
+    (-sin_b, cos_b, -sin_a, cos_a)
+}
+
+/// `translookpt(xpt, ypt, zpt, sinz, cosz, sinx, cosx)`: a point of the
+/// view frame to the world, with the (already negated) sines of the main
+/// program: turn about x by α, about z by β, then move to the eye.
+/// Reconstructed.
+#[allow(clippy::too_many_arguments)]
+pub fn translookpt(xpt: f64, ypt: f64, zpt: f64, sinz: f64, cosz: f64, sinx: f64, cosx: f64, eyept: DVec3) -> DVec3 {
+    // About x by α.
+    let (y1, z1) = (ypt * cosx - zpt * sinx, ypt * sinx + zpt * cosx);
+    // About z by β.
+    let (x2, y2) = (xpt * cosz - y1 * sinz, xpt * sinz + y1 * cosz);
+    eyept + DVec3::new(x2, y2, z1)
+}
+
+/// The camera of the main program: the negated `getangle` sines, the
+/// screen window and the virtual (subpixel) raster.
+#[derive(Clone, Debug)]
+pub struct Camera {
+    eyept: DVec3,
+    sinz: f64,
+    cosz: f64,
+    sinx: f64,
+    cosx: f64,
+    scrndistance: f64,
+    /// Width and height of the window on the screen plane.
+    screen_w: f64,
+    screen_h: f64,
+    /// `virthighx`, `virthighy`: the subpixel raster, width·masksize by
+    /// height·masksize.
+    virthighx: usize,
+    virthighy: usize,
+    /// Where on the window subpixel k lies (DEVIATIONS D5).
+    fidelity: Fidelity,
+}
+
+impl Camera {
+    pub fn new(scene: &Scene, fidelity: Fidelity) -> Camera {
+        let (sinz, cosz, sinx, cosx) = getangle(&scene.view);
+        let img = &scene.image;
+        let screen_w = scene.view.screensize;
+        let screen_h = match fidelity {
+            // Erratum 14, listing: `xpt` and `zpt` both span `screensize`,
+            // so a raster that is not square gets pixels that are not.
+            Fidelity::Listing => screen_w,
+            // Thesis: square pixels, the height follows the aspect.
+            Fidelity::Thesis => screen_w * img.height as f64 / img.width as f64,
+        };
+        Camera {
+            eyept: scene.view.eyept,
+            sinz: -sinz,
+            cosz,
+            sinx: -sinx,
+            cosx,
+            scrndistance: scene.view.scrndistance,
+            screen_w,
+            screen_h,
+            virthighx: img.width * img.masksize,
+            virthighy: img.height * img.masksize,
+            fidelity,
+        }
+    }
+
+    /// The primary ray through subpixel (`scancol`, `scanline`), both
+    /// 1-based as in the listing, scanline 1 at the top, moved by the jitter
+    /// (jx, jz) in subpixels. The listing (OCR lines 3114–3117) puts it at
+    /// `xpt := (scancol+noise2[aindex]*aliasing)/(halfvirtualx*2.0-1.0)*
+    /// screensize/2`, and `zpt` likewise from `scanline`; `translookpt` is
+    /// not printed. DEVIATIONS D5 lists what the port keeps of that: in
+    /// both fidelities the window is `screensize` wide, centred on the line
+    /// of sight, x to the viewer's right and scanline 1 at the top (the
+    /// view frame's +x is the viewer's left, as it looks along −y with z
+    /// up, hence the minus sign). Where along it subpixel k lies:
+    /// `Fidelity::Listing` at k/(2h − 1) of the window, h =
+    /// `halfvirtualx` = N div 2 for N subpixels (column 0, erratum 13's
+    /// extra one, at the left edge); `Fidelity::Thesis` at the centre of
+    /// the k-th of N equal cells, (k − ½)/N.
+    pub fn ray(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> Ray {
+        let along = |k: f64, j: f64, n: usize| match self.fidelity {
+            // Listing: (scancol+jitter)/(halfvirtualx*2.0-1.0).
+            Fidelity::Listing => (k + j) / ((2 * (n / 2)) as f64 - 1.0).max(1.0),
+            // Thesis: the centre of cell k of n, moved by the jitter.
+            Fidelity::Thesis => (k - 0.5 + j) / n as f64,
+        };
+        let right = (along(scancol, jx, self.virthighx) - 0.5) * self.screen_w;
+        let up = (0.5 - along(scanline, jz, self.virthighy)) * self.screen_h;
+        let xpt = -right;
+        let ypt = -self.scrndistance;
+        let zpt = up;
+        let p = translookpt(xpt, ypt, zpt, self.sinz, self.cosz, self.sinx, self.cosx, self.eyept);
+        Ray::new(self.eyept, (p - self.eyept).normalize())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn view(eye: [f64; 3], look: [f64; 3]) -> View {
+        View {
+            eyept: DVec3::from_array(eye),
+            lookpt: DVec3::from_array(look),
+            screensize: 2.0,
+            scrndistance: 1.0,
+        }
+    }
+
+    /// The point straight ahead on the screen lies on the line of sight, for
+    /// eyes in every octant.
+    #[test]
+    fn translookpt_centre_is_on_the_line_of_sight() {
+        for eye in [[0.0, -5.0, 0.0], [3.0, 4.0, 2.0], [-2.0, 1.0, -3.0], [0.1, 0.0, 7.0]] {
+            let v = view(eye, [0.5, 0.25, 0.0]);
+            let (sz, cz, sx, cx) = getangle(&v);
+            let p = translookpt(0.0, -v.scrndistance, 0.0, -sz, cz, -sx, cx, v.eyept);
+            let want = v.eyept + (v.lookpt - v.eyept).normalize() * v.scrndistance;
+            assert!((p - want).length() < 1e-12, "eye {eye:?}: {p} vs {want}");
+        }
+    }
+
+    /// Right on the screen is the viewer's right, up is world up.
+    #[test]
+    fn screen_axes_are_right_and_up() {
+        let v = view([0.0, -5.0, 0.0], [0.0, 0.0, 0.0]); // looking along +y
+        let (sz, cz, sx, cx) = getangle(&v);
+        let right = translookpt(-1.0, -1.0, 0.0, -sz, cz, -sx, cx, v.eyept);
+        let up = translookpt(0.0, -1.0, 1.0, -sz, cz, -sx, cx, v.eyept);
+        // Looking along +y with z up, the right hand is +x.
+        assert!((right - DVec3::new(1.0, -4.0, 0.0)).length() < 1e-12);
+        assert!((up - DVec3::new(0.0, -4.0, 1.0)).length() < 1e-12);
+    }
+}

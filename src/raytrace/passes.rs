@@ -1,0 +1,108 @@
+//! The scanline loop of `--sampler adaptive` (the port's extension, see
+//! [`crate::adaptive`]): a first pass of a few rays a pixel, then the
+//! passes that deal out the rest of the deck's budget of `masksize`² rays a
+//! pixel by need.
+
+use rayon::prelude::*;
+
+use super::tracer::Tracer;
+use super::{Prepared, Traced};
+use crate::adaptive::{self, PixelSum};
+use crate::film::Frame;
+use crate::sampler::{PixelSampler, PixelSamples, Sampler, SHIFT_BLOCK};
+use crate::trace::TraceStats;
+
+/// Each sample is a place in the pixel and a time from the pixel's
+/// [`PixelSamples`]; a row is traced instant by instant (the times its
+/// pixels share), the scene posed once an instant ([`Tracer::at`]) and
+/// each due pixel's ray shot at it ([`Tracer::shoot`]); a pixel is the mean
+/// of its samples (the box filter of `antialias`). `progress` is called for
+/// each row of the last pass.
+pub(super) fn render_adaptive(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Sync)) -> Traced {
+    let img = &prepared.scene().image;
+    let (w, m) = (img.width, img.masksize);
+    let budget = (m * m) as u32;
+    let first = adaptive::first_pass(m);
+    let mut sums = vec![PixelSum::default(); w * img.height];
+    let mut counts = vec![first; sums.len()];
+    // The first pass, then the passes that have rays to deal out (none
+    // for a budget of one ray).
+    let mut passes = vec![0];
+    passes.extend(
+        adaptive::later_passes(sums.len(), budget, first)
+            .into_iter()
+            .filter(|&e| e > 0),
+    );
+    let samples: Vec<_> = (0..sums.len()).map(|i| PixelSamples::new(i, w)).collect();
+    let mut stats = TraceStats::default();
+    for (pass, &extra) in passes.iter().enumerate() {
+        if pass > 0 {
+            counts = adaptive::allocate(&sums, w, budget, extra, adaptive::quantum(budget));
+        }
+        let last = pass + 1 == passes.len();
+        let rows: Vec<TraceStats> = sums
+            .par_chunks_mut(w)
+            .zip(counts.par_chunks(w))
+            .zip(samples.par_chunks(w))
+            .enumerate()
+            .map(|(row, ((sums, counts), samples))| {
+                let stats = trace_row(prepared, frame, row, sums, counts, samples);
+                if last {
+                    progress();
+                }
+                stats
+            })
+            .collect();
+        for s in rows {
+            stats += s;
+        }
+    }
+    Traced {
+        colours: sums.iter().map(PixelSum::mean).collect(),
+        counts,
+        stats,
+    }
+}
+
+/// One pass over row `row`: the row's instants k in the blocks its samples
+/// reach, and at each every pixel whose sample k ⊕ c is due, with the
+/// scene posed once ([`adaptive::blocks_due`]). Each pixel's sum gets its
+/// samples' colours and the polynomial searches they made (their cost).
+fn trace_row(
+    prepared: &Prepared,
+    frame: Frame,
+    row: usize,
+    sums: &mut [PixelSum],
+    counts: &[u32],
+    samples: &[PixelSamples],
+) -> TraceStats {
+    let img = &prepared.scene().image;
+    let camera = prepared.camera();
+    let timed = prepared.timed();
+    let mut tracer = Tracer::new(prepared);
+    let mut sampler = PixelSampler::new(samples, row, img.width, img.masksize);
+    let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
+    let block = SHIFT_BLOCK;
+    for (b, pixels) in adaptive::blocks_due(&start, counts) {
+        for k in b * block..(b + 1) * block {
+            let mut posed = false;
+            for &x in &pixels {
+                let j = samples[x].at_instant(k);
+                if j < start[x] || j >= counts[x] {
+                    continue;
+                }
+                sampler.start(x, j);
+                if timed && !posed {
+                    tracer.at(frame.time(sampler.time()));
+                    posed = true;
+                }
+                let c = sampler.camera();
+                let aray = camera.ray(c.scancol, c.scanline, c.jx, c.jz);
+                let before = tracer.stats.searched;
+                sums[x].add(tracer.shoot(&aray, &mut sampler));
+                sums[x].add_searched(tracer.stats.searched - before);
+            }
+        }
+    }
+    tracer.stats
+}

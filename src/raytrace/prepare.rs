@@ -1,0 +1,205 @@
+//! The set-up the main program does between `initialize` and the scanline
+//! loop, done once into a [`Prepared`] scene that every render reads.
+
+use std::sync::Arc;
+
+use super::{Camera, RenderError};
+use crate::drt::TimeTable;
+use crate::intersect::Aggregate;
+use crate::motion::{paths, Motion, Moving};
+use crate::options::{Fidelity, Options};
+use crate::paper::PaperChain;
+use crate::sampler::Tables;
+use crate::scene::Scene;
+use crate::shapes::SweepCache;
+use crate::types::{DVec3, Shape};
+
+/// A scene ready to render with its options: made once by
+/// [`Prepared::new`], then read by every render of it (a still, each
+/// frame of a film, each window of rows). Nothing in it is made again by a
+/// render, and nothing falls back to a default: what cannot be prepared is
+/// an error here.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    scene: Scene,
+    opts: Options,
+    camera: Camera,
+    /// The lookup tables the samplers read (the subpixel times among them).
+    tables: Tables,
+    /// What moves over the shutter: the motion table's objects (those
+    /// `Isblur` says move), then each key-frame chain's in-between object.
+    moving: Vec<Moving>,
+    /// For each object, the index in `moving` of its chain if it deforms.
+    deforming_of: Vec<Option<usize>>,
+    /// What `shapes` prepared for each object's own shape.
+    caches: Vec<Option<Arc<SweepCache>>>,
+    aggregate: Aggregate,
+}
+
+impl Prepared {
+    /// The scene `initialize` read, set up for rendering with `opts`: the
+    /// subpixel time table (its `pattern` and `blur` records checked); the
+    /// sweeps' coefficients and boxes (`spline`, and in `listing` fidelity
+    /// `goahead`'s widening of `tbox`); `goahead` for each key-frame pair,
+    /// the in-between object's bounding sphere widened to hold its contour
+    /// at every time; the motion table; the shapes' caches; the camera.
+    pub fn new(mut scene: Scene, opts: Options) -> Result<Prepared, RenderError> {
+        crate::adaptive::check(&opts).map_err(RenderError::Options)?;
+        let fidelity = opts.fidelity;
+        let times = time_table(&scene, fidelity)?;
+        crate::shapes::sweep::prepare_sweeps(&mut scene, fidelity);
+        crate::paper::widen_tbox(&mut scene, fidelity);
+        let chains = key_frame_chains(&scene, fidelity)?;
+        for (k, chain) in &chains {
+            let b = chain.bbox();
+            let corner = DVec3::new(
+                b.xmin.abs().max(b.xmax.abs()),
+                b.ymin.abs().max(b.ymax.abs()),
+                b.zmin.abs().max(b.zmax.abs()),
+            );
+            let first = scene.keyframes[*k].first;
+            if corner.is_finite() {
+                scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
+            }
+        }
+        let caches = crate::shapes::prepare_caches(&scene);
+        let mut moving = paths(&scene);
+        moving.extend(chains.into_iter().map(|(record, chain)| Moving {
+            object: scene.keyframes[record].first,
+            motion: Motion::Chain { record, chain },
+        }));
+        Ok(Prepared::assemble(scene, opts, Tables::new(times), moving, caches))
+    }
+
+    /// The parts made into one: what depends on the scene alone (the
+    /// camera, the aggregate, who deforms) made here.
+    fn assemble(
+        scene: Scene,
+        opts: Options,
+        tables: Tables,
+        moving: Vec<Moving>,
+        caches: Vec<Option<Arc<SweepCache>>>,
+    ) -> Prepared {
+        let mut deforming_of = vec![None; scene.objects.len()];
+        let chains = moving.iter().enumerate().filter(|(_, m)| m.chain().is_some());
+        for (d, (_, m)) in chains.enumerate() {
+            deforming_of[m.object] = Some(d);
+        }
+        Prepared {
+            camera: Camera::new(&scene, opts.fidelity),
+            aggregate: Aggregate::linear(&scene),
+            scene,
+            opts,
+            tables,
+            moving,
+            deforming_of,
+            caches,
+        }
+    }
+
+    /// The scene, set up.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The options it was prepared with.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    pub fn tables(&self) -> &Tables {
+        &self.tables
+    }
+
+    /// What moves over the shutter.
+    pub fn moving(&self) -> &[Moving] {
+        &self.moving
+    }
+
+    /// For each object, the index of its chain among the deforming objects
+    /// (the chains of [`Prepared::chains`], in order), if it deforms.
+    pub fn deforming_of(&self) -> &[Option<usize>] {
+        &self.deforming_of
+    }
+
+    pub fn caches(&self) -> &[Option<Arc<SweepCache>>] {
+        &self.caches
+    }
+
+    pub fn aggregate(&self) -> &Aggregate {
+        &self.aggregate
+    }
+
+    /// Does anything move or deform (so each sample needs its time)?
+    pub fn timed(&self) -> bool {
+        !self.moving.is_empty()
+    }
+
+    /// The key-frame chains, in the order of their `keyframe` records.
+    pub fn chains(&self) -> impl Iterator<Item = &PaperChain> {
+        self.moving.iter().filter_map(Moving::chain)
+    }
+
+    /// The scene as it stands at one film time `time`, still: every moving
+    /// object at its pose then (`motionblur`), every key-frame object at its
+    /// in-between contour and pose, and nothing left to move. For looking at
+    /// in-between shapes without blur (`tools frames`), and for tests.
+    pub fn still_at(&self, time: f64) -> Prepared {
+        let mut still = self.scene.clone();
+        let mut caches = self.caches.clone();
+        for m in &self.moving {
+            let obj = &mut still.objects[m.object];
+            if let Some(chain) = m.chain() {
+                let mut contour = chain.scratch();
+                chain.inbetween(time, &mut contour);
+                obj.shape = Shape::Sweep(contour);
+                // A contour of the moment: nothing was prepared for it.
+                caches[m.object] = None;
+            }
+            let pose = m.pose(&self.scene.objects[m.object], time, self.opts.fidelity);
+            (obj.transfm, obj.inverse, obj.sphereo) = (pose.transfm, pose.inverse, pose.sphereo);
+        }
+        still.motions.clear();
+        still.keyframes.clear();
+        Prepared::assemble(still, self.opts, self.tables.clone(), Vec::new(), caches)
+    }
+}
+
+/// The subpixel times of a scene: its `pattern` and `blur` records, or
+/// the defaults; a pattern that does not fit the mask is an error at its
+/// record.
+pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, RenderError> {
+    let blur = scene.blur.as_ref().map_or(0, |b| b.n);
+    TimeTable::new(scene.image.masksize, scene.pattern.as_ref(), blur, fidelity).map_err(|message| {
+        let pos = scene.pattern.as_ref().map(|p| p.pos.clone()).unwrap_or_default();
+        RenderError::Misfit {
+            pos,
+            record: "pattern",
+            message,
+        }
+    })
+}
+
+/// `goahead(i2, …)` for every key-frame pair of the main program
+/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record,
+/// with the record's index.
+pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
+    scene
+        .keyframes
+        .iter()
+        .enumerate()
+        .map(|(k, record)| {
+            PaperChain::from_keyframe(scene, record, fidelity)
+                .map(|chain| (k, chain))
+                .map_err(|e| RenderError::Misfit {
+                    pos: record.pos.clone(),
+                    record: "keyframe",
+                    message: e.to_string(),
+                })
+        })
+        .collect()
+}

@@ -1,0 +1,94 @@
+//! The scanline loop of the main program (OCR lines 3100–3215) for the
+//! samplers of the subpixel grid: every subpixel of a block of `masksize`
+//! scanlines traced in the listing's order, then `antialias` of the block
+//! into a row of final pixels.
+
+use std::ops::Range;
+
+use rayon::prelude::*;
+
+use super::tracer::Tracer;
+use super::{Prepared, Traced};
+use crate::film::Frame;
+use crate::options::Fidelity;
+use crate::sampler::{GridKind, GridSampler, Sampler};
+use crate::trace::TraceStats;
+use crate::types::Intensity;
+
+/// The rows `rows` of final pixels, each from its `masksize` scanlines of
+/// subpixels. `progress` is called once per finished row (from worker
+/// threads).
+///
+/// Erratum 13: the listing's column loop runs `for scancol := quickx to
+/// quickx2` with `quickx = 0`, tracing one column more than the raster
+/// has; `listing` fidelity traces it (and `antialias` never reads it),
+/// `thesis` fidelity starts at 1.
+pub(super) fn render_grid(
+    prepared: &Prepared,
+    frame: Frame,
+    rows: Range<usize>,
+    progress: &(dyn Fn() + Sync),
+) -> Traced {
+    let opts = prepared.options();
+    let img = &prepared.scene().image;
+    let (w, m) = (img.width, img.masksize);
+    // `render` sends the adaptive sampler to its own loop.
+    let kind = GridKind::of(opts.sampler).unwrap_or(GridKind::Table);
+    let camera = prepared.camera();
+    let first_col = match opts.fidelity {
+        Fidelity::Listing => 0,
+        Fidelity::Thesis => 1,
+    };
+    let timed = prepared.timed();
+    let mut pixels = vec![Intensity::ZERO; w * rows.len()];
+    let per_row: Vec<TraceStats> = pixels
+        .par_chunks_mut(w)
+        .zip(rows.clone())
+        .map(|(out, row)| {
+            let mut tracer = Tracer::new(prepared);
+            let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
+            sampler.start_row(row);
+            let mut virtual_rows = vec![Intensity::ZERO; m * w];
+            for sub in 0..m {
+                let scanline = row * m + sub + 1;
+                for scancol in first_col..=w * m {
+                    sampler.start(scanline, scancol);
+                    let c = sampler.camera();
+                    let aray = camera.ray(c.scancol, c.scanline, c.jx, c.jz);
+                    if timed {
+                        tracer.at(frame.time(sampler.time()));
+                    }
+                    let acolor = tracer.shoot(&aray, &mut sampler);
+                    if scancol >= 1 {
+                        virtual_rows[sub * w + (scancol - 1) / m] += acolor;
+                    }
+                }
+            }
+            antialias(&virtual_rows, m, out);
+            progress();
+            tracer.stats
+        })
+        .collect();
+    let mut stats = TraceStats::default();
+    for s in per_row {
+        stats += s;
+    }
+    Traced {
+        counts: vec![(m * m) as u32; pixels.len()],
+        colours: pixels,
+        stats,
+    }
+}
+
+/// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the
+/// `masksize` scanlines of subpixels above it. Reconstructed: the box
+/// filter, the mean of the masksize × masksize subpixels of each pixel
+/// (§2.1.3 (2), supersampling). `sums` holds, for each of the `m` subpixel
+/// rows, each pixel's sum over its `m` subpixel columns.
+fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
+    let width = out.len();
+    for (x, px) in out.iter_mut().enumerate() {
+        let total: Intensity = (0..m).map(|sub| sums[sub * width + x]).sum();
+        *px = total / (m * m) as f64;
+    }
+}

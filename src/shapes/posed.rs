@@ -1,0 +1,75 @@
+//! An object as a ray meets it at one instant: the dispatch from the
+//! object's shape to its intersection.
+
+use super::sweep::{Sweep, SweepCache};
+use super::{
+    block_blocks, bounding_sphere_hit, intersect_block, intersect_cylinder, intersect_prism, intersect_sphere,
+};
+use crate::options::Options;
+use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SweepShape};
+
+/// An object as a ray meets it at one instant: its record, the shape it
+/// has then (its own, or its contour of the moment when it deforms), the
+/// cache made with that shape ([`SweepCache`]; `None` for a contour of the
+/// moment, whose caps are then solved and whose bounds are made per ray)
+/// and where it stands then.
+#[derive(Clone, Copy, Debug)]
+pub struct Posed<'a> {
+    pub obj: &'a ObjectRecord,
+    pub shape: &'a Shape,
+    pub cache: Option<&'a SweepCache>,
+    pub pose: &'a Pose,
+}
+
+impl Posed<'_> {
+    /// Does the ray reach the object's bounding sphere (`sphereo` at the
+    /// pose, `radius`) beyond `tmin`? A cheap rejection before any shape's
+    /// own test (§2.1.2 (1)(b), the bounding volume).
+    pub fn meets_bounding_sphere(&self, ray: &Ray, tmin: f64) -> bool {
+        bounding_sphere_hit(self.pose.sphereo, self.obj.radius, ray, tmin)
+    }
+
+    /// The hit of a world ray with the shape at the pose, without the
+    /// bounding-sphere test: the ray into the local frame, the shape's own
+    /// intersection. Returns the local hit (its `t` is the world
+    /// parameter). `searched` counts the polynomials a sweep searched
+    /// ([`Sweep::intersect`]).
+    pub fn intersect(&self, ray: &Ray, tmin: f64, opts: &Options, searched: &mut u64) -> Option<LocalHit> {
+        let local = ray.transformed(&self.pose.inverse);
+        match self.shape {
+            Shape::Sphere => intersect_sphere(self.obj.radius, &local, tmin),
+            Shape::Block { lengths } => intersect_block(*lengths, &local, tmin),
+            Shape::Cylinder {
+                cylradius, top, bottom, ..
+            } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
+            Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
+            Shape::Sweep(sw) => self.sweep(sw).intersect(&local, tmin, opts, searched),
+        }
+    }
+
+    /// Does the shape (as in [`Posed::intersect`]) stand on the ray at
+    /// some t with `tmin` < t < `tmax`? The shadow ray's question: a sweep
+    /// answers it at its first hit before `tmax` ([`Sweep::blocks`]), a
+    /// block by its slabs, the other shapes by their nearest hit. The same
+    /// answer as `intersect(..).is_some_and(|h| h.t < tmax)`.
+    pub fn blocks(&self, ray: &Ray, tmin: f64, tmax: f64, opts: &Options, searched: &mut u64) -> bool {
+        match self.shape {
+            Shape::Sweep(sw) => {
+                let local = ray.transformed(&self.pose.inverse);
+                self.sweep(sw).blocks(&local, tmin, tmax, opts, searched)
+            }
+            Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
+            _ => self.intersect(ray, tmin, opts, searched).is_some_and(|h| h.t < tmax),
+        }
+    }
+
+    /// The sweep `sw` (this object's shape) as its driver meets it.
+    #[inline]
+    fn sweep<'s>(&'s self, sw: &'s SweepShape) -> Sweep<'s> {
+        Sweep {
+            class: self.obj.class,
+            shape: sw,
+            cache: self.cache,
+        }
+    }
+}
