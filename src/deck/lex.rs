@@ -13,6 +13,8 @@
 //! is ASCII, inside them any bytes may stand (a 1989 deck may carry Big5 or
 //! Latin-1 there).
 
+use std::ops::Deref;
+use std::rc::Rc;
 use std::sync::Arc;
 
 use crate::scene::Pos;
@@ -54,12 +56,32 @@ fn is_blank(b: u8) -> bool {
 /// kept while scanning and made a `Pos` only for a token.
 type Place = (u32, u32);
 
+/// A deck's bytes: borrowed (the deck [`super::initialize`] is given) or
+/// shared (a file an `include` record reads, which the reader owns), so that
+/// one lexer serves both and cloning a cursor never copies a file.
+#[derive(Clone, Debug)]
+pub(super) enum Bytes<'a> {
+    Borrowed(&'a [u8]),
+    Shared(Rc<[u8]>),
+}
+
+impl Deref for Bytes<'_> {
+    type Target = [u8];
+
+    fn deref(&self) -> &[u8] {
+        match self {
+            Bytes::Borrowed(b) => b,
+            Bytes::Shared(b) => b,
+        }
+    }
+}
+
 /// A cursor over a deck's bytes that keeps the line and column of where it
 /// stands. A column is a character: one UTF-8 character, or one byte that is
 /// not part of a UTF-8 character (a Latin-1 or Big5 byte in a comment).
 #[derive(Clone, Debug)]
 pub(super) struct Cursor<'a> {
-    src: &'a [u8],
+    src: Bytes<'a>,
     /// The file's name, which every [`Pos`] it gives carries.
     file: Arc<str>,
     at: usize,
@@ -69,6 +91,11 @@ pub(super) struct Cursor<'a> {
 
 impl<'a> Cursor<'a> {
     pub fn new(src: &'a [u8], file: Arc<str>) -> Self {
+        Cursor::over(Bytes::Borrowed(src), file)
+    }
+
+    /// The cursor at the start of `src`, borrowed or shared.
+    pub fn over(src: Bytes<'a>, file: Arc<str>) -> Self {
         Cursor {
             src,
             file,
@@ -98,7 +125,7 @@ impl<'a> Cursor<'a> {
     }
 
     /// The bytes from the cursor on.
-    fn rest(&self) -> &'a [u8] {
+    fn rest(&self) -> &[u8] {
         &self.src[self.at..]
     }
 
@@ -202,9 +229,9 @@ impl OpenerInside<'_> {
 
 impl<'a> Lexer<'a> {
     /// The lexer of `src`, whose tokens' positions name `file`.
-    pub fn new(src: &'a [u8], file: Arc<str>) -> Self {
+    pub fn new(src: Bytes<'a>, file: Arc<str>) -> Self {
         Lexer {
-            cur: Cursor::new(src, file),
+            cur: Cursor::over(src, file),
             last_eol: None,
             last: None,
             opener_inside: None,
@@ -389,7 +416,7 @@ mod tests {
 
     /// The lexer of a deck named `t.deck`.
     fn lexer(source: &[u8]) -> Lexer<'_> {
-        Lexer::new(source, "t.deck".into())
+        Lexer::new(Bytes::Borrowed(source), "t.deck".into())
     }
 
     /// Where a token of `t.deck` stands.
@@ -452,7 +479,7 @@ mod tests {
     /// The nested-comment error for one at `at` in `source`, the source
     /// lexed to its end.
     fn nested_at(source: &str, at: (u32, u32)) -> Option<(u32, u32)> {
-        let mut lexer = Lexer::new(source.as_bytes(), "t.deck".into());
+        let mut lexer = Lexer::new(Bytes::Borrowed(source.as_bytes()), "t.deck".into());
         while !matches!(lexer.next_token().tok, Tok::Eof | Tok::Bad(_)) {}
         let at = Pos {
             file: "t.deck".into(),

@@ -170,12 +170,13 @@
 
 mod film;
 mod lex;
+mod library;
 mod objects;
 mod parse;
 mod records;
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::DMat3;
 
@@ -187,6 +188,7 @@ use crate::options::Fidelity;
 
 use crate::types::{Intensity, ObjectRecord, SurfaceRecord};
 pub use lex::MAX_DECK_BYTES;
+pub use library::{LIBRARY_RECORDS, MAX_INCLUDES, MAX_INCLUDE_DEPTH};
 use parse::Parser;
 pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
 
@@ -242,6 +244,8 @@ pub const RECORDS: &[&str] = &[
     "blur",
     "pattern",
     "film",
+    "path",
+    "include",
 ];
 
 /// Each record's field names in DECK.md's order, the required ones first
@@ -262,8 +266,10 @@ pub const FIELDS: &[(&str, &[&str])] = &[
     ("prism", &["at", "height", "axis"]),
     ("sweep", &["at", "length", "scale", "axis"]),
     ("motion", &["to", "turn", "via", "law"]),
+    ("motion", &["path"]),
     ("keyframe", &["expander"]),
     ("film", &["shutter", "rate"]),
+    ("path", &["by", "turn", "via", "law"]),
 ];
 
 /// A deck error: where (file, 1-based line and column, the column counting
@@ -333,7 +339,8 @@ pub fn initialize(
     }
     let mut b = Builder {
         p: Parser::new(source, file_name),
-        deck_dir,
+        deck_dir: deck_dir.to_path_buf(),
+        lib: library::Library::new(source.len(), file_name, deck_dir),
         fidelity,
         view: None,
         image: None,
@@ -351,13 +358,11 @@ pub fn initialize(
         pattern: None,
         film: None,
     };
-    loop {
-        b.p.begin("deck");
-        b.p.skip_blank_lines()?;
-        if b.p.at_eof()? {
-            break;
-        }
-        b.record()?;
+    // A motion that named a path not defined above it stands before any
+    // later error: its error is reported first.
+    b.records().map_err(|e| b.unknown_path_error().unwrap_or(e))?;
+    if let Some(e) = b.unknown_path_error() {
+        return Err(e);
     }
     b.finish()
 }
@@ -366,7 +371,7 @@ pub fn initialize(
 struct SurfaceInfo {
     pos: Pos,
     /// The line and keyword of its `paint` or `texture` record, if any.
-    decoration: Option<(u32, &'static str)>,
+    decoration: Option<(Pos, &'static str)>,
 }
 
 /// An object as read so far.
@@ -403,14 +408,18 @@ struct PendingMotion {
 
 struct Builder<'a> {
     p: Parser<'a>,
-    deck_dir: &'a Path,
+    /// The folder of the file being read: the files it names are relative
+    /// to it.
+    deck_dir: PathBuf,
+    /// The path library and the included files (the port's extension).
+    lib: library::Library<'a>,
     fidelity: Fidelity,
     view: Option<(View, Pos)>,
     image: Option<(ImageSpec, Pos)>,
     background: Option<(Intensity, Pos)>,
     lights: Vec<LightRecord>,
-    /// Light name → (index, line).
-    light_index: HashMap<String, (usize, u32)>,
+    /// Light name → (index, where).
+    light_index: HashMap<String, (usize, Pos)>,
     surfaces: Vec<SurfaceRecord>,
     surface_info: Vec<SurfaceInfo>,
     surface_index: HashMap<String, usize>,
@@ -425,10 +434,29 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
+    /// Reads every record, of the deck and of the files it includes.
+    fn records(&mut self) -> Result<(), DeckError> {
+        loop {
+            self.p.begin("deck");
+            self.p.skip_blank_lines()?;
+            if self.p.at_eof()? {
+                if self.end_of_file() {
+                    continue;
+                }
+                return Ok(());
+            }
+            self.record()?;
+        }
+    }
+
     /// Reads one record, its first word being the next token.
     fn record(&mut self) -> Result<(), DeckError> {
         let (word, pos) = self.p.word("a record")?;
-        match word.to_ascii_lowercase().as_str() {
+        let keyword = word.to_ascii_lowercase();
+        if RECORDS.contains(&keyword.as_str()) {
+            self.may_stand_here(&keyword, pos.clone())?;
+        }
+        match keyword.as_str() {
             "view" => self.view(pos),
             "image" => self.image(pos),
             "background" => self.background(pos),
@@ -449,6 +477,8 @@ impl Builder<'_> {
             "blur" => self.blur(pos),
             "pattern" => self.pattern(pos),
             "film" => self.film(pos),
+            "path" => self.path(),
+            "include" => self.include(),
             _ => Err(self.p.error_at(
                 pos,
                 format!(

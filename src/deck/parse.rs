@@ -2,7 +2,7 @@
 //! needs (keywords, names, numbers, choices, fields, record ends), each
 //! raising a [`DeckError`] at the offending token.
 
-use super::lex::{is_integer, is_number, Lexer, Tok, Token};
+use super::lex::{is_integer, is_number, Bytes, Lexer, Tok, Token};
 use super::DeckError;
 use crate::scene::Pos;
 use crate::types::STRINGLENGTH;
@@ -148,6 +148,11 @@ fn found(tok: &Tok) -> String {
 impl<'a> Parser<'a> {
     /// The cursor over `source`, a deck named `file` in errors.
     pub fn new(source: &'a [u8], file: &str) -> Self {
+        Parser::over(Bytes::Borrowed(source), file)
+    }
+
+    /// The cursor over `source`, borrowed or shared (an included file).
+    pub fn over(source: Bytes<'a>, file: &str) -> Self {
         let mut lexer = Lexer::new(source, file.into());
         let next = lexer.next_token();
         Parser {
@@ -279,18 +284,28 @@ impl<'a> Parser<'a> {
     /// The keyword `kw` (any case). Another word gets "expected 'KW',
     /// found 'WORD'", and then where the field WORD belongs if it is one of
     /// the record's, or the nearest field if it looks like a slip.
-    pub fn keyword(&mut self, kw: &str) -> Result<Pos, DeckError> {
+    pub fn keyword(&mut self, kw: &'static str) -> Result<Pos, DeckError> {
+        self.keyword_of(&[kw]).map(|(_, pos)| pos)
+    }
+
+    /// One of the keywords `kws` (any case), for a record of two forms
+    /// (`motion NAME to …`, `motion NAME path …`): which, and where. Another
+    /// word is an error as in [`Parser::keyword`] for the first of them
+    /// ("expected 'to' or 'path', found …"), the nearest of them all and
+    /// the record's fields suggested.
+    pub fn keyword_of(&mut self, kws: &[&'static str]) -> Result<(&'static str, Pos), DeckError> {
+        let what = kws.iter().map(|k| format!("'{k}'")).collect::<Vec<_>>().join(" or ");
         match self.peek_word()? {
-            Some((w, pos)) if w.eq_ignore_ascii_case(kw) => {
-                self.advance();
-                Ok(pos)
-            }
-            Some((w, _)) => {
-                let mut e = self.expected(&format!("'{kw}'"));
-                e.message.push_str(&self.field_hint(kw, &w));
+            Some((w, pos)) => {
+                if let Some(&kw) = kws.iter().find(|k| w.eq_ignore_ascii_case(k)) {
+                    self.advance();
+                    return Ok((kw, pos));
+                }
+                let mut e = self.expected(&what);
+                e.message.push_str(&self.field_hint(kws, &w));
                 Err(e)
             }
-            None => Err(self.expected(&format!("'{kw}'"))),
+            None => Err(self.expected(&what)),
         }
     }
 
@@ -302,12 +317,13 @@ impl<'a> Parser<'a> {
             .map_or(&[], |(_, fields)| fields)
     }
 
-    /// What follows "expected 'KW', found 'WORD'" in the current record: a
-    /// field of the record out of its place (DECK.md's order, required
-    /// fields first) is told which comes first, or that it was given
-    /// already; another word gets the nearest of `kw` and the record's
-    /// fields, `kw` first.
-    fn field_hint(&self, kw: &str, word: &str) -> String {
+    /// What follows "expected 'KW', found 'WORD'" in the current record
+    /// (KW the first of `kws`): a field of the record out of its place
+    /// (DECK.md's order, required fields first) is told which comes first,
+    /// or that it was given already; another word gets the nearest of `kws`
+    /// and the record's fields, `kws` first.
+    fn field_hint(&self, kws: &[&str], word: &str) -> String {
+        let kw = kws[0];
         let fields = self.record_fields();
         let place = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
         match (place(kw), place(word)) {
@@ -316,8 +332,15 @@ impl<'a> Parser<'a> {
             (Some(_), Some(f)) => format!(" — the field '{}' is given twice", fields[f]),
             (None, Some(_)) => String::new(),
             (_, None) => {
-                let names: Vec<&str> = std::iter::once(kw)
-                    .chain(fields.iter().copied().filter(|f| !f.eq_ignore_ascii_case(kw)))
+                let names: Vec<&str> = kws
+                    .iter()
+                    .copied()
+                    .chain(
+                        fields
+                            .iter()
+                            .copied()
+                            .filter(|f| !kws.iter().any(|k| f.eq_ignore_ascii_case(k))),
+                    )
                     .collect();
                 did_you_mean(word, &names)
             }

@@ -5,6 +5,7 @@
 
 use glam::DVec3;
 
+use super::library::PathFields;
 use super::objects::rotation;
 use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo, MAX_MAGNITUDE};
 use crate::options::Fidelity;
@@ -178,17 +179,18 @@ impl Builder<'_> {
         self.p.begin("light");
         let (name, pos) = self.p.name("a light name")?;
         self.p.name = Some(name.clone());
-        if let Some(&(_, line)) = self.light_index.get(&name) {
+        if let Some((_, first)) = self.light_index.get(&name) {
+            let line = self.line_of(first);
             return Err(self
                 .p
-                .error_at(pos, format!("the light name '{name}' is already used on line {line}")));
+                .error_at(pos, format!("the light name '{name}' is already used on {line}")));
         }
         let x = self.p.number("for X")?.value;
         let y = self.p.number("for Y")?.value;
         let z = self.p.number("for Z")?.value;
         let color = self.rgb(["for R", "for G", "for B"], false)?;
         self.p.end_of_line()?;
-        self.light_index.insert(name.clone(), (self.lights.len(), pos.line));
+        self.light_index.insert(name.clone(), (self.lights.len(), pos));
         self.lights.push(LightRecord {
             name,
             position: DVec3::new(x, y, z),
@@ -204,10 +206,10 @@ impl Builder<'_> {
         let (name, pos) = self.p.name("a surface name")?;
         self.p.name = Some(name.clone());
         if let Some(&i) = self.surface_index.get(&name) {
-            let line = self.surface_info[i].pos.line;
+            let line = self.line_of(&self.surface_info[i].pos);
             return Err(self
                 .p
-                .error_at(pos, format!("the surface name '{name}' is already used on line {line}")));
+                .error_at(pos, format!("the surface name '{name}' is already used on {line}")));
         }
         let (surface, _) = self.p.choice(
             "a surface kind",
@@ -274,13 +276,14 @@ impl Builder<'_> {
     fn decorated_surface(&mut self, keyword: &'static str, record_pos: Pos) -> Result<usize, DeckError> {
         let (i, pos) = self.surface_ref()?;
         self.p.name = Some(self.surfaces[i].name.clone());
-        if let Some((line, what)) = self.surface_info[i].decoration {
+        if let Some((first, what)) = &self.surface_info[i].decoration {
+            let line = self.line_of(first);
             return Err(self.p.error_at(
                 pos,
-                format!("the surface already has a {what} (line {line}); it may have one paint or texture"),
+                format!("the surface already has a {what} ({line}); it may have one paint or texture"),
             ));
         }
-        self.surface_info[i].decoration = Some((record_pos.line, keyword));
+        self.surface_info[i].decoration = Some((record_pos, keyword));
         Ok(i)
     }
 
@@ -324,22 +327,8 @@ impl Builder<'_> {
         let (file, file_pos) = self.p.word("a raster file name")?;
         self.p.end_of_line()?;
         let path = self.deck_dir.join(&file);
-        let raster = read_raster_file_within(&path, super::TEXTURE_LIMIT).map_err(|e| {
-            // The path as written is relative to the deck's folder: say
-            // where that is, unless it is the same path.
-            let looked = if path.as_os_str() == file.as_str() {
-                String::new()
-            } else {
-                format!("; from the deck's folder, that is {}", super::parse::shown_path(&path))
-            };
-            self.p.error_at(
-                file_pos.clone(),
-                format!(
-                    "cannot read the raster file {}: {e}{looked}",
-                    super::parse::shown(&file)
-                ),
-            )
-        })?;
+        let raster = read_raster_file_within(&path, super::TEXTURE_LIMIT)
+            .map_err(|e| self.unreadable(file_pos.clone(), "raster file", &file, &path, e))?;
         if raster.width == 0
             || raster.height == 0
             || raster.width.checked_mul(raster.height) != Some(raster.pixels.len())
@@ -360,6 +349,29 @@ impl Builder<'_> {
             texels: raster.pixels,
         });
         Ok(())
+    }
+
+    /// The error for a file a record names (`what`: "raster file") that
+    /// cannot be read: named as written (`file`, at `pos`), then, as it is
+    /// relative to the deck's folder, as found from there (`path`) unless
+    /// that is the same path.
+    pub(super) fn unreadable(
+        &self,
+        pos: Pos,
+        what: &str,
+        file: &str,
+        path: &std::path::Path,
+        e: impl std::fmt::Display,
+    ) -> DeckError {
+        let looked = if path.as_os_str() == file {
+            String::new()
+        } else {
+            format!("; from the deck's folder, that is {}", super::parse::shown_path(path))
+        };
+        self.p.error_at(
+            pos,
+            format!("cannot read the {what} {}: {e}{looked}", super::parse::shown(file)),
+        )
     }
 
     /// `rotate NAME x|y|z DEGREES`: R ← R_axis(DEGREES) · R, `angle` += DEGREES.
@@ -415,7 +427,8 @@ impl Builder<'_> {
     }
 
     /// `motion NAME to X Y Z [turn AX AY AZ] [via X1 Y1 Z1 X2 Y2 Z2]
-    /// [law constant|accelerate|decelerate|smooth]`.
+    /// [law constant|accelerate|decelerate|smooth]`, or `motion NAME path
+    /// PATH`, a path of the library (the port's extension, [`super::library`]).
     pub(super) fn motion(&mut self, record_pos: Pos) -> Result<(), DeckError> {
         self.p.begin("motion");
         let (i, pos) = self.object_ref()?;
@@ -434,22 +447,52 @@ impl Builder<'_> {
                 ),
             ));
         }
-        self.p.keyword("to")?;
-        let to = self.p.vec3("after 'to'")?;
-        let mut turn = DVec3::ZERO;
-        let mut via = None;
-        let mut law = Law::Constant;
+        let (form, _) = self.p.keyword_of(&["to", "path"])?;
+        let path = if form == "path" {
+            self.library_path(i)?
+        } else {
+            let to = self.p.vec3("after 'to'")?;
+            Some(self.path_fields(to)?)
+        };
+        self.p.end_of_line()?;
+        self.entries[i].motion_line = Some(record_pos.line);
+        // A path not defined (yet) leaves the error to `initialize`.
+        let Some(path) = path else { return Ok(()) };
+        self.motions.push(PendingMotion {
+            record: MotionRecord {
+                pos: record_pos,
+                object: i,
+                to: path.end,
+                turn: path.turn,
+                via: path.via,
+                law: path.law,
+            },
+            entry: i,
+        });
+        Ok(())
+    }
+
+    /// The optional fields of a motion and of a library path, after its
+    /// end point `end`: `[turn AX AY AZ] [via X1 Y1 Z1 X2 Y2 Z2] [law
+    /// constant|accelerate|decelerate|smooth]`.
+    pub(super) fn path_fields(&mut self, end: DVec3) -> Result<PathFields, DeckError> {
+        let mut path = PathFields {
+            end,
+            turn: DVec3::ZERO,
+            via: None,
+            law: Law::Constant,
+        };
         let mut seen = Vec::new();
         while let Some((field, _)) = self.p.field(&["turn", "via", "law"], &mut seen)? {
             match field {
-                "turn" => turn = self.p.vec3("after 'turn'")?,
+                "turn" => path.turn = self.p.vec3("after 'turn'")?,
                 "via" => {
                     let a = self.p.vec3("after 'via'")?;
                     let b = self.p.vec3("after 'via'")?;
-                    via = Some([a, b]);
+                    path.via = Some([a, b]);
                 }
                 _ => {
-                    law = self
+                    path.law = self
                         .p
                         .choice(
                             "a law",
@@ -464,20 +507,7 @@ impl Builder<'_> {
                 }
             }
         }
-        self.p.end_of_line()?;
-        self.entries[i].motion_line = Some(record_pos.line);
-        self.motions.push(PendingMotion {
-            record: MotionRecord {
-                pos: record_pos,
-                object: i,
-                to,
-                turn,
-                via,
-                law,
-            },
-            entry: i,
-        });
-        Ok(())
+        Ok(path)
     }
 
     /// `keyframe FIRST LAST [expander burtnyk|arclength]`, or a chain
