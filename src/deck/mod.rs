@@ -53,10 +53,11 @@
 //!   any order, each at most once; a field given twice, a word that is no
 //!   field of the record, or any extra token is an error.
 //! - Records are read top to bottom and may name only what stands above
-//!   them. Surfaces, lights and objects are three kinds of name: a surface
+//!   them; an included file's records stand where its `include` does.
+//!   Surfaces, lights, objects and paths are four kinds of name: a surface
 //!   and an object may share a name, two surfaces (two lights, two objects
-//!   in the scene) may not. After `delete NAME` the name is free again;
-//!   referring to the deleted object is an error ("unknown object").
+//!   in the scene, two paths) may not. After `delete NAME` the name is free
+//!   again; referring to the deleted object is an error ("unknown object").
 //!
 //! # Values
 //! - `view`: exactly once. `screen` and `distance` > 0. The eye may not be
@@ -144,6 +145,26 @@
 //!   (`drt::TimeTable::new`): equal in `Fidelity::Thesis`; at least the
 //!   mask in `Fidelity::Listing`, which reads the top-left corner
 //!   (DEVIATIONS D9).
+//!
+//! # The path library (the port's extension, src/deck/library.rs)
+//! - `path NAME by DX DY DZ [turn AX AY AZ] [via DX1 DY1 DZ1 DX2 DY2 DZ2]
+//!   [law …]`: `by` and the `via` points are offsets from the place of the
+//!   object that takes the path; `motion OBJ path NAME` is the motion
+//!   record with `to` = `sphereo` + `by` and each `via` point `sphereo` +
+//!   its offset (sums of reals), which must lie in the deck's range; nothing
+//!   follows NAME. A motion naming a path that no record above defines is
+//!   an error at the name, raised when the path is defined below it ("used
+//!   before it is defined"), at another error, or at the end of the deck
+//!   ("unknown path").
+//! - `include FILE`: FILE (one word, relative to the folder of the file
+//!   naming it) is read in place of the record, named in errors as joined
+//!   to that folder. It may hold only [`LIBRARY_RECORDS`]. The deck and all
+//!   it includes hold at most [`MAX_DECK_BYTES`] together (a file counted
+//!   each time it is included; the error at the first byte past the limit,
+//!   in the file where it falls), at most [`MAX_INCLUDES`] includes are
+//!   read, files nest at most [`MAX_INCLUDE_DEPTH`] deep, and a file that
+//!   includes itself, directly or not (the same file as the system resolves
+//!   paths), is an error at the `include` that closes the cycle.
 //!
 //! # Film
 //! - `film FRAMES [shutter S] [rate FPS]` (the port's extension,
@@ -251,7 +272,9 @@ pub const RECORDS: &[&str] = &[
 /// Each record's field names in DECK.md's order, the required ones first
 /// then the optional ones (a test holds them equal to DECK.md's list): how
 /// a misplaced field is told where it belongs ("'ka' comes before 'kd'")
-/// and a misspelt one its nearest field.
+/// and a misspelt one its nearest field. A record of two forms has an entry
+/// for each (`motion … to …`, `motion … path …`), the first the one whose
+/// order is told.
 pub const FIELDS: &[(&str, &[&str])] = &[
     ("view", &["eye", "look", "screen", "distance"]),
     ("image", &["mask", "aliasing"]),

@@ -125,6 +125,9 @@ const DECK_WORDS: &[&str] = &[
     "burtnyk",
     "texture",
     "paint",
+    "path",
+    "by",
+    "include",
     "0",
     "-0",
     "1",
@@ -312,7 +315,13 @@ pub fn check_deck(input: &[u8], dir: &Path) -> Outcome {
         Err(_) => return Outcome::Finding("initialize panicked".into()),
         Ok(Err(e)) => {
             let message = e.to_string();
-            if let Some(f) = message_fault(&message).or_else(|| position_fault(input, e.line, e.column)) {
+            // An error in a file the input includes stands in that file.
+            let own = || {
+                (e.file == "fuzz.deck")
+                    .then(|| position_fault(input, e.line, e.column))
+                    .flatten()
+            };
+            if let Some(f) = message_fault(&message).or_else(own) {
                 return Outcome::Finding(f);
             }
             return Outcome::Refused(format!("{}: {}", e.record, shape(&e.message)));

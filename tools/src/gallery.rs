@@ -154,6 +154,7 @@ pub const GALLERY: &[Picture] = &[
         FIVE,
         128,
     ),
+    render("docs/img/tutorial_5_path.png", "legacy_pascal/tutorial/5_path.deck"),
 ];
 
 /// The checkout the tools were built from: the pictures and decks of
@@ -470,7 +471,7 @@ mod tests {
     fn each_tutorial_deck_renders_and_builds_on_the_one_before() {
         let root = checkout();
         let decks = tutorial_decks(&root);
-        assert_eq!(decks.len(), 4);
+        assert_eq!(decks.len(), 5);
         let mut before: Option<(Vec<String>, Raster)> = None;
         for deck in &decks {
             let name = deck.strip_prefix(&root).unwrap().to_str().unwrap().to_owned();
