@@ -2,11 +2,12 @@
 //! that renders (`raytrace`, the tools, the binaries to come): the choices
 //! of [`Options`] (`--fidelity`, `--solver`, `--sampler`, the library's own
 //! enums), the image's size and the threads (`--mask`, `--size`,
-//! `--threads`), and the deck a command names (a file, or `-` for standard
-//! input). Each flattens into a program's `clap` parser; what goes wrong is
+//! `--threads`), a task of a farm (`--tile`, `--resume`), and the deck a
+//! command names (a file, or `-` for standard input). Each flattens into a program's `clap` parser; what goes wrong is
 //! a [`Failure`] whose kind gives the exit status. The port's.
 
 use std::io::Read;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
@@ -15,6 +16,7 @@ use crate::exit::Failure;
 use crate::options::{Fidelity, Options, Solver, TimeSampler};
 use crate::raytrace::Prepared;
 use crate::scene::Scene;
+use crate::tile::Tile;
 
 /// `--fidelity`: the listing or the thesis.
 #[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -123,6 +125,44 @@ impl RenderArgs {
             .num_threads(self.threads.map_or(0, usize::from))
             .build()
             .map_err(Failure::other)
+    }
+}
+
+/// `--tile K/N`, `--resume`: what a task of a farm renders of a deck
+/// (docs/farm.md). The port's extension.
+#[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FarmArgs {
+    /// Render band K of N of the image's rows (whole rows, split as evenly as they allow; N at
+    /// most the rows) and write it as a Sun raster of those rows for `tools join --tiles`;
+    /// the bands joined are the whole image byte for byte. Not with --sampler adaptive.
+    #[arg(long, value_name = "K/N", value_parser = Tile::parse)]
+    pub tile: Option<Tile>,
+
+    /// Skip each output (a film's frame, the still or its tile) that is already there and
+    /// complete (its header and length checked, not just present), and render again one that
+    /// is not, so a task run again renders only what is missing.
+    #[arg(long)]
+    pub resume: bool,
+}
+
+impl FarmArgs {
+    /// The rows of `prepared`'s image a render covers: band K of N, or the
+    /// whole image. A usage error (exit 2) for more bands than rows, and
+    /// for a band of the adaptive sampler, which deals its rays over the
+    /// whole image (its band would be another picture).
+    pub fn rows(&self, prepared: &Prepared) -> Result<Range<usize>, Failure> {
+        let height = prepared.scene().image.height;
+        let Some(tile) = self.tile else {
+            return Ok(0..height);
+        };
+        if prepared.options().sampler == TimeSampler::Adaptive {
+            return Err(Failure::usage(format!(
+                "--tile {tile}: --sampler adaptive deals its rays over the whole image by need, so a \
+                 band rendered alone would be another picture; render the image whole, or use \
+                 --sampler table, random or stratified"
+            )));
+        }
+        tile.band(height).map_err(Failure::usage)
     }
 }
 

@@ -11,7 +11,8 @@
 //! writes every output file; [`cli`] and [`exit`], the port's too, are the
 //! command line's words for a render and the exit statuses, shared by every
 //! program; [`image_file`] reads the pictures psout
-//! shows (Sun raster, PNG, PPM).
+//! shows (Sun raster, PNG, PPM); [`film`] and [`tile`], the port's, are a
+//! film's frames and a still's bands, each rendered by any process.
 
 pub mod adaptive;
 pub mod cli;
@@ -34,5 +35,6 @@ pub mod robust;
 pub mod sampler;
 pub mod scene;
 pub mod shapes;
+pub mod tile;
 pub mod trace;
 pub mod types;

@@ -12,9 +12,10 @@
 //!   output it cannot write; [`PendingFile::commit`] writes it.
 //!   [`write_atomically`] does both at once.
 //! - A new file, or one that is a regular file, is written to a temporary
-//!   file beside it, `.NAME.PID.N.tmp`, synced and renamed over it: an
+//!   file beside it, `.NAME.HOST.PID.N.tmp`, synced and renamed over it: an
 //!   interrupted write never leaves half a file or clobbers the last good
-//!   one. A symbolic link to a regular file keeps its link: the file it
+//!   one. The host is in the name because a folder may be shared by the
+//!   hosts of a farm (docs/farm.md), where a PID means nothing off its host. A symbolic link to a regular file keeps its link: the file it
 //!   points to is replaced. A path that exists and is not a regular file (a
 //!   device such as /dev/null, a FIFO: [`is_stream`]) is written into,
 //!   never replaced.
@@ -27,7 +28,12 @@
 //!   temporary files and exits with 130 or 143 (128 + the signal, as a
 //!   shell reports it). A SIGKILL cannot be caught: the next write of the
 //!   same target removes the temporary files of processes that no longer
-//!   run (on Linux, where /proc tells which do).
+//!   run (on Linux, where /proc tells which do), and only those this host
+//!   wrote: another host's PIDs are not in this host's /proc.
+//! - A writer whose temporary file vanished before the rename (another
+//!   writer of the same file took it for a dead one's: one in another PID
+//!   namespace, a container sharing the host name, looks the PID up in
+//!   its own /proc) says so and names the temporary file, not the target.
 
 use std::collections::HashMap;
 use std::ffi::{OsStr, OsString};
@@ -52,6 +58,10 @@ pub enum OutputError {
     NotAFolder(PathBuf),
     #[error("it is a folder, not a file")]
     IsAFolder,
+    /// The temporary file was removed by someone else before it could be
+    /// renamed over the target; the target is as it was.
+    #[error("its temporary file {} vanished before it could be renamed over it: another process removed it (a second writer of the same file, on another host of a shared folder or in another PID namespace, that took it for a dead writer's); the file was not written", .0.display())]
+    TempVanished(PathBuf),
     #[error("{0}")]
     Io(#[from] io::Error),
 }
@@ -179,7 +189,10 @@ impl PendingFile {
                 let result = write_buffered(&mut file, write).and_then(|()| {
                     file.sync_all().map_err(OutputError::from)?;
                     let mut registry = temp_files();
-                    fs::rename(&temp, &target).map_err(OutputError::from)?;
+                    fs::rename(&temp, &target).map_err(|e| match e.kind() {
+                        io::ErrorKind::NotFound if !temp.exists() => OutputError::TempVanished(temp.clone()),
+                        _ => OutputError::from(e),
+                    })?;
                     registry.retain(|t| t != &temp);
                     Ok(())
                 });
@@ -283,14 +296,34 @@ fn temp_files() -> MutexGuard<'static, Vec<PathBuf>> {
     TEMP_FILES.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
-/// Creates `.NAME.PID.N.tmp` in `dir`, a name no other writer uses.
+/// This host's name as temporary file names carry it: the kernel's host
+/// name (/proc/sys/kernel/hostname, else `$HOSTNAME`, else `localhost`)
+/// with each character other than a letter, a digit or `-` made `_`, so
+/// that it holds no dot and the name splits back into its parts.
+pub fn this_host() -> &'static str {
+    static HOST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    HOST.get_or_init(|| {
+        let name = fs::read_to_string("/proc/sys/kernel/hostname")
+            .ok()
+            .or_else(|| std::env::var("HOSTNAME").ok())
+            .map(|h| h.trim().to_string())
+            .filter(|h| !h.is_empty())
+            .unwrap_or_else(|| "localhost".into());
+        name.chars()
+            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+            .collect()
+    })
+}
+
+/// Creates `.NAME.HOST.PID.N.tmp` in `dir`, a name no other writer uses.
 fn create_temp_file(dir: &Path, name: &OsStr) -> Result<(PathBuf, File), OutputError> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
     loop {
         let mut temp_name = OsString::from(".");
         temp_name.push(name);
         temp_name.push(format!(
-            ".{}.{}.tmp",
+            ".{}.{}.{}.tmp",
+            this_host(),
             std::process::id(),
             COUNTER.fetch_add(1, Ordering::Relaxed)
         ));
@@ -315,9 +348,12 @@ fn discard(temp: &Path) {
     registry.retain(|t| t != temp);
 }
 
-/// Removes `dir`'s temporary files for `name` left by processes that no
-/// longer run (killed by SIGKILL, or a power cut): `.NAME.PID.N.tmp` with a
-/// PID that /proc does not list. Without /proc nothing is removed, since
+/// Removes `dir`'s temporary files for `name` left by processes of this
+/// host that no longer run (killed by SIGKILL, or a power cut):
+/// `.NAME.HOST.PID.N.tmp` with this host's HOST and a PID that /proc does
+/// not list. Another host's are left, whatever their PID (this host's
+/// /proc knows nothing of that host's processes), and so are the names of
+/// older versions without a host. Without /proc nothing is removed, since
 /// nothing tells a dead writer from a live one. A folder is listed once per
 /// process, so writing many files into it stays linear.
 fn remove_stale_temp_files(dir: &Path, name: &OsStr) {
@@ -342,7 +378,7 @@ fn remove_stale_temp_files(dir: &Path, name: &OsStr) {
 /// A temporary file of a dead process: the target name it was for, and its path.
 type StaleTempFile = (OsString, PathBuf);
 
-/// The temporary files in `dir` of dead processes.
+/// The temporary files in `dir` of dead processes of this host.
 fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
     let Ok(entries) = fs::read_dir(dir) else {
         return Vec::new();
@@ -358,14 +394,18 @@ fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
         else {
             continue;
         };
-        // NAME.PID.N: NAME may itself hold dots, PID and N do not.
-        let mut parts = middle.rsplitn(3, '.');
-        let (Some(n), Some(pid), Some(target)) = (parts.next(), parts.next(), parts.next()) else {
+        // NAME.HOST.PID.N: NAME may itself hold dots, HOST, PID and N do not.
+        let mut parts = middle.rsplitn(4, '.');
+        let (Some(n), Some(pid), Some(host), Some(target)) = (parts.next(), parts.next(), parts.next(), parts.next())
+        else {
             continue;
         };
         let Ok(pid) = pid.parse::<u32>() else {
             continue;
         };
+        if host != this_host() {
+            continue;
+        }
         let alive = pid == std::process::id() || Path::new("/proc").join(pid.to_string()).exists();
         if digits(n) && !target.is_empty() && !alive && entry.file_type().is_ok_and(|t| t.is_file()) {
             stale.push((target.into(), entry.path()));

@@ -38,7 +38,9 @@ use byteorder::{BigEndian, ByteOrder};
 
 use crate::types::Intensity;
 
+mod complete;
 mod format;
+pub use complete::{check_complete, sun_raster_len};
 pub use format::{write_image, write_png_to, write_ppm_to, Format, FormatError, EXTENSIONS};
 
 /// `RAS_MAGIC`: the first four bytes of every Sun raster file.
@@ -606,7 +608,7 @@ pub fn encode_raster(raster: &Raster) -> Vec<u8> {
     if let Err(e) = raster.check() {
         panic!("encode_raster: {e}");
     }
-    let mut out = Vec::with_capacity(HEADER_LEN + (raster.width * 3).div_ceil(2) * 2 * raster.height);
+    let mut out = Vec::with_capacity(sun_raster_len(raster.width, raster.height));
     match write_sun_raster(raster, &mut out) {
         Ok(()) => out,
         Err(e) => panic!("encode_raster: {e}"),
@@ -620,7 +622,7 @@ pub fn encode_raster(raster: &Raster) -> Vec<u8> {
 pub fn write_sun_raster(raster: &Raster, w: &mut dyn Write) -> Result<(), RasterError> {
     raster.check()?;
     let row_bytes = (raster.width * 3).div_ceil(2) * 2;
-    let data_bytes = row_bytes * raster.height;
+    let data_bytes = sun_raster_len(raster.width, raster.height) - HEADER_LEN;
     let mut header = [0; HEADER_LEN];
     // The sizes are capped by `check`, so they fit in u32.
     BigEndian::write_u32_into(

@@ -355,10 +355,16 @@ sphere ball red at 0 0 0 radius 1
 /// there (it is made before the render starts); returns the child and
 /// the temporary file.
 fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
+    start_render(dir, out, &[])
+}
+
+/// [`start_big_render`] with further flags (`--size` for a shorter one).
+fn start_render(dir: &Path, out: &Path, flags: &[&str]) -> (Child, PathBuf) {
     let deck = dir.join("big.deck");
     std::fs::write(&deck, BIG).unwrap();
     let mut child = raytrace_command()
         .args(["-q", "--threads", "1"])
+        .args(flags)
         .arg(&deck)
         .arg("-o")
         .arg(out)
@@ -366,9 +372,10 @@ fn start_big_render(dir: &Path, out: &Path) -> (Child, PathBuf) {
         .spawn()
         .unwrap();
     let temp = PathBuf::from(format!(
-        "{}/.{}.{}.0.tmp",
+        "{}/.{}.{}.{}.0.tmp",
         out.parent().unwrap().display(),
         out.file_name().unwrap().to_string_lossy(),
+        raytrace::output::this_host(),
         child.id()
     ));
     let started = Instant::now();
@@ -444,4 +451,24 @@ fn after_sigkill_the_next_run_removes_the_stale_temporary_file() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!temp.exists(), "{} is still there", temp.display());
     assert_eq!(file_names(dir.path()), ["big.deck", "big.ras", "small.deck"]);
+}
+
+/// The fault of a farm: another writer of the same file (on a shared
+/// folder, in another PID namespace) removes a live writer's temporary
+/// file. The writer renders to the end and then fails, exit 1, naming the
+/// temporary file that vanished, not only the target; the last good target
+/// stays.
+#[test]
+fn a_temporary_file_removed_during_the_render_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.ras");
+    std::fs::write(&out, b"the last good raster").unwrap();
+    let (child, temp) = start_render(dir.path(), &out, &["--size", "400x400"]);
+    std::fs::remove_file(&temp).unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains(&temp.display().to_string()) && e.contains("vanished"), "{e}");
+    assert_eq!(std::fs::read(&out).unwrap(), b"the last good raster");
+    assert_eq!(file_names(dir.path()), ["big.deck", "big.ras"]);
 }

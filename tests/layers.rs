@@ -32,9 +32,11 @@ const LAYERS: &[(&str, u32)] = &[
     ("shapes", 4),
     // Unit `paper`.
     ("paper", 5),
-    // Reading a deck; the film's frames and files; the PS 390.
+    // Reading a deck; the film's frames and files; a still's bands and
+    // their files; the PS 390.
     ("deck", 6),
     ("film", 6),
+    ("tile", 6),
     ("psout", 6),
     // Where and when samples fall; what moves over the shutter.
     ("sampler", 6),

@@ -7,7 +7,7 @@ use std::os::unix::fs::FileTypeExt;
 use std::path::Path;
 use std::process::Command;
 
-use raytrace::output::{write_atomically, OutputError, PendingFile};
+use raytrace::output::{this_host, write_atomically, OutputError, PendingFile};
 
 use raytrace::raster::{encode_raster, outputframe, read_raster, read_raster_file, Raster, RasterError};
 use raytrace::raster::{write_image, Format, FormatError};
@@ -247,10 +247,12 @@ fn dead_pid() -> u32 {
 }
 
 /// After a SIGKILL the temporary file stays; the next write of the same
-/// target removes the ones of dead processes, and only those: a live
-/// process's, another target's and a file that merely looks alike stay.
+/// target removes the ones of dead processes of this host, and only those:
+/// a live process's, another host's (its PIDs are not this host's), an
+/// older version's without a host, another target's and a file that
+/// merely looks alike stay.
 #[test]
-fn the_next_write_removes_stale_temporary_files_of_dead_processes() {
+fn the_next_write_removes_stale_temporary_files_of_dead_processes_of_this_host() {
     if !Path::new("/proc/self").exists() {
         eprintln!("skipped: no /proc to tell dead processes from live ones");
         return;
@@ -258,13 +260,20 @@ fn the_next_write_removes_stale_temporary_files_of_dead_processes() {
     let dir = tempfile::tempdir().unwrap();
     let dead = dead_pid();
     let live = std::process::id();
-    let stale = [format!(".x.ras.{dead}.0.tmp"), format!(".x.ras.{dead}.17.tmp")];
+    let host = this_host();
+    assert!(!host.is_empty() && !host.contains('.'), "{host}");
+    let stale = [
+        format!(".x.ras.{host}.{dead}.0.tmp"),
+        format!(".x.ras.{host}.{dead}.17.tmp"),
+    ];
     let kept = [
-        format!(".x.ras.{live}.999.tmp"),
-        format!(".y.ras.{dead}.0.tmp"),
-        format!(".x.ras.{dead}.tmp"),
-        format!(".x.ras.{dead}.z.tmp"),
-        format!("x.ras.{dead}.0.tmp"),
+        format!(".x.ras.{host}.{live}.999.tmp"),
+        format!(".x.ras.other-{host}.{dead}.0.tmp"),
+        format!(".x.ras.{dead}.0.tmp"),
+        format!(".y.ras.{host}.{dead}.0.tmp"),
+        format!(".x.ras.{host}.{dead}.tmp"),
+        format!(".x.ras.{host}.{dead}.z.tmp"),
+        format!("x.ras.{host}.{dead}.0.tmp"),
     ];
     for name in stale.iter().chain(&kept) {
         std::fs::write(dir.path().join(name), b"left over").unwrap();
@@ -274,4 +283,43 @@ fn the_next_write_removes_stale_temporary_files_of_dead_processes() {
     expected.push("x.ras".into());
     expected.sort();
     assert_eq!(file_names(dir.path()), expected);
+}
+
+/// A temporary file's name is `.NAME.HOST.PID.N.tmp`, with this host and
+/// this process.
+#[test]
+fn a_temporary_file_names_its_host_and_process() {
+    let dir = tempfile::tempdir().unwrap();
+    let _pending = PendingFile::create(&dir.path().join("x.y.ras")).unwrap();
+    let names = file_names(dir.path());
+    let prefix = format!(".x.y.ras.{}.{}.", this_host(), std::process::id());
+    assert!(
+        names.len() == 1 && names[0].starts_with(&prefix) && names[0].ends_with(".tmp"),
+        "{names:?}, wanted {prefix}N.tmp"
+    );
+}
+
+/// Another writer removes a live writer's temporary file (it took it for a
+/// dead one's): the commit fails naming the temporary file, and the target
+/// is as it was.
+#[test]
+fn a_temporary_file_removed_by_another_writer_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("x.ras");
+    std::fs::write(&target, b"last good").unwrap();
+    let pending = PendingFile::create(&target).unwrap();
+    let temp = dir.path().join(file_names(dir.path()).remove(0));
+    assert!(temp.file_name().unwrap().to_string_lossy().ends_with(".tmp"));
+    std::fs::remove_file(&temp).unwrap();
+    let e = pending
+        .commit(|w| w.write_all(b"new").map_err(OutputError::from))
+        .unwrap_err();
+    assert!(matches!(&e, OutputError::TempVanished(t) if t == &temp), "{e:?}");
+    let message = e.to_string();
+    assert!(
+        message.contains(&temp.display().to_string()) && message.contains("vanished"),
+        "{message}"
+    );
+    assert_eq!(std::fs::read(&target).unwrap(), b"last good");
+    assert_eq!(file_names(dir.path()), ["x.ras"]);
 }

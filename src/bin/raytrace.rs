@@ -8,14 +8,15 @@ use std::time::Instant;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use raytrace::cli::{DeckInput, RenderArgs};
+use raytrace::cli::{DeckInput, FarmArgs, RenderArgs};
 use raytrace::exit::{exit_code, Failure};
 use raytrace::film::{frame_path, frame_stem, Frame, FrameRange};
 use raytrace::options::{Options, TimeSampler};
-use raytrace::output::{is_stream, OutputError, PendingFile, STDOUT};
-use raytrace::raster::{Format, FormatError, Raster};
+use raytrace::output::{is_stream, write_atomically, OutputError, PendingFile, STDOUT};
+use raytrace::raster::{read_raster_file, Format, FormatError, Raster};
 use raytrace::raytrace::{Prepared, Render, Request};
 use raytrace::scene::{FilmRecord, Scene};
+use raytrace::tile::{check_written, write_tile, Tile};
 
 /// The scene rendered when no deck is named: legacy_pascal/decks/nec_morph.deck,
 /// the thesis's own motivating example (§1.2).
@@ -33,7 +34,9 @@ Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`), and so
 does a device or FIFO named without an extension (-o /dev/null, -o /dev/stdout).
 A film's frames are Sun rasters: -o NAME or -o NAME.ras writes NAME.0001.ras ….
 Only the default folder raster/ is created; every output is checked before
-rendering. When the reader of standard output stops early (`-o - | head -c 10`),
+rendering. --tile K/N writes band K of N as a Sun raster of its rows (default
+raster/<deck name>.K-of-N.ras); `tools join --tiles` stacks the bands into the
+whole image (docs/farm.md). When the reader of standard output stops early (`-o - | head -c 10`),
 the rest is dropped quietly and the status is that of the render, 0 when it
 succeeded: the reader has what it wanted, as with any Unix filter.
 
@@ -68,6 +71,9 @@ struct Cli {
 
     #[command(flatten)]
     render: RenderArgs,
+
+    #[command(flatten)]
+    farm: FarmArgs,
 
     /// No progress bar and no summary line.
     #[arg(short, long)]
@@ -115,18 +121,25 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     };
     let prepared = cli.render.scene(&deck, &opts)?;
     let scene = prepared.scene();
+    let rows = cli.farm.rows(&prepared)?;
     let mut job = Job::reserve(cli, scene, &deck, output_format)?;
 
     let pool = cli.render.thread_pool()?;
     let (written, film) = job.summary();
-    let frames = job.frames();
-    let bar = progress_bar(cli.quiet, scene.image.height as u64 * frames.len() as u64)?;
+    let (frames, complete): (Vec<Frame>, Vec<Frame>) = job
+        .frames()
+        .into_iter()
+        .partition(|&f| !(cli.farm.resume && job.complete(f, &scene.image, cli.quiet)));
+    let bar = progress_bar(cli.quiet, rows.len() as u64 * frames.len() as u64)?;
     let started = Instant::now();
     let mut rays = 0;
+    for &frame in &complete {
+        job.keep(frame)?;
+    }
     for &frame in &frames {
         bar.set_message(job.tracing(&deck.name, frame));
         let progress = || bar.inc(1);
-        let request = Request::frame(frame).progress(&progress);
+        let request = Request::frame(frame).rows(rows.clone()).progress(&progress);
         let render = pool
             .install(|| raytrace::raytrace::render(&prepared, &request))
             .and_then(|r| r.check_finite().map(|()| r))
@@ -139,14 +152,25 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     job.finish()?;
     if !cli.quiet {
         let img = &scene.image;
+        let band = cli
+            .farm
+            .tile
+            .map(|t| format!("band {t} (rows {}..{}) of ", rows.start, rows.end))
+            .unwrap_or_default();
+        let kept = match (complete.len(), frames.len()) {
+            (0, _) => String::new(),
+            (_, 0) => ", all complete already (--resume): nothing rendered".into(),
+            (n, _) => format!(", {n} complete already (--resume) kept"),
+        };
         eprintln!(
-            "raytrace: {} → {written} ({}{}×{}, {}, {rays} rays, {elapsed:.2} s{})",
+            "raytrace: {} → {written} ({}{band}{}×{}, {}, {rays} rays, {elapsed:.2} s{}{kept})",
             deck.name,
             film.as_ref().map(|f| format!("{f}, ")).unwrap_or_default(),
             img.width,
             img.height,
             sampling(&opts, img),
-            film.map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
+            film.filter(|_| !frames.is_empty())
+                .map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
                 .unwrap_or_default()
         );
     }
@@ -160,9 +184,12 @@ enum Job {
     Still {
         /// Taken when written.
         output: Option<PendingFile>,
+        /// Its path, which stays when `output` is taken.
+        path: PathBuf,
         format: Format,
         png: Option<PendingFile>,
         debug: Option<PendingFile>,
+        tile: Option<Tile>,
     },
     Film {
         film: FilmRecord,
@@ -171,6 +198,7 @@ enum Job {
         apng: Option<PendingFile>,
         /// The frames rendered, kept for the animated PNG.
         rasters: Vec<Raster>,
+        tile: Option<Tile>,
     },
 }
 
@@ -192,10 +220,15 @@ impl Job {
     /// `format` is the one of `-o`, or the error for a still named without
     /// an extension (a film's frames may be).
     fn reserve(cli: &Cli, scene: &Scene, deck: &DeckInput, format: Result<Format, Failure>) -> Result<Job, Failure> {
+        let band = cli
+            .farm
+            .tile
+            .map(|t| format!(".{}-of-{}", t.k, t.n))
+            .unwrap_or_default();
         let output = cli
             .output
             .clone()
-            .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{}.ras", deck.stem)));
+            .unwrap_or_else(|| Path::new(DEFAULT_FOLDER).join(format!("{}{band}.ras", deck.stem)));
         let png = cli.png.clone().or_else(|| {
             cli.deck
                 .is_none()
@@ -231,12 +264,15 @@ impl Job {
                 stem: frame_stem(output.path()),
                 apng: cli.apng.as_deref().map(reserve).transpose()?,
                 rasters: Vec::new(),
+                tile: cli.farm.tile,
             },
             Made::Still(format) => Job::Still {
+                path: output.path().to_path_buf(),
                 output: Some(output),
                 format,
                 png: png.as_deref().map(reserve).transpose()?,
                 debug: cli.debug.as_deref().map(reserve).transpose()?,
+                tile: cli.farm.tile,
             },
         })
     }
@@ -247,6 +283,43 @@ impl Job {
             Job::Still { .. } => vec![Frame::STILL],
             Job::Film { film, range, .. } => range.numbers().map(|k| film.frame(k)).collect(),
         }
+    }
+
+    /// The file `frame` is written to, and the band it holds.
+    fn file_of(&self, frame: Frame) -> (PathBuf, Option<Tile>) {
+        match self {
+            Job::Still { path, tile, .. } => (path.clone(), *tile),
+            Job::Film { film, stem, tile, .. } => (frame_path(stem, frame.number, film.frames), *tile),
+        }
+    }
+
+    /// Whether `frame`'s file is there and complete (`--resume`): its
+    /// header and length as this run would write them. One that is there
+    /// and not complete is said (unless `quiet`), and rendered again.
+    fn complete(&self, frame: Frame, img: &raytrace::scene::ImageSpec, quiet: bool) -> bool {
+        let (path, tile) = self.file_of(frame);
+        match check_written(&path, tile, img.width, img.height) {
+            Ok(()) => true,
+            Err(why) => {
+                if !quiet && path.exists() {
+                    eprintln!("raytrace: {}: not complete ({why}): rendering it again", path.display());
+                }
+                false
+            }
+        }
+    }
+
+    /// Keeps `frame`'s complete file (`--resume`): a film's frame is read
+    /// back for the animated PNG.
+    fn keep(&mut self, frame: Frame) -> Result<(), Failure> {
+        let (path, _) = self.file_of(frame);
+        if let Job::Film {
+            apng: Some(_), rasters, ..
+        } = self
+        {
+            rasters.push(read_raster_file(&path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?);
+        }
+        Ok(())
     }
 
     /// The progress bar's message while `frame` is traced.
@@ -274,9 +347,14 @@ impl Job {
                 format,
                 png,
                 debug,
+                tile,
+                ..
             } => {
-                let format = *format;
-                commit(output, |w| format.write(&render.raster, w))?;
+                let (format, height) = (*format, prepared.scene().image.height);
+                commit(output, |w| match tile {
+                    Some(t) => write_tile(&render.raster, *t, height, w),
+                    None => format.write(&render.raster, w),
+                })?;
                 commit(png, |w| Format::Png.write(&render.raster, w))?;
                 if debug.is_some() {
                     let log = raytrace::raytrace::debug_log(prepared, &render);
@@ -288,10 +366,16 @@ impl Job {
                 stem,
                 apng,
                 rasters,
+                tile,
                 ..
             } => {
                 let path = frame_path(stem, frame.number, film.frames);
-                raytrace::raster::outputframe(&path, &render.raster).map_err(|e| not_written(&path, e))?;
+                let height = prepared.scene().image.height;
+                match tile {
+                    Some(t) => write_atomically(&path, |w| write_tile(&render.raster, *t, height, w)),
+                    None => raytrace::raster::outputframe(&path, &render.raster),
+                }
+                .map_err(|e| not_written(&path, e))?;
                 if apng.is_some() {
                     rasters.push(render.raster);
                 }
@@ -444,6 +528,7 @@ fn check_output_names(cli: &Cli) -> Result<Result<Format, Failure>, Failure> {
     if stdout > 1 {
         return Err(Failure::usage("only one output can go to standard output (-)"));
     }
+    check_farm_names(cli)?;
     if let Some(png) = cli.png.as_deref().filter(|p| p.as_os_str() != STDOUT) {
         match Format::of(png) {
             Ok(Format::Png) => {}
@@ -474,6 +559,44 @@ fn check_output_names(cli: &Cli) -> Result<Result<Format, Failure>, Failure> {
             Ok(format) => Ok(format),
         },
     })
+}
+
+/// Checks the outputs of `--tile` and `--resume` (usage errors): each
+/// writes or checks Sun raster files, so neither goes with standard
+/// output, a device, another format, or the files of one whole still
+/// (`--png`, `--debug`); a band has no `--apng` of whole frames.
+fn check_farm_names(cli: &Cli) -> Result<(), Failure> {
+    let farm = &cli.farm;
+    let flag = match (farm.tile, farm.resume) {
+        (Some(t), _) => format!("--tile {t}"),
+        (None, true) => "--resume".into(),
+        (None, false) => return Ok(()),
+    };
+    let what = match farm.tile {
+        Some(_) => "writes a band as a Sun raster file that `tools join --tiles` reads",
+        None => "checks Sun raster files that are there",
+    };
+    if let Some(out) = &cli.output {
+        let other = out.extension().is_some_and(|e| !e.eq_ignore_ascii_case("ras"));
+        if out.as_os_str() == STDOUT || is_stream(out) || other {
+            return Err(Failure::usage(format!(
+                "-o {}: {flag} {what}: name it with -o NAME.ras",
+                out.display()
+            )));
+        }
+    }
+    let whole = [
+        (cli.png.is_some(), "--png"),
+        (cli.debug.is_some(), "--debug"),
+        (cli.apng.is_some() && farm.tile.is_some(), "--apng"),
+    ];
+    if let Some((_, other)) = whole.iter().find(|(given, _)| *given) {
+        return Err(Failure::usage(format!(
+            "{other} with {flag}: {other} writes the whole picture, and {flag} {what}; \
+             join the bands or frames first (tools join, docs/farm.md)"
+        )));
+    }
+    Ok(())
 }
 
 /// The summary line's words for the rays a pixel: M×M subpixels, or the

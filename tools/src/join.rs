@@ -1,12 +1,15 @@
 //! `tools join`: a film's frame rasters, rendered anywhere (one process,
 //! a Slurm job array, GNU parallel over hosts), joined into one animated
 //! PNG, and optionally a still strip of every Nth frame for viewers that do
-//! not animate APNG. The port's extension (docs/film.md).
+//! not animate APNG; with `--tiles`, the bands of a still (`raytrace --tile
+//! K/N`) stacked into the whole image. The port's extension (docs/film.md,
+//! docs/farm.md).
 
 use std::path::{Path, PathBuf};
 
+use raytrace::exit::Failure;
 use raytrace::film::{read_sequence, write_apng};
-use raytrace::raster::{write_png, Raster};
+use raytrace::raster::{write_image, write_png, Format, Raster};
 
 /// The gap between the frames of a strip, in pixels (black).
 const STRIP_GAP: usize = 4;
@@ -36,6 +39,26 @@ pub fn join(files: &[PathBuf], out: &Path, rate: u32, strip: Option<(&Path, usiz
             every.max(1)
         );
     }
+    Ok(())
+}
+
+/// `tools join --tiles`: reads the bands in the order given, checks that
+/// they are bands 1..N of one image ([`raytrace::tile::join`]; a part that
+/// does not fit, or a band missing, is an input error naming the file,
+/// exit 2) and writes the whole image to `out`, its format by its
+/// extension. A bad `out` name is a usage error, found before any band is
+/// read.
+pub fn join_tiles(files: &[PathBuf], out: &Path) -> Result<(), Failure> {
+    let format = Format::of(out).map_err(|e| Failure::usage(format!("-o '{}': {e}", out.display())))?;
+    let whole = raytrace::tile::join(files).map_err(Failure::input)?;
+    write_image(out, &whole, format).map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
+    println!(
+        "wrote {} ({}×{}, {} bands)",
+        out.display(),
+        whole.width,
+        whole.height,
+        files.len()
+    );
     Ok(())
 }
 

@@ -118,13 +118,19 @@ enum Command {
     },
     /// Join a film's frame rasters (in the order given, e.g. raster/nec.*.ras) into one
     /// animated PNG; with --strip also a still strip of every Nth frame (docs/film.md).
+    /// With --tiles, stack the bands of `raytrace --tile K/N` into the whole image
+    /// (docs/farm.md).
     Join {
-        /// The frame rasters, in order.
+        /// The frame rasters, in order (with --tiles, the bands 1..N, in order).
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// The animated PNG to write.
+        /// The animated PNG to write (with --tiles, the whole image: .ras, .png, .ppm).
         #[arg(long, short)]
         out: PathBuf,
+        /// The files are the bands of one still (`raytrace --tile K/N`): check that they are
+        /// bands 1..N of one image, in order, none missing, and write the whole image.
+        #[arg(long, conflicts_with_all = ["strip"])]
+        tiles: bool,
         /// Frames a second (the deck's `film … rate FPS`).
         #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u32).range(1..=60))]
         rate: u32,
@@ -251,9 +257,16 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Join {
             files,
             out,
+            tiles: true,
+            ..
+        } => return tools::join::join_tiles(&files, &out),
+        Command::Join {
+            files,
+            out,
             rate,
             strip,
             every,
+            ..
         } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
         Command::VsPovray {
             decks,

@@ -1,0 +1,114 @@
+//! `tools join --tiles` as a user meets it: the bands of a still stacked
+//! into the whole image, and the parts that do not fit one image (another
+//! width, another N, a band missing, repeated or out of order, a file that
+//! is no band) refused with exit 2, naming the file, writing nothing.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use raytrace::options::Options;
+use raytrace::raster::{encode_raster, Raster};
+use raytrace::raytrace::{render, Prepared, Request};
+use raytrace::tile::{write_tile, Tile};
+
+/// A small scene of the shipped decks, `width`×`height`.
+fn prepared(width: usize, height: usize) -> Prepared {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../legacy_pascal/decks");
+    let src = std::fs::read(dir.join("fig5_8.deck")).unwrap();
+    let mut scene = raytrace::deck::initialize(&src, "fig5_8.deck", &dir, Default::default()).unwrap();
+    scene.resize(width, height, 1);
+    Prepared::new(scene, Options::default()).unwrap()
+}
+
+/// Writes band `k` of `n` of `p`'s image to `dir/name`.
+fn band(p: &Prepared, k: u32, n: u32, dir: &Path, name: &str) -> PathBuf {
+    let tile = Tile { k, n };
+    let height = p.scene().image.height;
+    let r = render(p, &Request::STILL.rows(tile.band(height).unwrap())).unwrap();
+    let mut bytes = Vec::new();
+    write_tile(&r.raster, tile, height, &mut bytes).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn join(parts: &[&PathBuf], out: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tools"))
+        .args(["join", "--tiles"])
+        .args(parts)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn the_bands_stack_into_the_whole_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = prepared(17, 10);
+    let parts: Vec<PathBuf> = (1..=3)
+        .map(|k| band(&p, k, 3, dir.path(), &format!("b{k}.ras")))
+        .collect();
+    let out = dir.path().join("whole.ras");
+    let o = join(&parts.iter().collect::<Vec<_>>(), &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let whole: Raster = render(&p, &Request::STILL).unwrap().raster;
+    assert_eq!(std::fs::read(&out).unwrap(), encode_raster(&whole));
+    // Another format by the extension.
+    let png = dir.path().join("whole.png");
+    assert!(join(&parts.iter().collect::<Vec<_>>(), &png).status.success());
+    assert_eq!(raytrace::image_file::read_image_file(&png).unwrap(), whole);
+}
+
+#[test]
+fn parts_that_do_not_fit_one_image_are_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let p = prepared(17, 10);
+    let b: Vec<PathBuf> = (1..=3).map(|k| band(&p, k, 3, d, &format!("b{k}.ras"))).collect();
+    let narrow = band(&prepared(16, 10), 2, 3, d, "narrow.ras");
+    let of_two = band(&p, 2, 2, d, "of_two.ras");
+    let taller = band(&prepared(17, 11), 2, 3, d, "taller.ras");
+    let plain = d.join("plain.ras");
+    std::fs::write(&plain, encode_raster(&render(&p, &Request::STILL).unwrap().raster)).unwrap();
+    let cut = d.join("cut.ras");
+    std::fs::write(&cut, &std::fs::read(&b[1]).unwrap()[..100]).unwrap();
+    let cases: Vec<(Vec<&PathBuf>, &PathBuf, &str)> = vec![
+        (vec![&b[0], &narrow, &b[2]], &narrow, "16×10 image"),
+        (vec![&b[0], &of_two, &b[2]], &of_two, "they are not bands of one image"),
+        (vec![&b[0], &taller, &b[2]], &taller, "17×11 image"),
+        (vec![&b[0], &b[2]], &b[2], "tile 2/3 is missing before it"),
+        (vec![&b[0], &b[1]], &b[1], "tile 3/3 is missing"),
+        (vec![&b[1], &b[2]], &b[1], "tile 1/3 is missing before it"),
+        (vec![&b[0], &b[0], &b[1]], &b[0], "again or out of order"),
+        (vec![&b[0], &b[1], &b[2], &b[2]], &b[2], "again or out of order"),
+        (
+            vec![&b[0], &plain, &b[2]],
+            &plain,
+            "not a tile of `raytrace --tile K/N`",
+        ),
+        (vec![&b[0], &cut, &b[2]], &cut, "truncated"),
+    ];
+    let out = d.join("whole.ras");
+    for (parts, named, says) in cases {
+        let o = join(&parts, &out);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{parts:?}: {e}");
+        assert!(
+            e.starts_with(&format!("tools: {}: ", named.display())) && e.contains(says),
+            "{parts:?}: {e}"
+        );
+        assert!(!out.exists(), "{parts:?} wrote {}", out.display());
+    }
+    let missing = d.join("none.ras");
+    let o = join(&[&b[0], &missing], &out);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("none.ras"), "{}", stderr(&o));
+    // A bad output name is a usage error, before any band is read.
+    let o = join(&[&b[0], &b[1], &b[2]], &d.join("whole.jpg"));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
