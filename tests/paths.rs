@@ -133,6 +133,23 @@ fn each_library_path_renders_as_the_same_motion_written_inline() {
     }
 }
 
+/// A library motion may take its object to the edge of the deck's range,
+/// not past it.
+#[test]
+fn a_library_motion_reaches_the_edge_of_the_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = format!(
+        "{SCENE}translate ball 1.25 0.5 -0.8\npath edge by -1e7 1e7 0 via 1e7 0 0 0 0 -1e7\nmotion ball path edge\n"
+    );
+    write(dir.path(), &[("t.deck", &deck)]);
+    let m = read(dir.path(), "t.deck").unwrap().motions[0].clone();
+    assert_eq!(m.to.to_array(), [-1e7, 1e7, 0.0]);
+    assert_eq!(
+        m.via.unwrap().map(|p| p.to_array()),
+        [[1e7, 0.0, 0.0], [0.0, 0.0, -1e7]]
+    );
+}
+
 /// Through the binary: tutorial step 5 (`motion ball2 path hop` from the
 /// library) and the same deck with the motion written inline, as its
 /// comment gives it, write the same raster file, byte for byte.
@@ -266,6 +283,10 @@ fn library_errors_name_the_file_line_and_column() {
         (
             &[("t.deck", &format!("{SCENE}path hop bye 1 0 0\n"))],
             "t.deck:7:10: path 'hop': expected 'by', found 'bye' — did you mean 'by'?",
+        ),
+        (
+            &[("t.deck", &format!("{SCENE}path hop lw smooth by 1 0 0\n"))],
+            "t.deck:7:10: path 'hop': expected 'by', found 'lw' — did you mean 'law'?",
         ),
         (
             &[("t.deck", &format!("{SCENE}path hop law smooth by 1 0 0\n"))],
@@ -457,6 +478,19 @@ fn the_size_limit_holds_across_includes() {
     assert_eq!(
         error(d, "four.deck"),
         format!("big.deck:{line}:{column}: deck: the deck and the files it includes are larger than 64 MiB, the most the reader takes")
+    );
+    // Exactly at the limit, the deck and one file: read.
+    let main = format!("{SCENE}include rest.deck\n");
+    let mut rest = "{ filler }\n".repeat((MAX_DECK_BYTES - main.len()) / 11);
+    rest.push_str(&" ".repeat(MAX_DECK_BYTES - main.len() - rest.len()));
+    write(d, &[("exact.deck", &main), ("rest.deck", &rest)]);
+    assert!(read(d, "exact.deck").is_ok(), "64 MiB in all are read");
+    rest.push('\n');
+    write(d, &[("rest.deck", &rest)]);
+    let line = rest.lines().count();
+    assert_eq!(
+        error(d, "exact.deck"),
+        format!("rest.deck:{line}:{}: deck: the deck and the files it includes are larger than 64 MiB, the most the reader takes", rest.len() - 11 * (line - 1))
     );
     // An endless file stops at the limit too.
     assert_eq!(
