@@ -13,6 +13,7 @@
 //! program; [`image_file`] reads the pictures psout
 //! shows (Sun raster, PNG, PPM).
 
+pub mod accel;
 pub mod adaptive;
 pub mod cli;
 pub mod deck;
