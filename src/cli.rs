@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
+use crate::accel::Accel;
 use crate::exit::Failure;
 use crate::options::{Fidelity, Options, Solver, TimeSampler};
 use crate::raytrace::Prepared;
@@ -91,6 +92,11 @@ pub struct RenderArgs {
     /// cost start-up time, and more than 256 is refused as a slip.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=i64::from(MAX_THREADS)))]
     pub threads: Option<u16>,
+
+    /// How the objects a ray may meet are found; the image is the same with each
+    /// (docs/scale.md).
+    #[arg(long, value_enum, default_value_t)]
+    pub accel: Accel,
 }
 
 /// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
@@ -116,7 +122,7 @@ impl RenderArgs {
             let m = self.mask.map_or(scene.image.masksize, usize::from);
             scene.resize(w, h, m);
         }
-        Prepared::new(scene, *opts).map_err(Failure::input)
+        Prepared::with_accel(scene, *opts, self.accel).map_err(Failure::input)
     }
 
     /// The pool of `--threads` workers (one per core without it, or with 0).
@@ -256,6 +262,8 @@ mod tests {
             (Fidelity::Listing, Solver::Robust, TimeSampler::Stratified)
         );
         assert!(parse(&["--sampler", "sobol"]).is_err());
+        assert_eq!(parse(&["--accel", "octree"]).unwrap().accel, Accel::Octree);
+        assert_eq!(parse(&[]).unwrap().accel, Accel::Auto);
     }
 
     #[test]

@@ -221,6 +221,20 @@ impl TimeTable {
         }
     }
 
+    /// The least and the greatest time [`TimeTable::time`] gives: in
+    /// `listing` fidelity a tenth of the table's least and greatest entry
+    /// (erratum 2: 1.5 for Fig. 2.33, more for a larger mask's table); in
+    /// `thesis` fidelity the shutter, 0 to 1.
+    pub fn span(&self) -> (f64, f64) {
+        match self.fidelity {
+            Fidelity::Listing => {
+                let values = self.pattern.iter().flatten().map(|&v| v as f64 * 0.1);
+                values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| (a.min(t), b.max(t)))
+            }
+            Fidelity::Thesis => (0.0, 1.0),
+        }
+    }
+
     /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
     /// subpixel of the scan order (0-based): the first lines of
     /// `motionblur`. Errata 1 and 2.
@@ -399,16 +413,15 @@ pub fn path_bounds(from: DVec3, motion: &MotionRecord, f0: f64, f1: f64) -> Boun
     let c = p1 - from;
     for axis in 0..3 {
         let (qa, qb, qc) = (a[axis], bq[axis], c[axis]);
-        let roots: [Option<f64>; 2] = if qa == 0.0 {
-            [(qb != 0.0).then(|| -qc / (2.0 * qb)), None]
+        // The roots as q/a and c/q, q = −(b + sign(b)·√disc): the pair
+        // that does not cancel (with a path whose a is a rounding of 0,
+        // (−b ± √disc)/a lost the root, c/q keeps it).
+        let disc = qb * qb - qa * qc;
+        let roots: [Option<f64>; 2] = if disc < 0.0 {
+            [None, None]
         } else {
-            let disc = qb * qb - qa * qc;
-            if disc < 0.0 {
-                [None, None]
-            } else {
-                let r = disc.sqrt();
-                [Some((-qb - r) / qa), Some((-qb + r) / qa)]
-            }
+            let q = -(qb + qb.signum() * disc.sqrt());
+            [(qa != 0.0).then(|| q / qa), (q != 0.0).then(|| qc / q)]
         };
         for f in roots.into_iter().flatten() {
             if f > f0.min(f1) && f < f0.max(f1) {

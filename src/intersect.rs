@@ -12,25 +12,27 @@
 //! object on it, taken in the table's order (the product of their
 //! transmittances is then the same to the bit).
 
-use std::cell::{Cell, Ref, RefCell};
+use std::cell::{Cell, OnceCell, Ref, RefCell};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
+use crate::accel::Structure;
+use crate::motion::Moving;
 use crate::options::Options;
 use crate::paper::PaperChain;
 use crate::scene::Scene;
 use crate::shapes::{Posed, SweepCache};
-use crate::types::{LocalHit, Pose, Ray, Shape, SurfaceAttribute};
+use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
 
 /// The scene at one instant of the shutter: the read-only scene and what
-/// was prepared for it, where each of its objects stands then (`poses[i]`
-/// for `scene.objects[i]`), and the contours of the objects that deform.
-/// What `motionblur` wrote into the shared records, the port keeps here.
+/// was prepared for it, where each of its objects stands then
+/// ([`Poses`]), and the contours of the objects that deform. What
+/// `motionblur` wrote into the shared records, the port keeps here.
 #[derive(Clone, Copy, Debug)]
 pub struct Snapshot<'a> {
     pub scene: &'a Scene,
     pub opts: &'a Options,
-    pub poses: &'a [Pose],
+    pub poses: &'a Poses<'a>,
     /// The in-between objects' contours of the instant.
     pub deforming: &'a [Deforming<'a>],
     /// For each object, its index in `deforming` if it deforms.
@@ -38,6 +40,83 @@ pub struct Snapshot<'a> {
     /// What `shapes` prepared for each object's own shape.
     pub caches: &'a [Option<Arc<SweepCache>>],
     pub aggregate: &'a Aggregate,
+    /// The structure to search, or `None` for the loop (also when the
+    /// instant lies outside the times the structure bounds).
+    pub structure: Option<&'a Structure>,
+    /// The queries' scratch.
+    pub scratch: &'a Scratch,
+}
+
+/// Where each object stands at one instant: an object at rest where the
+/// deck left it, a moving one where its motion puts it then, posed the
+/// first time a ray of the instant reaches it (`motionblur` posed every
+/// moving object for every ray; with a structure over the objects, those
+/// no ray comes near cost nothing).
+#[derive(Debug)]
+pub struct Poses<'a> {
+    objects: &'a [ObjectRecord],
+    /// Every object at rest, shared by the workers.
+    rest: &'a [Pose],
+    moving: &'a [Moving],
+    /// For each object, its index in `moving` if it moves.
+    moving_of: &'a [Option<usize>],
+    fidelity: crate::options::Fidelity,
+    /// The instant; `None` (every object at rest) before the first.
+    time: Option<f64>,
+    /// The moving objects' poses of the instant, as they are made.
+    posed: Vec<OnceCell<Pose>>,
+}
+
+impl<'a> Poses<'a> {
+    /// Every object at rest: `rest[i]` for `objects[i]`, which `moving`
+    /// (`moving_of[i]` its index there) moves from [`Poses::at`] on.
+    pub fn new(
+        objects: &'a [ObjectRecord],
+        rest: &'a [Pose],
+        moving: &'a [Moving],
+        moving_of: &'a [Option<usize>],
+        fidelity: crate::options::Fidelity,
+    ) -> Poses<'a> {
+        Poses {
+            objects,
+            rest,
+            moving,
+            moving_of,
+            fidelity,
+            time: None,
+            posed: vec![OnceCell::new(); moving.len()],
+        }
+    }
+
+    /// A new instant, film time `time`: every moving object's pose is due.
+    pub fn at(&mut self, time: f64) {
+        self.time = Some(time);
+        for p in &mut self.posed {
+            p.take();
+        }
+    }
+
+    /// Where object `i` stands at the instant (its rest pose until the
+    /// first [`Poses::at`]).
+    #[inline]
+    pub fn get(&self, i: usize) -> &Pose {
+        match (self.moving_of[i], self.time) {
+            (Some(m), Some(time)) => self.posed[m].get_or_init(|| {
+                let moving = &self.moving[m];
+                moving.pose(&self.objects[moving.object], time, self.fidelity)
+            }),
+            _ => &self.rest[i],
+        }
+    }
+}
+
+/// What a query keeps between its steps, made once a worker.
+#[derive(Debug, Default)]
+pub struct Scratch {
+    /// The objects a ray may meet ([`Structure::candidates`]).
+    candidates: RefCell<Vec<usize>>,
+    /// The `crystal` objects on a shadow ray.
+    crystals: RefCell<Vec<usize>>,
 }
 
 /// An in-between object of a key-frame chain (§3.2): its contour at the
@@ -93,7 +172,7 @@ impl Snapshot<'_> {
     /// `None` for one that does not.
     #[inline]
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
-        let (obj, pose) = (&self.scene.objects[i], &self.poses[i]);
+        let (obj, pose) = (&self.scene.objects[i], self.poses.get(i));
         let mut at_rest = Posed {
             obj,
             shape: &obj.shape,
@@ -145,24 +224,55 @@ impl Shadow {
     }
 }
 
-/// How the objects a ray may meet are found.
+/// How the objects a ray may meet are found: the original's loop over
+/// the object table, every object in turn behind its bounding sphere, or
+/// a structure over the objects (`crate::accel`) that gives the same
+/// answers.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Aggregate {
-    /// The original's loop: every object of the table in turn, each behind
-    /// its bounding sphere. `casters` are the objects a shadow ray can be
-    /// stopped or dimmed by, in order, with what they do to it.
-    Linear { casters: Vec<(usize, Shadow)> },
+pub struct Aggregate {
+    /// What each object does to a shadow ray.
+    shadow: Vec<Shadow>,
+    /// The objects a shadow ray can be stopped or dimmed by, in order,
+    /// with what they do to it: the loop's.
+    casters: Vec<(usize, Shadow)>,
+    structure: Option<Structure>,
+    /// Whether a ray makes the searches the loop makes, no fewer: a
+    /// sampler that reads them (`--sampler adaptive` deals rays by what a
+    /// pixel's searches cost) must see the same counts whatever finds the
+    /// objects, or the images would differ. A structure then gives each
+    /// query every object whose box the ray meets, in the table's order,
+    /// and the loop runs over those: the same searches, as the others are
+    /// those whose bounding sphere the ray misses.
+    counted: bool,
 }
 
 impl Aggregate {
     /// The loop over `scene`'s objects.
     pub fn linear(scene: &Scene) -> Aggregate {
-        let casters = Shadow::of(scene)
-            .into_iter()
+        Aggregate::new(scene, None, false)
+    }
+
+    /// `structure` over `scene`'s objects (the loop for `None`); `counted`
+    /// as [`Aggregate::counted`] says.
+    pub fn new(scene: &Scene, structure: Option<Structure>, counted: bool) -> Aggregate {
+        let shadow = Shadow::of(scene);
+        let casters = shadow
+            .iter()
+            .copied()
             .enumerate()
             .filter(|&(_, s)| s != Shadow::None)
             .collect();
-        Aggregate::Linear { casters }
+        Aggregate {
+            shadow,
+            casters,
+            structure,
+            counted,
+        }
+    }
+
+    /// The structure, `None` for the loop.
+    pub fn structure(&self) -> Option<&Structure> {
+        self.structure.as_ref()
     }
 }
 
@@ -178,20 +288,39 @@ pub fn closer(a: (f64, usize), b: (f64, usize)) -> bool {
 /// searches the sweeps made.
 #[inline]
 pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
-    match snap.aggregate {
-        Aggregate::Linear { .. } => {
-            let mut best: Option<(usize, LocalHit)> = None;
+    let mut best: Option<(usize, LocalHit)> = None;
+    let mut test = |i: usize, best: &mut Option<(usize, LocalHit)>| {
+        let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
+            return;
+        };
+        if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
+            *best = Some((i, h));
+        }
+    };
+    match snap.structure {
+        None => {
             for i in 0..snap.scene.objects.len() {
-                let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
-                    continue;
-                };
-                if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
-                    best = Some((i, h));
-                }
+                test(i, &mut best);
             }
-            best
+        }
+        Some(s) if snap.aggregate.counted => {
+            let mut candidates = snap.scratch.candidates.borrow_mut();
+            s.candidates(ray, tmin, &mut candidates);
+            for &i in candidates.iter() {
+                test(i, &mut best);
+            }
+        }
+        Some(s) => {
+            // Front to back; an object whose box the ray enters beyond
+            // the nearest hit so far cannot be nearer (nor, entered at
+            // its t, tie it: such a box is still visited).
+            let _ = s.walk(ray, tmin, f64::INFINITY, |i| {
+                test(i, &mut best);
+                ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
+            });
         }
     }
+    best
 }
 
 /// What stands on a shadow ray between `tmin` and `tmax`: `Break` if an
@@ -207,19 +336,58 @@ pub fn for_each_blocker(
     searched: &mut u64,
     mut f: impl FnMut(usize),
 ) -> ControlFlow<()> {
-    match snap.aggregate {
-        Aggregate::Linear { casters } => {
-            for &(i, shadow) in casters {
-                let blocks = snap
-                    .posed(i, ray, tmin, |p| {
-                        p.blocks(ray, tmin, tmax, snap.opts, searched).then_some(())
-                    })
-                    .is_some();
-                match (blocks, shadow) {
+    let mut blocks = |i: usize| {
+        snap.posed(i, ray, tmin, |p| {
+            p.blocks(ray, tmin, tmax, snap.opts, searched).then_some(())
+        })
+        .is_some()
+    };
+    let agg = snap.aggregate;
+    match snap.structure {
+        None => {
+            for &(i, shadow) in &agg.casters {
+                match (blocks(i), shadow) {
                     (false, _) | (_, Shadow::None) => {}
                     (true, Shadow::Crystal) => f(i),
                     (true, Shadow::Opaque) => return ControlFlow::Break(()),
                 }
+            }
+            ControlFlow::Continue(())
+        }
+        Some(s) if agg.counted => {
+            let mut candidates = snap.scratch.candidates.borrow_mut();
+            s.candidates(ray, tmin, &mut candidates);
+            for &i in candidates.iter() {
+                let shadow = agg.shadow[i];
+                match shadow {
+                    Shadow::None => {}
+                    Shadow::Crystal if blocks(i) => f(i),
+                    Shadow::Opaque if blocks(i) => return ControlFlow::Break(()),
+                    _ => {}
+                }
+            }
+            ControlFlow::Continue(())
+        }
+        Some(s) => {
+            // Any opaque object stops the ray, whichever is found first;
+            // the crystals it passes are taken in the table's order.
+            let mut crystals = snap.scratch.crystals.borrow_mut();
+            crystals.clear();
+            s.walk(ray, tmin, tmax, |i| match agg.shadow[i] {
+                Shadow::None => ControlFlow::Continue(tmax),
+                Shadow::Crystal => {
+                    if blocks(i) {
+                        crystals.push(i);
+                    }
+                    ControlFlow::Continue(tmax)
+                }
+                Shadow::Opaque if blocks(i) => ControlFlow::Break(()),
+                Shadow::Opaque => ControlFlow::Continue(tmax),
+            })?;
+            crystals.sort_unstable();
+            crystals.dedup();
+            for &i in crystals.iter() {
+                f(i);
             }
             ControlFlow::Continue(())
         }
@@ -251,7 +419,9 @@ mod tests {
         let chain = PaperChain::from_keyframe(&scene, record, Fidelity::Thesis).unwrap();
         let first = record.first;
         assert!(caches[first].is_some(), "the key shape has a cache");
-        let poses = rest_poses(&scene);
+        let rest = rest_poses(&scene);
+        let no_moving = vec![None; scene.objects.len()];
+        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis);
         let deforming = [Deforming::new(first, &chain)];
         deforming[0].at(0.5);
         let mut deforming_of = vec![None; scene.objects.len()];
@@ -266,9 +436,11 @@ mod tests {
             deforming_of: &deforming_of,
             caches: &caches,
             aggregate: &aggregate,
+            structure: None,
+            scratch: &Scratch::default(),
         };
         let eye = scene.view.eyept;
-        let toward = Ray::new(eye, (poses[first].sphereo - eye).normalize());
+        let toward = Ray::new(eye, (rest[first].sphereo - eye).normalize());
         let cached = |snap: &Snapshot| snap.posed(first, &toward, 1e-9, |p| Some(p.cache.is_some()));
         assert_eq!(cached(&snap), Some(false));
         let at_rest = vec![None; scene.objects.len()];

@@ -14,6 +14,7 @@
 //! shows (Sun raster, PNG, PPM); [`film`] and [`tile`], the port's, are a
 //! film's frames and a still's bands, each rendered by any process.
 
+pub mod accel;
 pub mod adaptive;
 pub mod cli;
 pub mod deck;

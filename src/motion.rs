@@ -94,3 +94,43 @@ pub fn paths(scene: &Scene) -> Vec<Moving> {
         })
         .collect()
 }
+
+/// How much wider than the bounding sphere an object's box is, relative to
+/// the size of its coordinates: far above the rounding of a ray's box
+/// test and of a hit's distance (a few parts in 10¹⁶), so a structure
+/// never leaves out an object the loop would find.
+pub const BOX_SLACK: f64 = 1e-9;
+
+/// Each object's box in the world over the film times `t0` ≤ t ≤ `t1`, by
+/// index: the box its origin stays in ([`Moving::centre_bounds`], from
+/// each motion's own bounds: the path's in `thesis` fidelity, erratum 3's
+/// slide in `listing` fidelity, the key-frame chain's), widened by the
+/// bounding sphere the intersection tests first
+/// ([`crate::shapes::bounding_radius`] of the object's `radius`, as
+/// `prepare` widened it to hold its own box, or its chain's), and by
+/// [`BOX_SLACK`]. The object lies within its radius of its origin
+/// whichever way it turns, so one box holds it over the whole path. The
+/// port's (the thesis bounds objects at rest only).
+pub fn object_boxes(
+    objects: &[ObjectRecord],
+    moving: &[Moving],
+    t0: f64,
+    t1: f64,
+    fidelity: Fidelity,
+) -> Vec<BoundingBox> {
+    let mut centres: Vec<BoundingBox> = objects.iter().map(|o| BoundingBox::EMPTY.holding(o.sphereo)).collect();
+    for m in moving {
+        centres[m.object] = m.centre_bounds(&objects[m.object], t0, t1, fidelity);
+    }
+    centres
+        .iter()
+        .zip(objects)
+        .map(|(c, o)| {
+            let b = c.widened(crate::shapes::bounding_radius(o.radius));
+            let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+                .iter()
+                .fold(1.0f64, |m, v| m.max(v.abs()));
+            b.widened(BOX_SLACK * size)
+        })
+        .collect()
+}

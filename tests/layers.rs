@@ -18,6 +18,8 @@ const LAYERS: &[(&str, u32)] = &[
     ("robust", 0),
     // How a program ends: a failure's kind and its exit status.
     ("exit", 0),
+    // Structures over the objects' boxes (the port's).
+    ("accel", 1),
     // The deck's scene records; the file system (its signal handler exits
     // with a status of `exit`).
     ("scene", 1),

@@ -4,15 +4,16 @@
 use std::sync::Arc;
 
 use super::{Camera, RenderError};
+use crate::accel::{Accel, Structure};
 use crate::drt::TimeTable;
-use crate::intersect::Aggregate;
-use crate::motion::{paths, Motion, Moving};
-use crate::options::{Fidelity, Options};
+use crate::intersect::{rest_poses, Aggregate, Deforming, Poses};
+use crate::motion::{object_boxes, paths, Motion, Moving};
+use crate::options::{Fidelity, Options, TimeSampler};
 use crate::paper::PaperChain;
 use crate::sampler::Tables;
 use crate::scene::Scene;
 use crate::shapes::SweepCache;
-use crate::types::{DVec3, Shape};
+use crate::types::{DVec3, Pose, Shape};
 
 /// A scene ready to render with its options: made once by
 /// [`Prepared::new`], then read by every render of it (a still, each
@@ -31,9 +32,16 @@ pub struct Prepared {
     moving: Vec<Moving>,
     /// For each object, the index in `moving` of its chain if it deforms.
     deforming_of: Vec<Option<usize>>,
+    /// For each object, its index in `moving` if it moves.
+    moving_of: Vec<Option<usize>>,
+    /// Every object at rest.
+    rest: Vec<Pose>,
     /// What `shapes` prepared for each object's own shape.
     caches: Vec<Option<Arc<SweepCache>>>,
     aggregate: Aggregate,
+    /// The film times the aggregate's structure bounds the objects over:
+    /// every time a sample can have.
+    span: (f64, f64),
 }
 
 impl Prepared {
@@ -42,8 +50,15 @@ impl Prepared {
     /// sweeps' coefficients and boxes (`spline`, and in `listing` fidelity
     /// `goahead`'s widening of `tbox`); `goahead` for each key-frame pair,
     /// the in-between object's bounding sphere widened to hold its contour
-    /// at every time; the motion table; the shapes' caches; the camera.
-    pub fn new(mut scene: Scene, opts: Options) -> Result<Prepared, RenderError> {
+    /// at every time; the motion table; the shapes' caches; the camera;
+    /// the structure over the objects `--accel auto` chooses.
+    pub fn new(scene: Scene, opts: Options) -> Result<Prepared, RenderError> {
+        Prepared::with_accel(scene, opts, Accel::Auto)
+    }
+
+    /// As [`Prepared::new`], the objects a ray may meet found as `accel`
+    /// says (`--accel`): the picture is the same whichever it is.
+    pub fn with_accel(mut scene: Scene, opts: Options, accel: Accel) -> Result<Prepared, RenderError> {
         crate::adaptive::check(&opts).map_err(RenderError::Options)?;
         let fidelity = opts.fidelity;
         let times = time_table(&scene, fidelity)?;
@@ -68,32 +83,56 @@ impl Prepared {
             object: scene.keyframes[record].first,
             motion: Motion::Chain { record, chain },
         }));
-        Ok(Prepared::assemble(scene, opts, Tables::new(times), moving, caches))
+        Ok(Prepared::assemble(
+            scene,
+            opts,
+            Tables::new(times),
+            moving,
+            caches,
+            accel,
+        ))
     }
 
     /// The parts made into one: what depends on the scene alone (the
-    /// camera, the aggregate, who deforms) made here.
+    /// camera, the aggregate, who moves and who deforms) made here.
     fn assemble(
         scene: Scene,
         opts: Options,
         tables: Tables,
         moving: Vec<Moving>,
         caches: Vec<Option<Arc<SweepCache>>>,
+        accel: Accel,
     ) -> Prepared {
         let mut deforming_of = vec![None; scene.objects.len()];
         let chains = moving.iter().enumerate().filter(|(_, m)| m.chain().is_some());
         for (d, (_, m)) in chains.enumerate() {
             deforming_of[m.object] = Some(d);
         }
+        let mut moving_of = vec![None; scene.objects.len()];
+        for (k, m) in moving.iter().enumerate() {
+            moving_of[m.object] = Some(k);
+        }
+        let span = film_span(&scene, &tables.times);
+        let structure = match accel.resolve(scene.objects.len()) {
+            Accel::None => None,
+            kind => Structure::build(
+                kind,
+                &object_boxes(&scene.objects, &moving, span.0, span.1, opts.fidelity),
+            ),
+        };
+        let counted = opts.sampler == TimeSampler::Adaptive;
         Prepared {
             camera: Camera::new(&scene, opts.fidelity),
-            aggregate: Aggregate::linear(&scene),
+            aggregate: Aggregate::new(&scene, structure, counted),
+            rest: rest_poses(&scene),
             scene,
             opts,
             tables,
             moving,
             deforming_of,
+            moving_of,
             caches,
+            span,
         }
     }
 
@@ -134,6 +173,42 @@ impl Prepared {
         &self.aggregate
     }
 
+    /// For each object, its index in [`Prepared::moving`] if it moves.
+    pub fn moving_of(&self) -> &[Option<usize>] {
+        &self.moving_of
+    }
+
+    /// Every object at rest, where the deck left it.
+    pub fn rest(&self) -> &[Pose] {
+        &self.rest
+    }
+
+    /// A worker's poses of the objects, at rest until [`Poses::at`].
+    pub fn poses(&self) -> Poses<'_> {
+        let fidelity = self.opts.fidelity;
+        Poses::new(&self.scene.objects, &self.rest, &self.moving, &self.moving_of, fidelity)
+    }
+
+    /// A worker's scratch for the deforming objects' contours, one a chain.
+    pub fn deforming(&self) -> Vec<Deforming<'_>> {
+        self.moving
+            .iter()
+            .filter_map(|m| m.chain().map(|chain| Deforming::new(m.object, chain)))
+            .collect()
+    }
+
+    /// The least and greatest film time a sample of a render can have:
+    /// the times over which the aggregate's structure bounds the objects.
+    pub fn time_span(&self) -> (f64, f64) {
+        self.span
+    }
+
+    /// Does the aggregate's structure hold the objects where they stand at
+    /// film time `time` ([`Prepared::time_span`])?
+    pub fn bounds_time(&self, time: f64) -> bool {
+        time >= self.span.0 && time <= self.span.1
+    }
+
     /// Does anything move or deform (so each sample needs its time)?
     pub fn timed(&self) -> bool {
         !self.moving.is_empty()
@@ -165,8 +240,29 @@ impl Prepared {
         }
         still.motions.clear();
         still.keyframes.clear();
-        Prepared::assemble(still, self.opts, self.tables.clone(), Vec::new(), caches)
+        let accel = match self.aggregate.structure() {
+            None => Accel::None,
+            Some(Structure::Bvh(_)) => Accel::Bvh,
+            Some(Structure::Octree(_)) => Accel::Octree,
+        };
+        Prepared::assemble(still, self.opts, self.tables.clone(), Vec::new(), caches, accel)
     }
+}
+
+/// The film times a sample of `scene` can have: the subpixel times τ of
+/// its table ([`TimeTable::span`]) or of any other sampler (0 to 1), as
+/// the first and the last frame of its film map them (`crate::film`).
+fn film_span(scene: &Scene, times: &TimeTable) -> (f64, f64) {
+    let (a, b) = times.span();
+    let (tau0, tau1) = (a.min(0.0), b.max(1.0));
+    let Some(film) = &scene.film else {
+        return (tau0, tau1);
+    };
+    let (first, last) = (film.frame(1), film.frame(film.frames));
+    let corners = [first.time(tau0), first.time(tau1), last.time(tau0), last.time(tau1)];
+    corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+        (lo.min(t), hi.max(t))
+    })
 }
 
 /// The subpixel times of a scene: its `pattern` and `blur` records, or

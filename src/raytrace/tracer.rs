@@ -4,15 +4,19 @@
 //! keeps here (legacy_pascal/README.md, "State").
 
 use super::Prepared;
-use crate::intersect::{rest_poses, Deforming, Snapshot};
+use crate::intersect::{Deforming, Poses, Scratch, Snapshot};
 use crate::sampler::Sampler;
 use crate::trace::{intersect, raytrace, Context, TraceStats};
-use crate::types::{Intensity, IntersectionRecord, Pose, Ray};
+use crate::types::{Intensity, IntersectionRecord, Ray};
 
 pub(super) struct Tracer<'p> {
     prepared: &'p Prepared,
-    poses: Vec<Pose>,
+    poses: Poses<'p>,
     deforming: Vec<Deforming<'p>>,
+    scratch: Scratch,
+    /// Whether the instant lies within the times the prepared structure
+    /// bounds the objects over (the loop searches them otherwise).
+    bounded: bool,
     pub(super) stats: TraceStats,
 }
 
@@ -20,12 +24,10 @@ impl<'p> Tracer<'p> {
     pub(super) fn new(prepared: &'p Prepared) -> Self {
         Tracer {
             prepared,
-            poses: rest_poses(prepared.scene()),
-            deforming: prepared
-                .moving()
-                .iter()
-                .filter_map(|m| m.chain().map(|chain| Deforming::new(m.object, chain)))
-                .collect(),
+            poses: prepared.poses(),
+            deforming: prepared.deforming(),
+            scratch: Scratch::default(),
+            bounded: true,
             stats: TraceStats::default(),
         }
     }
@@ -33,24 +35,22 @@ impl<'p> Tracer<'p> {
     /// The scene at film time `time`: `motionblur` poses every moving
     /// object; its `paper = 1` branch moves the in-between object's pose by
     /// `diff`, and the contour (`do34` at time 0 or 1, else `Hermite`) is
-    /// made when a ray first needs it. Objects that do not move keep their
+    /// made when a ray first needs it. A moving object is posed when a ray
+    /// first reaches it ([`Poses`]); objects that do not move keep their
     /// rest pose at no cost.
     pub(super) fn at(&mut self, time: f64) {
-        let prepared = self.prepared;
-        let (objects, fidelity) = (&prepared.scene().objects, prepared.options().fidelity);
-        for m in prepared.moving() {
-            self.poses[m.object] = m.pose(&objects[m.object], time, fidelity);
-        }
+        self.poses.at(time);
         for d in &self.deforming {
             d.at(time);
         }
+        self.bounded = self.prepared.bounds_time(time);
     }
 
     /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
     /// of `sampler`'s sample, with the scene as the last [`Tracer::at`]
     /// left it.
     pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming);
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
         self.stats.primary += 1;
         let mut ctx = Context {
             stats: &mut self.stats,
@@ -62,14 +62,21 @@ impl<'p> Tracer<'p> {
     /// The object `ray` meets first with the scene as the last
     /// [`Tracer::at`] left it, and the hit.
     pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming);
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
         intersect(&snap, ray, &mut self.stats)
     }
 }
 
 /// The prepared scene with its objects where `poses` put them and the
-/// deforming objects' contours of the instant.
-fn snapshot<'a>(prepared: &'a Prepared, poses: &'a [Pose], deforming: &'a [Deforming<'a>]) -> Snapshot<'a> {
+/// deforming objects' contours of the instant, searched by the prepared
+/// structure if it `bounded` the instant.
+fn snapshot<'a>(
+    prepared: &'a Prepared,
+    poses: &'a Poses<'a>,
+    deforming: &'a [Deforming<'a>],
+    scratch: &'a Scratch,
+    bounded: bool,
+) -> Snapshot<'a> {
     Snapshot {
         scene: prepared.scene(),
         opts: prepared.options(),
@@ -78,5 +85,7 @@ fn snapshot<'a>(prepared: &'a Prepared, poses: &'a [Pose], deforming: &'a [Defor
         deforming_of: prepared.deforming_of(),
         caches: prepared.caches(),
         aggregate: prepared.aggregate(),
+        structure: prepared.aggregate().structure().filter(|_| bounded),
+        scratch,
     }
 }

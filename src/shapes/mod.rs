@@ -413,10 +413,18 @@ fn cylinder_hit(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> 
     best
 }
 
+/// The radius of the sphere the bounding-sphere test takes for an
+/// object's `radius`: padded by a part in 10⁶ so no surface hit is lost.
+/// Every bound over the object (`crate::motion::object_boxes`) holds it.
+#[inline(always)]
+pub fn bounding_radius(radius: f64) -> f64 {
+    radius * (1.0 + 1e-6) + 1e-9
+}
+
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
-/// Padded by a part in 10⁶ so no surface hit is lost.
+/// Padded ([`bounding_radius`]) so no surface hit is lost.
 fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
-    let r = radius * (1.0 + 1e-6) + 1e-9;
+    let r = bounding_radius(radius);
     let oc = ray.origin - centre;
     let a = ray.dir.length_squared();
     let half_b = oc.dot(ray.dir);
