@@ -173,6 +173,7 @@ mod lex;
 mod objects;
 mod parse;
 mod records;
+pub mod words;
 
 use std::collections::HashMap;
 use std::path::Path;
