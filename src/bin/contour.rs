@@ -19,13 +19,18 @@ use std::process::ExitCode;
 use clap::Parser;
 use raytrace::cli::{DeckInput, FidelityArg};
 use raytrace::editor::document::Document;
+use raytrace::editor::preview::{render_pass, FINE};
+use raytrace::editor::screen::{self, Preview};
 use raytrace::editor::script;
+use raytrace::editor::session::{Editor, KEYS_HELP};
 use raytrace::exit::{exit_code, Failure};
+use raytrace::output::{write_atomically, OutputError};
+use raytrace::psout;
 
 /// Edit a sweep of a scene deck: its control points, curve and sweep kind,
 /// seen at once as the curve and as the rendered object.
 #[derive(Parser, Debug)]
-#[command(name = "contour", version)]
+#[command(name = "contour", version, after_help = KEYS_HELP)]
 struct Args {
     /// The scene deck (format: legacy_pascal/DECK.md); with --new, the new deck to write.
     #[arg(value_name = "DECK")]
@@ -51,8 +56,32 @@ struct Args {
     #[arg(short, long, value_name = "NEW.deck")]
     output: Option<PathBuf>,
 
+    /// Write the editor's 1024×864 screen (with the finer preview) to OUT.png and exit,
+    /// without a window.
+    #[arg(long, value_name = "OUT.png")]
+    screenshot: Option<PathBuf>,
+
+    /// Print the control points, one a line: number, U, V, and the column and row of
+    /// the point on the screen (after a line `# … (S pixels a unit)`); then exit, without
+    /// a window.
+    #[arg(long)]
+    list: bool,
+
+    /// A key shape of a key-frame chain: where the time slider starts, 0..1 [default: the
+    /// key shape's own time].
+    #[arg(long, value_name = "T", value_parser = parse_time)]
+    time: Option<f64>,
+
     #[command(flatten)]
     fidelity: FidelityArg,
+}
+
+/// `--time T`: a number in 0..1.
+fn parse_time(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if (0.0..=1.0).contains(&t) => Ok(t),
+        _ => Err(format!("'{text}' is not a time in 0..1")),
+    }
 }
 
 fn main() -> ExitCode {
@@ -63,30 +92,98 @@ fn main() -> ExitCode {
 fn run(args: &Args) -> Result<(), Failure> {
     raytrace::output::remove_temp_files_on_signals()
         .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
-    if args.script.is_some() && args.output.is_none() {
+    let headless = args.output.is_some() || args.screenshot.is_some() || args.list;
+    if args.script.is_some() && !headless {
         return Err(Failure::usage(
-            "--script makes edits without a window: name what to write with -o NEW.deck",
+            "--script makes edits without a window: name what to write with -o NEW.deck or --screenshot OUT.png",
         ));
     }
-    let doc = open(args)?;
-    let mut contour = doc.original.clone();
+    if let Some(out) = &args.screenshot {
+        check_png_name(out)?;
+    }
+    let mut editor = Editor::new(open(args)?);
+    if editor.chain.is_some() {
+        editor.time = args.time.unwrap_or(editor.time);
+    }
     if let Some(path) = &args.script {
         let (text, file) = read_script(path)?;
-        let edits = script::parse(&text, &file).map_err(Failure::input)?;
-        script::apply(&mut contour, &edits, &file).map_err(Failure::input)?;
-    }
-    match &args.output {
-        Some(out) => {
-            let bytes = doc
-                .save(&contour)
-                .map_err(|r| Failure::input(format!("{}: not saved: {r}", out.display())))?;
-            raytrace::output::write_atomically(out, |w| {
-                w.write_all(&bytes).map_err(raytrace::output::OutputError::from)
-            })
-            .map_err(|e| Failure::other(format!("{}: {e}", out.display())))
+        for line in script::parse(&text, &file).map_err(Failure::input)? {
+            editor.edit(line.edit);
+            if let Some(m) = editor.message.take() {
+                return Err(Failure::input(format!("{file}:{}: {}", line.line, m.text)));
+            }
         }
-        None => Err(Failure::other("the window is not built yet")),
     }
+    if !headless {
+        return window(editor, &args.deck);
+    }
+    if let Some(out) = &args.output {
+        let bytes = editor
+            .doc
+            .save(&editor.contour)
+            .map_err(|r| Failure::input(format!("{}: not saved: {r}", out.display())))?;
+        write_atomically(out, |w| w.write_all(&bytes).map_err(OutputError::from))
+            .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
+    }
+    if args.list {
+        println!("# K\tU\tV\tX\tY ({} pixels a unit)", editor.plane.scale);
+        for (k, p) in editor.contour.points.iter().enumerate() {
+            let (x, y) = editor.plane.to_screen([p.u, p.v]);
+            println!("{}\t{}\t{}\t{}\t{}", k + 1, p.u, p.v, x.round(), y.round());
+        }
+    }
+    if let Some(out) = &args.screenshot {
+        let screen = screen::draw(&editor, &fine_preview(&editor));
+        write_png(out, &screen)?;
+    }
+    Ok(())
+}
+
+/// The preview a screenshot shows: the finer pass, as the window shows it
+/// once idle.
+fn fine_preview(editor: &Editor) -> Preview {
+    if let Err(r) = editor.contour.check() {
+        return Preview {
+            note: Some(format!("not rendered: {r}")),
+            ..Preview::default()
+        };
+    }
+    let job = editor.job();
+    match render_pass(&job, FINE) {
+        Ok(raster) => Preview {
+            raster: Some(raster),
+            mask: job.mask(FINE),
+            note: None,
+        },
+        Err(e) => Preview {
+            note: Some(e),
+            ..Preview::default()
+        },
+    }
+}
+
+/// A usage error (exit 2) unless `out` names a PNG.
+fn check_png_name(out: &Path) -> Result<(), Failure> {
+    match out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+        true => Ok(()),
+        false => Err(Failure::usage(format!(
+            "--screenshot '{}': a screenshot is a PNG, so the name must end in .png",
+            out.display()
+        ))),
+    }
+}
+
+#[cfg(feature = "png")]
+fn write_png(out: &Path, screen: &psout::Framebuffer) -> Result<(), Failure> {
+    raytrace::raster::write_png(out, &screen.to_raster())
+        .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
+}
+
+#[cfg(not(feature = "png"))]
+fn write_png(_out: &Path, _screen: &psout::Framebuffer) -> Result<(), Failure> {
+    Err(Failure::other(
+        "this contour was built without the `png` feature, so --screenshot is not available",
+    ))
 }
 
 /// The document the command line names: DECK at NAME, or a new deck.
@@ -119,4 +216,33 @@ fn read_script(path: &Path) -> Result<(String, String), Failure> {
         path.display().to_string()
     };
     Ok((text, file))
+}
+
+/// The error when no window can be opened.
+fn no_display(reason: &str) -> Failure {
+    Failure::other(psout::no_display_message(
+        "contour",
+        reason,
+        "edit without a window: `contour DECK NAME --script EDITS -o NEW.deck`, `--screenshot OUT.png`",
+    ))
+}
+
+#[cfg(not(feature = "window"))]
+fn window(_editor: Editor, _deck: &Path) -> Result<(), Failure> {
+    Err(no_display(psout::display_missing().unwrap_or("no window feature")))
+}
+
+#[cfg(feature = "window")]
+#[path = "contour/window.rs"]
+mod window;
+
+#[cfg(feature = "window")]
+fn window(editor: Editor, deck: &Path) -> Result<(), Failure> {
+    if let Some(reason) = psout::display_missing() {
+        return Err(no_display(reason));
+    }
+    window::run(editor, deck).map_err(|e| match e {
+        window::Error::Open(reason) => no_display(&reason),
+        window::Error::Failed(reason) => Failure::other(format!("the window failed: {reason}")),
+    })
 }

@@ -179,6 +179,26 @@ impl Document {
     }
 }
 
+impl Document {
+    /// The document once its deck is saved as `source` holding `contour`:
+    /// the deck read again, and `contour` (its points' identities kept,
+    /// so that an undo after the save still finds their lines) the one
+    /// the deck now has.
+    pub fn saved(&mut self, source: Vec<u8>, contour: &Contour) -> Result<(), Refusal> {
+        let deck = DeckInput {
+            source,
+            ..self.deck.clone()
+        };
+        let mut doc = Document::open(deck, &self.name, self.fidelity).map_err(|e| Refusal(e.message))?;
+        if !same_contour(&doc.original, contour) {
+            return Err(Refusal("the saved deck does not hold the edited contour".into()));
+        }
+        doc.original = contour.clone();
+        *self = doc;
+        Ok(())
+    }
+}
+
 /// Whether two contours have the same curve, kind, points and the fields
 /// the kind writes.
 fn same_contour(a: &Contour, b: &Contour) -> bool {

@@ -13,7 +13,15 @@
 //! ([`record`]), the scripted edits ([`script`]). The window
 //! (`src/bin/contour.rs`) only turns mouse and key events into calls.
 
+pub mod curve;
 pub mod document;
+pub mod draw;
+pub mod keyshapes;
 pub mod model;
+pub mod plane;
+pub mod preview;
 pub mod record;
+pub mod screen;
 pub mod script;
+pub mod session;
+pub mod worker;

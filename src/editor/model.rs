@@ -31,14 +31,16 @@ pub fn snap(x: f64) -> f64 {
     (x * PER_UNIT).round() / PER_UNIT
 }
 
-/// A control point (U, V), and which of the deck's points it is (its index
-/// in the record as read), or `None` for a point the editor added: the
-/// save rewrites a kept point's numbers in place, on its own line.
+/// A control point (U, V) and its identity: the deck's points are 0..n in
+/// the record's order as opened, and each point the editor adds gets the
+/// next number, never given again (not even after an undo). The save
+/// finds by it which of the record's point lines a point is, to rewrite
+/// its numbers in place; a point the record lacks gets a line of its own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlPoint {
     pub u: f64,
     pub v: f64,
-    pub origin: Option<usize>,
+    pub id: u64,
 }
 
 /// A sweep's contour as the editor holds it.
@@ -52,6 +54,8 @@ pub struct Contour {
     pub length: f64,
     /// `scale` of a conic sweep; kept likewise while it is not one.
     pub scale: f64,
+    /// The identity the next added point gets.
+    pub next_id: u64,
 }
 
 /// One edit, as a script line says it (points counted from 0 here).
@@ -106,7 +110,7 @@ impl Contour {
             points: points
                 .iter()
                 .enumerate()
-                .map(|(i, &[u, v])| ControlPoint { u, v, origin: Some(i) })
+                .map(|(i, &[u, v])| ControlPoint { u, v, id: i as u64 })
                 .collect(),
             length: if class == PrimitiveClass::Rotation {
                 DEFAULT_LENGTH
@@ -118,6 +122,7 @@ impl Contour {
             } else {
                 DEFAULT_SCALE
             },
+            next_id: points.len() as u64,
         }
     }
 
@@ -164,7 +169,8 @@ impl Contour {
                 }
                 let (u, v) = (snap(u), snap(v));
                 check_coordinates(u, v)?;
-                self.points.insert(k, ControlPoint { u, v, origin: None });
+                self.points.insert(k, ControlPoint { u, v, id: self.next_id });
+                self.next_id += 1;
             }
             Edit::Delete { k } => {
                 if k >= n {
@@ -284,15 +290,18 @@ impl History {
     }
 
     /// The contour before the last edit, if any; `current` is kept for redo.
+    /// Identities given out stay given ([`ControlPoint::id`]).
     pub fn undo(&mut self, current: &Contour) -> Option<Contour> {
-        let before = self.past.pop()?;
+        let mut before = self.past.pop()?;
+        before.next_id = before.next_id.max(current.next_id);
         self.future.push(current.clone());
         Some(before)
     }
 
     /// The contour of the last undone edit, if any.
     pub fn redo(&mut self, current: &Contour) -> Option<Contour> {
-        let after = self.future.pop()?;
+        let mut after = self.future.pop()?;
+        after.next_id = after.next_id.max(current.next_id);
         self.past.push(current.clone());
         Some(after)
     }
@@ -318,7 +327,7 @@ mod tests {
     }
 
     #[test]
-    fn a_move_is_rounded_to_the_step_and_keeps_the_points_origin() {
+    fn a_move_is_rounded_to_the_step_and_keeps_the_points_identity() {
         let mut c = square(CurveKind::Bspline);
         c.apply(Edit::Move {
             k: 1,
@@ -327,7 +336,7 @@ mod tests {
         })
         .unwrap();
         assert_eq!((c.points[1].u, c.points[1].v), (-0.9, 1.0));
-        assert_eq!(c.points[1].origin, Some(1));
+        assert_eq!(c.points[1].id, 1);
         assert_eq!(snap(0.1 + 0.2), 0.3);
     }
 
@@ -337,8 +346,8 @@ mod tests {
         c.apply(Edit::Insert { k: 4, u: 0.0, v: -2.0 }).unwrap();
         c.apply(Edit::Insert { k: 0, u: 2.0, v: 0.0 }).unwrap();
         assert_eq!(
-            c.points.iter().map(|p| p.origin).collect::<Vec<_>>(),
-            vec![None, Some(0), Some(1), Some(2), Some(3), None]
+            c.points.iter().map(|p| p.id).collect::<Vec<_>>(),
+            vec![5, 0, 1, 2, 3, 4]
         );
         c.apply(Edit::Delete { k: 2 }).unwrap();
         assert_eq!(c.uv()[2], [-1.0, -1.0]);
@@ -402,5 +411,19 @@ mod tests {
         assert_eq!(h.depth(), 1);
         h.push(c.clone());
         assert!(h.redo(&c).is_none(), "a new edit forgets the undone ones");
+    }
+
+    #[test]
+    fn an_undone_insert_gives_its_identity_to_no_later_point() {
+        let mut c = square(CurveKind::Bspline);
+        let mut h = History::default();
+        h.push(c.clone());
+        c.apply(Edit::Insert { k: 0, u: 0.0, v: 0.0 }).unwrap();
+        assert_eq!(c.points[0].id, 4);
+        c = h.undo(&c).unwrap();
+        c.apply(Edit::Insert { k: 2, u: 5.0, v: 5.0 }).unwrap();
+        assert_eq!(c.points[2].id, 5);
+        c = h.redo(&c).unwrap_or(c);
+        assert_eq!(c.next_id, 6);
     }
 }

@@ -201,7 +201,8 @@ impl SweepRecord {
         out
     }
 
-    /// The changes of the point lines.
+    /// The changes of the point lines: each point of `edited` is the
+    /// record's point line of the same identity in `original`, or new.
     fn point_changes(
         &self,
         source: &[u8],
@@ -209,25 +210,29 @@ impl SweepRecord {
         edited: &Contour,
         changes: &mut Vec<(Range<usize>, String)>,
     ) {
+        let line_of = |id: u64| {
+            let o = original.points.iter().position(|q| q.id == id)?;
+            Some((o, self.points.get(o)?))
+        };
         let mut kept = vec![false; self.points.len()];
         for (i, p) in edited.points.iter().enumerate() {
-            match p.origin.and_then(|o| Some((o, self.points.get(o)?))) {
+            match line_of(p.id) {
                 Some((o, line)) => {
                     kept[o] = true;
-                    let was = original.points.get(o).map(|q| (q.u, q.v));
-                    if was.map(|w| w.0) != Some(p.u) {
+                    let was = &original.points[o];
+                    if was.u != p.u {
                         changes.push(aligned(source, line.u.clone(), number(p.u)));
                     }
-                    if was.map(|w| w.1) != Some(p.v) {
+                    if was.v != p.v {
                         changes.push(aligned(source, line.v.clone(), number(p.v)));
                     }
                 }
                 None => {
-                    // Before the line of the next point the deck has.
+                    // Before the line of the next point the record has.
                     let next = edited.points[i + 1..]
                         .iter()
-                        .find_map(|q| self.points.get(q.origin?))
-                        .map_or(self.end_line, |l| l.line.start);
+                        .find_map(|q| line_of(q.id))
+                        .map_or(self.end_line, |(_, l)| l.line.start);
                     changes.push((next..next, self.new_line(p.u, p.v)));
                 }
             }
