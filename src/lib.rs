@@ -19,6 +19,7 @@ pub mod adaptive;
 pub mod cli;
 pub mod deck;
 pub mod drt;
+pub mod editor;
 pub mod exit;
 pub mod film;
 pub mod hash;

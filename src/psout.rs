@@ -368,6 +368,44 @@ pub fn screenshot_path(raster_path: &Path) -> PathBuf {
     raster_path.with_file_name(format!("{stem}.psout.png"))
 }
 
+/// Why a window cannot be opened, or `None` when one may be: `DISPLAY`
+/// unset or empty (the window is an X11 window), or no `window` feature.
+/// Every program with a window asks this first (`psout`, `contour`,
+/// `raytrace --show`).
+pub fn display_missing() -> Option<&'static str> {
+    if !cfg!(feature = "window") {
+        return Some("this program was built without the `window` feature");
+    }
+    // `DISPLAY=` (empty) is as good as unset.
+    match std::env::var_os("DISPLAY").is_none_or(|d| d.is_empty()) {
+        true => Some("DISPLAY is not set"),
+        false => None,
+    }
+}
+
+/// The message when no window can be opened: why, and both ways out —
+/// an X server such as Xvfb, or `instead`, the program's way to work
+/// without a window.
+pub fn no_display_message(program: &str, reason: &str, instead: &str) -> String {
+    format!(
+        "cannot open a window ({reason}).\n\
+         Run {program} under an X display, e.g. `xvfb-run -s \"-screen 0 1024x864x24\" {program} …`,\n\
+         or {instead}."
+    )
+}
+
+/// minifb's message with its detail (its `Display` drops the detail, e.g.
+/// "XOpenDisplay failed" or "failed to load Xlib").
+#[cfg(feature = "window")]
+pub fn window_error(e: minifb::Error) -> String {
+    match &e {
+        minifb::Error::WindowCreate(detail) | minifb::Error::UpdateFailed(detail) => {
+            format!("{e}: {detail}")
+        }
+        _ => e.to_string(),
+    }
+}
+
 fn folder_of(path: &Path) -> PathBuf {
     match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),

@@ -16,8 +16,8 @@ use std::process::ExitCode;
 use clap::Parser;
 use raytrace::exit::{exit_code, Failure};
 use raytrace::image_file::read_image_file;
-#[cfg(any(feature = "png", feature = "window"))]
 use raytrace::psout;
+
 use raytrace::psout::{player, Lut};
 use raytrace::raster::Raster;
 
@@ -131,10 +131,10 @@ fn screenshot(_out: &Path, _raster: &Raster, _zoom: Option<u32>) -> Result<(), F
 
 /// The error when no window can be opened: names both ways out.
 fn no_display(reason: &str) -> Failure {
-    Failure::other(format!(
-        "cannot open a window ({reason}).\n\
-         Run psout under an X display, e.g. `xvfb-run -s \"-screen 0 1024x864x24\" psout FILE`,\n\
-         or write the screen to a file with `psout --screenshot OUT.png FILE`."
+    Failure::other(psout::no_display_message(
+        "psout",
+        reason,
+        "write the screen to a file with `psout --screenshot OUT.png FILE`",
     ))
 }
 
@@ -187,9 +187,8 @@ fn show(args: &Args, mut frames: Vec<Raster>, start: Option<usize>) -> Result<()
     use psout::{SCREEN_HEIGHT, SCREEN_WIDTH};
     use std::time::Instant;
 
-    // `DISPLAY=` (empty) is as good as unset.
-    if std::env::var_os("DISPLAY").is_none_or(|d| d.is_empty()) {
-        return Err(no_display("DISPLAY is not set"));
+    if let Some(reason) = psout::display_missing() {
+        return Err(no_display(reason));
     }
     let lut = args.lut.map(usize::from);
     let film = frames.len() > 1;
@@ -207,7 +206,7 @@ fn show(args: &Args, mut frames: Vec<Raster>, start: Option<usize>) -> Result<()
         SCREEN_HEIGHT,
         WindowOptions::default(),
     )
-    .map_err(|e| no_display(&window_error(e)))?;
+    .map_err(|e| no_display(&psout::window_error(e)))?;
     window.set_target_fps(60);
     let queue = std::rc::Rc::new(std::cell::RefCell::new(player::KeyQueue::default()));
     window.set_input_callback(Box::new(KeyEvents(queue.clone())));
@@ -248,21 +247,9 @@ fn show(args: &Args, mut frames: Vec<Raster>, start: Option<usize>) -> Result<()
         }
         window
             .update_with_buffer(&screen.pixels, SCREEN_WIDTH, SCREEN_HEIGHT)
-            .map_err(|e| Failure::other(format!("the window failed: {}", window_error(e))))?;
+            .map_err(|e| Failure::other(format!("the window failed: {}", psout::window_error(e))))?;
     }
     Ok(())
-}
-
-/// minifb's message with its detail (its `Display` drops the detail, e.g.
-/// "XOpenDisplay failed" or "failed to load Xlib").
-#[cfg(feature = "window")]
-fn window_error(e: minifb::Error) -> String {
-    match &e {
-        minifb::Error::WindowCreate(detail) | minifb::Error::UpdateFailed(detail) => {
-            format!("{e}: {detail}")
-        }
-        _ => e.to_string(),
-    }
 }
 
 /// The next or previous raster in the folder, read; problems are reported

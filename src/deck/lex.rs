@@ -238,6 +238,12 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// The byte offset the lexer stands at: just past the token it handed
+    /// out last (for [`super::words`]).
+    pub fn offset(&self) -> usize {
+        self.cur.at
+    }
+
     /// The error for one at `at` that a nested comment explains: `at` lies
     /// after a comment that held its own opener and no later than a stray
     /// closer of its kind. Then the error is reported at the inner opener,

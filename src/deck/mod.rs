@@ -195,6 +195,7 @@ mod library;
 mod objects;
 mod parse;
 mod records;
+pub mod words;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -53,7 +53,7 @@ mod revolve;
 
 pub use cache::{prepare_caches, SweepCache};
 pub use contour::{orientation, point_in_contour, signed_area};
-pub use prepare::{prepare_sweeps, segment_points};
+pub use prepare::{fill_segments, prepare_sweeps, segment_points};
 
 use super::Near;
 use crate::options::{Options, Solver};

@@ -23,7 +23,7 @@ pub fn segment_points(curve: CurveKind, points: &[[f64; 2]], i: usize) -> [[f64;
 /// `u`, `v` and `segment` of one sweep from its control points, by
 /// `spline`; returns the box `spline` widened (x from U; y, or for a
 /// rotation z, from V).
-pub(super) fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox {
+pub fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox {
     let n = sw.points.len();
     let segments = match sw.curve {
         CurveKind::Bspline => n,

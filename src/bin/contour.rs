@@ -1,0 +1,248 @@
+//! `contour DECK NAME`: the contour editor (the port's extension; the
+//! thesis's interactive input of §3.2.1). Opens the sweep NAME of a deck in
+//! a window on the PS 390's 1024×864 screen: the (U, V) plane with the
+//! control points and the curve, beside the object rendered with the
+//! deck's view, lights and surfaces; the mouse and keys edit, `s` saves the
+//! record back into the deck. Without a window: `--script EDITS -o
+//! NEW.deck` applies edits, `--screenshot OUT.png` writes the screen.
+//! Everything but the window is `raytrace::editor`; docs/editor.md.
+//!
+//! Exit codes: 0 done; 1 no window could be opened, or an output could
+//! not be written; 2 a bad command line, a deck with an error, a NAME
+//! that is no sweep, a script with an error or a contour refused by the
+//! save; 130 or 143 stopped by SIGINT or SIGTERM.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Parser;
+use raytrace::cli::{DeckInput, FidelityArg};
+use raytrace::editor::document::Document;
+use raytrace::editor::preview::{render_pass, FINE};
+use raytrace::editor::screen::{self, Preview};
+use raytrace::editor::script;
+use raytrace::editor::session::{Editor, KEYS_HELP};
+use raytrace::exit::{exit_code, Failure};
+use raytrace::output::{write_atomically, OutputError};
+use raytrace::psout;
+
+/// Edit a sweep of a scene deck: its control points, curve and sweep kind,
+/// seen at once as the curve and as the rendered object.
+#[derive(Parser, Debug)]
+#[command(name = "contour", version, after_help = KEYS_HELP)]
+struct Args {
+    /// The scene deck (format: legacy_pascal/DECK.md); with --new, the new deck to write.
+    #[arg(value_name = "DECK")]
+    deck: PathBuf,
+
+    /// The sweep to edit (a `sweep` record's name, or a key shape's).
+    #[arg(value_name = "NAME", required_unless_present = "new")]
+    name: Option<String>,
+
+    /// Begin a new deck DECK (it must not exist) with one sweep, `shape`, to edit; the
+    /// save writes DECK.
+    #[arg(long, conflicts_with = "name")]
+    new: bool,
+
+    /// Apply the edits of EDITS, one a line (move K DU DV, insert K U V, delete K,
+    /// curve bspline|bezier, sweep translation|conic|rotation; points from 1), or - for
+    /// standard input.
+    #[arg(long, value_name = "EDITS")]
+    script: Option<PathBuf>,
+
+    /// Write the deck with the edited sweep to NEW.deck (DECK itself to save in place),
+    /// without a window; a contour the save refuses writes nothing (exit 2).
+    #[arg(short, long, value_name = "NEW.deck")]
+    output: Option<PathBuf>,
+
+    /// Write the editor's 1024×864 screen (with the finer preview) to OUT.png and exit,
+    /// without a window.
+    #[arg(long, value_name = "OUT.png")]
+    screenshot: Option<PathBuf>,
+
+    /// Print the control points, one a line: number, U, V, and the column and row of
+    /// the point on the screen (after a line `# … (S pixels a unit)`); then exit, without
+    /// a window.
+    #[arg(long)]
+    list: bool,
+
+    /// A key shape of a key-frame chain: where the time slider starts, 0..1 [default: the
+    /// key shape's own time].
+    #[arg(long, value_name = "T", value_parser = parse_time)]
+    time: Option<f64>,
+
+    #[command(flatten)]
+    fidelity: FidelityArg,
+}
+
+/// `--time T`: a number in 0..1.
+fn parse_time(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if (0.0..=1.0).contains(&t) => Ok(t),
+        _ => Err(format!("'{text}' is not a time in 0..1")),
+    }
+}
+
+fn main() -> ExitCode {
+    let args = Args::parse();
+    exit_code("contour", run(&args))
+}
+
+fn run(args: &Args) -> Result<(), Failure> {
+    raytrace::output::remove_temp_files_on_signals()
+        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    let headless = args.output.is_some() || args.screenshot.is_some() || args.list;
+    if args.script.is_some() && !headless {
+        return Err(Failure::usage(
+            "--script makes edits without a window: name what to write with -o NEW.deck or --screenshot OUT.png",
+        ));
+    }
+    if let Some(out) = &args.screenshot {
+        check_png_name(out)?;
+    }
+    let mut editor = Editor::new(open(args)?);
+    if editor.chain.is_some() {
+        editor.time = args.time.unwrap_or(editor.time);
+    }
+    if let Some(path) = &args.script {
+        let (text, file) = read_script(path)?;
+        for line in script::parse(&text, &file).map_err(Failure::input)? {
+            editor.edit(line.edit);
+            if let Some(m) = editor.message.take() {
+                return Err(Failure::input(format!("{file}:{}: {}", line.line, m.text)));
+            }
+        }
+    }
+    if !headless {
+        return window(editor, &args.deck);
+    }
+    if let Some(out) = &args.output {
+        let bytes = editor
+            .doc
+            .save(&editor.contour)
+            .map_err(|r| Failure::input(format!("{}: not saved: {r}", out.display())))?;
+        write_atomically(out, |w| w.write_all(&bytes).map_err(OutputError::from))
+            .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
+    }
+    if args.list {
+        println!("# K\tU\tV\tX\tY ({} pixels a unit)", editor.plane.scale);
+        for (k, p) in editor.contour.points.iter().enumerate() {
+            let (x, y) = editor.plane.to_screen([p.u, p.v]);
+            println!("{}\t{}\t{}\t{}\t{}", k + 1, p.u, p.v, x.round(), y.round());
+        }
+    }
+    if let Some(out) = &args.screenshot {
+        let screen = screen::draw(&editor, &fine_preview(&editor));
+        write_png(out, &screen)?;
+    }
+    Ok(())
+}
+
+/// The preview a screenshot shows: the finer pass, as the window shows it
+/// once idle.
+fn fine_preview(editor: &Editor) -> Preview {
+    if let Err(r) = editor.contour.check() {
+        return Preview {
+            note: Some(format!("not rendered: {r}")),
+            ..Preview::default()
+        };
+    }
+    let job = editor.job();
+    match render_pass(&job, FINE) {
+        Ok(raster) => Preview {
+            raster: Some(raster),
+            mask: job.mask(FINE),
+            note: None,
+        },
+        Err(e) => Preview {
+            note: Some(e),
+            ..Preview::default()
+        },
+    }
+}
+
+/// A usage error (exit 2) unless `out` names a PNG.
+fn check_png_name(out: &Path) -> Result<(), Failure> {
+    match out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+        true => Ok(()),
+        false => Err(Failure::usage(format!(
+            "--screenshot '{}': a screenshot is a PNG, so the name must end in .png",
+            out.display()
+        ))),
+    }
+}
+
+#[cfg(feature = "png")]
+fn write_png(out: &Path, screen: &psout::Framebuffer) -> Result<(), Failure> {
+    raytrace::raster::write_png(out, &screen.to_raster())
+        .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
+}
+
+#[cfg(not(feature = "png"))]
+fn write_png(_out: &Path, _screen: &psout::Framebuffer) -> Result<(), Failure> {
+    Err(Failure::other(
+        "this contour was built without the `png` feature, so --screenshot is not available",
+    ))
+}
+
+/// The document the command line names: DECK at NAME, or a new deck.
+fn open(args: &Args) -> Result<Document, Failure> {
+    let fidelity = args.fidelity.fidelity;
+    if args.new {
+        if args.deck.exists() {
+            return Err(Failure::usage(format!(
+                "--new {}: the file exists; open a sweep of it with `contour {} NAME`",
+                args.deck.display(),
+                args.deck.display()
+            )));
+        }
+        return Document::new_deck(&args.deck, fidelity);
+    }
+    let deck = DeckInput::read(&args.deck)?;
+    Document::open(deck, args.name.as_deref().unwrap_or_default(), fidelity)
+}
+
+/// The script's text and the name its errors give.
+fn read_script(path: &Path) -> Result<(String, String), Failure> {
+    let mut text = String::new();
+    let file = if path.as_os_str() == "-" {
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| Failure::input(format!("<stdin>: {e}")))?;
+        "<stdin>".to_string()
+    } else {
+        text = std::fs::read_to_string(path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?;
+        path.display().to_string()
+    };
+    Ok((text, file))
+}
+
+/// The error when no window can be opened.
+fn no_display(reason: &str) -> Failure {
+    Failure::other(psout::no_display_message(
+        "contour",
+        reason,
+        "edit without a window: `contour DECK NAME --script EDITS -o NEW.deck`, `--screenshot OUT.png`",
+    ))
+}
+
+#[cfg(not(feature = "window"))]
+fn window(_editor: Editor, _deck: &Path) -> Result<(), Failure> {
+    Err(no_display(psout::display_missing().unwrap_or("no window feature")))
+}
+
+#[cfg(feature = "window")]
+#[path = "contour/window.rs"]
+mod window;
+
+#[cfg(feature = "window")]
+fn window(editor: Editor, deck: &Path) -> Result<(), Failure> {
+    if let Some(reason) = psout::display_missing() {
+        return Err(no_display(reason));
+    }
+    window::run(editor, deck).map_err(|e| match e {
+        window::Error::Open(reason) => no_display(&reason),
+        window::Error::Failed(reason) => Failure::other(format!("the window failed: {reason}")),
+    })
+}
