@@ -6,7 +6,7 @@
 
 use std::ops::Range;
 
-use super::lex::{Lexer, Tok};
+use super::lex::{Bytes, Lexer, Tok};
 use super::DeckError;
 
 /// A word of the deck outside comments, or a line end that ends a record.
@@ -23,7 +23,7 @@ pub struct Lexeme {
 /// The lexemes of `source` in order, up to its end, or the deck's error
 /// where a comment is left open or a byte outside comments is not ASCII.
 pub fn lexemes(source: &[u8], file: &str) -> Result<Vec<Lexeme>, DeckError> {
-    let mut lexer = Lexer::new(source, file.into());
+    let mut lexer = Lexer::new(Bytes::Borrowed(source), file.into());
     let mut out = Vec::new();
     loop {
         let token = lexer.next_token();
