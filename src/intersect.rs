@@ -16,7 +16,7 @@ use std::cell::{Cell, OnceCell, Ref, RefCell};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use crate::accel::Structure;
+use crate::accel::{Structure, WalkStack};
 use crate::motion::Moving;
 use crate::options::Options;
 use crate::paper::PaperChain;
@@ -117,6 +117,8 @@ pub struct Scratch {
     candidates: RefCell<Vec<usize>>,
     /// The `crystal` objects on a shadow ray.
     crystals: RefCell<Vec<usize>>,
+    /// A walk's nodes to come.
+    stack: RefCell<WalkStack>,
 }
 
 /// An in-between object of a key-frame chain (§3.2): its contour at the
@@ -305,7 +307,7 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
         }
         Some(s) if snap.aggregate.counted => {
             let mut candidates = snap.scratch.candidates.borrow_mut();
-            s.candidates(ray, tmin, &mut candidates);
+            s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
             for &i in candidates.iter() {
                 test(i, &mut best);
             }
@@ -314,7 +316,7 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
             // Front to back; an object whose box the ray enters beyond
             // the nearest hit so far cannot be nearer (nor, entered at
             // its t, tie it: such a box is still visited).
-            let _ = s.walk(ray, tmin, f64::INFINITY, |i| {
+            let _ = s.walk(ray, tmin, f64::INFINITY, &mut snap.scratch.stack.borrow_mut(), |i| {
                 test(i, &mut best);
                 ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
             });
@@ -356,7 +358,7 @@ pub fn for_each_blocker(
         }
         Some(s) if agg.counted => {
             let mut candidates = snap.scratch.candidates.borrow_mut();
-            s.candidates(ray, tmin, &mut candidates);
+            s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
             for &i in candidates.iter() {
                 let shadow = agg.shadow[i];
                 match shadow {
@@ -373,16 +375,18 @@ pub fn for_each_blocker(
             // the crystals it passes are taken in the table's order.
             let mut crystals = snap.scratch.crystals.borrow_mut();
             crystals.clear();
-            s.walk(ray, tmin, tmax, |i| match agg.shadow[i] {
-                Shadow::None => ControlFlow::Continue(tmax),
-                Shadow::Crystal => {
-                    if blocks(i) {
-                        crystals.push(i);
+            s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
+                match agg.shadow[i] {
+                    Shadow::None => ControlFlow::Continue(tmax),
+                    Shadow::Crystal => {
+                        if blocks(i) {
+                            crystals.push(i);
+                        }
+                        ControlFlow::Continue(tmax)
                     }
-                    ControlFlow::Continue(tmax)
+                    Shadow::Opaque if blocks(i) => ControlFlow::Break(()),
+                    Shadow::Opaque => ControlFlow::Continue(tmax),
                 }
-                Shadow::Opaque if blocks(i) => ControlFlow::Break(()),
-                Shadow::Opaque => ControlFlow::Continue(tmax),
             })?;
             crystals.sort_unstable();
             crystals.dedup();

@@ -380,3 +380,31 @@ fn structures_answer_as_the_loop_on_every_deck() {
         }
     }
 }
+
+/// Objects with the same contour (and box and class) share the prepared
+/// data of their sweep: one cap grid for many copies of a star, another
+/// for a star of another size.
+#[test]
+fn copies_of_one_contour_share_their_cache() {
+    let star = "sweep {N} op translation bspline at {P} length 0.5\n 1 0\n 0.3 0.3\n 0 1\n -0.3 0.3\n -1 0\n -0.3 -0.3\n 0 -1\n 0.3 -0.3\nend\n";
+    let mut deck = String::from(
+        "view eye 0 -10 3 look 0 0 0 screen 4 distance 5\nimage 16 16 mask 1\n\
+         surface op opaque color 0.8 0.2 0.1 ka 0.2 kd 0.8 ks 0 kt 0\n",
+    );
+    for (i, at) in ["0 0 0", "2 0 0", "0 3 1"].iter().enumerate() {
+        deck.push_str(&star.replace("{N}", &format!("s{i}")).replace("{P}", at));
+    }
+    deck.push_str(
+        &star
+            .replace("{N}", "big")
+            .replace("{P}", "1 1 1")
+            .replace(" 1 0\n", " 2 0\n"),
+    );
+    deck.push_str("rotate s2 x 30\n");
+    let p = Prepared::new(scene_of(&deck, Fidelity::Thesis), Options::default()).unwrap();
+    let c = p.caches();
+    let same = |a: usize, b: usize| std::sync::Arc::ptr_eq(c[a].as_ref().unwrap(), c[b].as_ref().unwrap());
+    assert!(same(0, 1) && same(0, 2), "placed and turned copies share");
+    assert!(!same(0, 3), "another contour has its own");
+    assert_eq!(c[3], raytrace::shapes::prepare_caches(p.scene())[3]);
+}

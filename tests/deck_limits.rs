@@ -13,7 +13,7 @@ use std::process::Command;
 
 mod common;
 use common::render_still;
-use raytrace::deck::{initialize, DeckError, FIELDS, MAX_DECK_BYTES, RECORDS};
+use raytrace::deck::{initialize, DeckError, FIELDS, MAX_DECK_BYTES, MAX_OBJECTS, RECORDS};
 use raytrace::options::{Fidelity, Options};
 use raytrace::scene::Scene;
 
@@ -243,6 +243,26 @@ fn a_deck_past_the_size_limit_is_refused_where_the_limit_is_passed() {
         format!(
             "{}:1: deck: the deck is larger than 64 MiB, the most the reader takes",
             lines + 1
+        )
+    );
+}
+
+/// A deck of more object records than the port takes (within the 64 MiB
+/// of text: a million short records) is refused at the first name past the
+/// limit, before it is prepared.
+#[test]
+fn a_deck_past_the_object_limit_is_refused_where_the_limit_is_passed() {
+    let mut deck = String::from(BASE);
+    for i in 1..=MAX_OBJECTS {
+        deck.push_str(&format!("sphere s{i} red at 0 0 {} radius 1\n", i % 7));
+    }
+    assert!(deck.len() < MAX_DECK_BYTES);
+    assert_eq!(
+        error(&deck),
+        format!(
+            "{}:8: sphere 's{MAX_OBJECTS}': a deck may have at most {MAX_OBJECTS} object records (the port's \
+             limit, which keeps a render of the largest deck within about 1.5 GB of memory): this is one more",
+            MAX_OBJECTS + 5
         )
     );
 }

@@ -22,7 +22,8 @@ const BUCKETS: usize = 12;
 /// A node holds at most this many objects unless splitting costs more.
 const MAX_LEAF: usize = 4;
 
-/// No node deeper: the walk's stack holds a path's far children.
+/// No node deeper (a chain of nested boxes would otherwise make a node a
+/// level), so that the build's recursion stays shallow.
 const MAX_DEPTH: usize = 60;
 
 /// What a node's box test costs against an object's test (pbrt-v4's ½).
@@ -142,58 +143,53 @@ impl Bvh {
         ray: &BoxRay,
         tmin: f64,
         mut limit: f64,
+        stack: &mut Vec<(u32, f64)>,
         mut visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
         let Some(root) = self.nodes.first() else {
             return ControlFlow::Continue(());
         };
-        let Some((enter, _)) = ray.span(&root.bounds, tmin, limit) else {
+        let Some((mut enter, _)) = ray.span(&root.bounds, tmin, limit) else {
             return ControlFlow::Continue(());
         };
-        let mut stack = [(0u32, 0.0f64); MAX_DEPTH + 4];
-        stack[0] = (0, enter);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (n, enter) = stack[top];
-            if enter > limit {
-                continue;
-            }
-            let node = &self.nodes[n as usize];
-            if node.count > 0 {
-                let start = node.offset as usize;
-                let items = &self.items[start..start + node.count as usize];
-                let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
-                visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
-                continue;
-            }
-            let (a, b) = (n + 1, node.offset);
-            let ea = ray.span(&self.nodes[a as usize].bounds, tmin, limit);
-            let eb = ray.span(&self.nodes[b as usize].bounds, tmin, limit);
-            match (ea, eb) {
-                (Some((ta, _)), Some((tb, _))) => {
-                    // The far one first onto the stack, so the near one is taken next.
-                    let (near, far) = if tb < ta {
-                        ((b, tb), (a, ta))
-                    } else {
-                        ((a, ta), (b, tb))
+        stack.clear();
+        let mut n = 0u32;
+        loop {
+            if enter <= limit {
+                let node = &self.nodes[n as usize];
+                if node.count > 0 {
+                    let start = node.offset as usize;
+                    let items = &self.items[start..start + node.count as usize];
+                    let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
+                    visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
+                } else {
+                    let (a, b) = (n + 1, node.offset);
+                    let ea = ray.span(&self.nodes[a as usize].bounds, tmin, limit);
+                    let eb = ray.span(&self.nodes[b as usize].bounds, tmin, limit);
+                    // The near child next, the far one kept for after.
+                    (n, enter) = match (ea, eb) {
+                        (Some((ta, _)), Some((tb, _))) if tb < ta => {
+                            stack.push((a, ta));
+                            (b, tb)
+                        }
+                        (Some((ta, _)), Some((tb, _))) => {
+                            stack.push((b, tb));
+                            (a, ta)
+                        }
+                        (Some((ta, _)), None) => (a, ta),
+                        (None, Some((tb, _))) => (b, tb),
+                        (None, None) => (0, f64::INFINITY),
                     };
-                    stack[top] = far;
-                    stack[top + 1] = near;
-                    top += 2;
+                    if enter < f64::INFINITY {
+                        continue;
+                    }
                 }
-                (Some((ta, _)), None) => {
-                    stack[top] = (a, ta);
-                    top += 1;
-                }
-                (None, Some((tb, _))) => {
-                    stack[top] = (b, tb);
-                    top += 1;
-                }
-                (None, None) => {}
+            }
+            match stack.pop() {
+                Some(next) => (n, enter) = next,
+                None => return ControlFlow::Continue(()),
             }
         }
-        ControlFlow::Continue(())
     }
 
     /// The deepest leaf's depth (the root's is 0).
@@ -355,7 +351,7 @@ mod tests {
 
     fn visited(bvh: &Bvh, ray: &Ray, limit: f64) -> Vec<usize> {
         let mut v = Vec::new();
-        let _ = bvh.walk(&BoxRay::new(ray), 0.0, limit, |i| {
+        let _ = bvh.walk(&BoxRay::new(ray), 0.0, limit, &mut Vec::new(), |i| {
             v.push(i);
             ControlFlow::Continue(limit)
         });

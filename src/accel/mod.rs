@@ -27,8 +27,8 @@ use crate::types::{BoundingBox, DVec3, Ray};
 /// `--accel`: how the objects a ray may meet are found.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
 pub enum Accel {
-    /// The loop below a few objects, the bounding volume hierarchy above
-    /// (as POV-Ray's Bounding_Threshold).
+    /// The loop below 9 objects, the bounding volume hierarchy from there (as
+    /// POV-Ray's Bounding_Threshold).
     #[default]
     Auto,
     /// The original's loop: every object in turn, behind its bounding sphere.
@@ -42,9 +42,10 @@ pub enum Accel {
 }
 
 /// From this many objects `auto` takes the hierarchy; below, the loop.
-/// Measured (docs/scale.md): at 4 spheres or stars the loop and the
-/// hierarchy take the same time, at 8 the hierarchy is faster.
-pub const THRESHOLD: usize = 6;
+/// Measured (docs/scale.md): on random spheres and on fig5_6's stars over
+/// a floor, the loop is faster up to 7 objects, the two are even at 8, and
+/// the hierarchy is faster from 9 (by 20 % at 13).
+pub const THRESHOLD: usize = 9;
 
 impl Accel {
     /// What `auto` means for a scene of `objects` objects; the others as
@@ -134,27 +135,33 @@ pub struct BoxRay {
 
 impl BoxRay {
     pub fn new(ray: &Ray) -> BoxRay {
+        // −0 as +0: a direction component of 0 then always has the
+        // reciprocal +∞ (see [`BoxRay::span`]).
+        let dir = ray.dir + DVec3::ZERO;
         BoxRay {
             origin: ray.origin,
             dir: ray.dir,
-            inv: ray.dir.recip(),
+            inv: dir.recip(),
         }
     }
 
     /// The slab test: the part `[enter, exit]` of `[t0, t1]` in which the
     /// ray is inside the closed box `b`, or `None`. A direction component
-    /// of 0 makes its quotients infinite, or NaN for an origin on one of
-    /// the slab's faces: a ray along the face, which is in the closed box,
-    /// so the slab bounds no t then.
+    /// of 0 has the reciprocal +∞, so its slab's quotients are ±∞ (all of
+    /// t, or none) or, for an origin on one of its faces (a ray along the
+    /// face, which is in the closed box), NaN, which bounds no t: every
+    /// comparison with a NaN is false, and each `if` below then keeps what
+    /// it had (the usual robust form, as pbrt's `Bounds3::IntersectP`).
     #[inline(always)]
     pub fn span(&self, b: &Aabb, t0: f64, t1: f64) -> Option<(f64, f64)> {
-        let a = (b.lo - self.origin) * self.inv;
-        let c = (b.hi - self.origin) * self.inv;
-        let along = a.is_nan_mask() | c.is_nan_mask();
-        let near = DVec3::select(along, DVec3::NEG_INFINITY, a.min(c));
-        let far = DVec3::select(along, DVec3::INFINITY, a.max(c));
-        let enter = t0.max(near.x).max(near.y).max(near.z);
-        let exit = t1.min(far.x).min(far.y).min(far.z);
+        let (mut enter, mut exit) = (t0, t1);
+        for k in 0..3 {
+            let ta = (b.lo[k] - self.origin[k]) * self.inv[k];
+            let tb = (b.hi[k] - self.origin[k]) * self.inv[k];
+            let (near, far) = if ta > tb { (tb, ta) } else { (ta, tb) };
+            enter = if near > enter { near } else { enter };
+            exit = if far < exit { far } else { exit };
+        }
         (enter <= exit).then_some((enter, exit))
     }
 }
@@ -184,6 +191,11 @@ fn visit_each<'b>(
     ControlFlow::Continue(())
 }
 
+/// What a walk keeps of the nodes it has still to visit, kept by the
+/// walker from one walk to the next (a hierarchy's far children).
+#[derive(Clone, Debug, Default)]
+pub struct WalkStack(Vec<(u32, f64)>);
+
 /// A structure over the objects' boxes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Structure {
@@ -210,18 +222,25 @@ impl Structure {
     /// object straddles cells). Every object whose box the ray meets at
     /// some t in `[tmin, limit]`, the limit as it stands when the walk
     /// reaches that t, is visited.
-    pub fn walk(&self, ray: &Ray, tmin: f64, limit: f64, visit: impl FnMut(usize) -> Step) -> ControlFlow<()> {
+    pub fn walk(
+        &self,
+        ray: &Ray,
+        tmin: f64,
+        limit: f64,
+        stack: &mut WalkStack,
+        visit: impl FnMut(usize) -> Step,
+    ) -> ControlFlow<()> {
         match self {
-            Structure::Bvh(b) => b.walk(&BoxRay::new(ray), tmin, limit, visit),
+            Structure::Bvh(b) => b.walk(&BoxRay::new(ray), tmin, limit, &mut stack.0, visit),
             Structure::Octree(o) => o.walk(&BoxRay::new(ray), tmin, limit, visit),
         }
     }
 
     /// Every object whose box `ray` meets beyond `tmin`, into `out`,
     /// ascending, each once.
-    pub fn candidates(&self, ray: &Ray, tmin: f64, out: &mut Vec<usize>) {
+    pub fn candidates(&self, ray: &Ray, tmin: f64, stack: &mut WalkStack, out: &mut Vec<usize>) {
         out.clear();
-        let _ = self.walk(ray, tmin, f64::INFINITY, |i| {
+        let _ = self.walk(ray, tmin, f64::INFINITY, stack, |i| {
             out.push(i);
             ControlFlow::Continue(f64::INFINITY)
         });
@@ -271,7 +290,7 @@ pub(crate) mod tests {
                 Structure::Octree(Octree::build(&boxes)),
             ] {
                 let mut v = Vec::new();
-                s.candidates(&ray, 0.0, &mut v);
+                s.candidates(&ray, 0.0, &mut WalkStack::default(), &mut v);
                 assert_eq!(v, through, "{s:?}");
             }
         }

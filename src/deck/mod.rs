@@ -26,7 +26,9 @@
 //!   Columns count characters: a UTF-8 character, or a byte that is not
 //!   part of one, is one column.
 //! - A deck longer than [`MAX_DECK_BYTES`] (64 MiB) is an error at the first
-//!   byte past the limit; [`read_deck_file`] reads no more than that.
+//!   byte past the limit; [`read_deck_file`] reads no more than that. A
+//!   deck of more than [`MAX_OBJECTS`] object records (1,000,000) is an
+//!   error at the first name past the limit.
 //! - Names (surfaces, lights, objects) are case-sensitive, 1–10 characters
 //!   of `[A-Za-z0-9_]`; a word that is a number is never a name (`5` where a
 //!   name is expected is an error), but `2nd` is a name.
@@ -218,6 +220,12 @@ pub use parse::{MAX_MAGNITUDE, MIN_SIZE};
 /// sixteenth of a raster's [`crate::raster::MAX_PIXELS`], since a deck may
 /// paste several. The port's bound: the thesis's textures are 256×256.
 pub const MAX_TEXELS: usize = 4096 * 4096;
+
+/// The most object records a deck may have (key shapes and deleted
+/// objects count): the port's limit. A 64 MiB deck can hold some two
+/// million short ones, and reading and preparing an object takes about
+/// 1.5 kB, so the limit keeps the largest deck within about 1.5 GB.
+pub const MAX_OBJECTS: usize = 1_000_000;
 
 /// The reading limit of a deck texture ([`MAX_TEXELS`]).
 pub const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {

@@ -6,7 +6,7 @@
 use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use super::parse::Num;
-use super::{Builder, DeckError, ObjEntry};
+use super::{Builder, DeckError, ObjEntry, MAX_OBJECTS};
 use crate::scene::Pos;
 use crate::types::{Axis, CurveKind, ObjectRecord, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
@@ -169,6 +169,15 @@ impl Builder<'_> {
     fn declare(&mut self) -> Result<(String, usize), DeckError> {
         let (name, pos) = self.p.name("an object name")?;
         self.p.name = Some(name.clone());
+        if self.entries.len() >= MAX_OBJECTS {
+            return Err(self.p.error_at(
+                pos,
+                format!(
+                    "a deck may have at most {MAX_OBJECTS} object records (the port's limit, which keeps a render of \
+                     the largest deck within about 1.5 GB of memory): this is one more"
+                ),
+            ));
+        }
         if let Some(&i) = self.object_index.get(&name) {
             let line = self.entries[i].pos.line;
             return Err(self

@@ -4,6 +4,7 @@
 //! render, not by the object's record, so the records need nothing of the
 //! driver and no contour of the moment can carry another shape's cache.
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use super::{CapGrid, QueryBounds};
@@ -45,14 +46,41 @@ impl SweepCache {
 
 /// The caches of `scene.objects[i]`, in their order: `None` for an object
 /// that is not a sweep or has nothing to keep. Made after the boxes are
-/// final (`prepare_sweeps`, then `widen_tbox`).
+/// final (`prepare_sweeps`, then `widen_tbox`). Objects with the same
+/// contour, box and class share one cache (a scene of a thousand copies of
+/// one star makes its cap grid once).
 pub fn prepare_caches(scene: &Scene) -> Vec<Option<Arc<SweepCache>>> {
+    let mut made: HashMap<Vec<u64>, Option<Arc<SweepCache>>> = HashMap::new();
     scene
         .objects
         .iter()
         .map(|obj| match &obj.shape {
-            Shape::Sweep(sw) => SweepCache::new(obj.class, sw).map(Arc::new),
+            Shape::Sweep(sw) => made
+                .entry(key(obj.class, sw))
+                .or_insert_with(|| SweepCache::new(obj.class, sw).map(Arc::new))
+                .clone(),
             _ => None,
         })
         .collect()
+}
+
+/// Everything of an object [`SweepCache::new`] may read, as bits: equal
+/// keys make equal caches.
+fn key(class: PrimitiveClass, sw: &SweepShape) -> Vec<u64> {
+    let b = &sw.bbox;
+    let mut k = vec![
+        class as u64,
+        sw.orientt as u64,
+        sw.curve as u64,
+        sw.segment as u64,
+        sw.length.to_bits(),
+        sw.scale.to_bits(),
+        sw.orientation.to_bits(),
+    ];
+    k.extend([b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax].map(f64::to_bits));
+    for c in sw.u.iter().chain(&sw.v) {
+        k.extend([c.a, c.b, c.c, c.d, c.max, c.min, c.first, c.last].map(f64::to_bits));
+    }
+    k.push(sw.u.len() as u64);
+    k
 }
