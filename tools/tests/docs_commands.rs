@@ -23,12 +23,15 @@
 //!   display and waits for a key); `tools bench` renders at 32×32 and `tools
 //!   fuzz` tries 300 inputs unless the line says otherwise.
 //! - The placeholder DECK is `film200.deck`, the commercial's scene as a
-//!   film of 200 frames: DECK stands for any deck, and docs/film.md's recipe
+//!   film of 200 frames: DECK stands for any deck, and docs/farm.md's recipe
 //!   for a long film renders frames 101..200. A Slurm task script runs
 //!   with SLURM_ARRAY_TASK_ID=1, SLURM_CPUS_PER_TASK=1 and
 //!   SLURM_SUBMIT_DIR the page's folder.
 //! - Not run, with the reason, by [`skip`]: cargo's own commands, Slurm
-//!   submissions, GNU parallel over remote hosts, the tools that time or
+//!   submissions (docs/farm.md's recipes call the port's programs through
+//!   the farm/ scripts, which CI's farm/check.sh runs on a one-node
+//!   cluster; [`farm_md_quotes_the_scripts_and_the_lines_ci_runs`] holds the
+//!   page to them), GNU parallel over remote hosts, the tools that time or
 //!   draw for minutes or write into the checkout, and lines whose outside
 //!   program (`parallel`, `povray`, …) is not installed. A synopsis (a
 //!   `[…]` group or an `…`) is not run either.
@@ -691,4 +694,54 @@ fn every_link_of_the_docs_leads_somewhere() {
         }
     }
     assert!(broken.is_empty(), "links that lead nowhere:\n{}", broken.join("\n"));
+}
+
+/// docs/farm.md gives the farm's recipes exactly as CI runs them: each
+/// task script of farm/slurm/ is quoted whole in a code block, each line of
+/// a block marked `<!-- farm/check.sh runs these lines -->` is in a line of
+/// farm/check.sh, and .ci/run runs farm/check.sh.
+#[test]
+fn farm_md_quotes_the_scripts_and_the_lines_ci_runs() {
+    let page = std::fs::read_to_string(repo().join("docs/farm.md")).unwrap();
+    let check = std::fs::read_to_string(repo().join("farm/check.sh")).unwrap();
+    let ci = std::fs::read_to_string(repo().join(".ci/run")).unwrap();
+    assert!(
+        ci.lines().any(|l| l.trim() == "bash farm/check.sh"),
+        ".ci/run does not run farm/check.sh"
+    );
+    let fenced: Vec<String> = page
+        .split("```")
+        .skip(1)
+        .step_by(2)
+        .map(|b| b.split_once('\n').map_or("", |(_, body)| body).to_string())
+        .collect();
+    let mut scripts = 0;
+    for e in std::fs::read_dir(repo().join("farm/slurm")).unwrap() {
+        let path = e.unwrap().path();
+        if path.extension().is_some_and(|x| x == "sbatch") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(
+                fenced.contains(&text),
+                "docs/farm.md does not quote {} as it is",
+                path.display()
+            );
+            scripts += 1;
+        }
+    }
+    assert_eq!(scripts, 2, "farm/slurm/ has film.sbatch and still.sbatch");
+    let marker = "<!-- farm/check.sh runs these lines -->\n```";
+    let marked: Vec<&str> = page.split(marker).skip(1).collect();
+    assert!(
+        marked.len() >= 2,
+        "docs/farm.md marks the Slurm and GNU parallel recipes"
+    );
+    for block in marked {
+        let body = block.split_once('\n').unwrap().1.split("```").next().unwrap();
+        for line in body.lines().filter(|l| !l.trim().is_empty()) {
+            assert!(
+                check.lines().any(|c| c.contains(line)),
+                "docs/farm.md's recipe line is not one farm/check.sh runs: {line}"
+            );
+        }
+    }
 }
