@@ -126,17 +126,28 @@ fn run(args: &Args) -> Result<(), Failure> {
             .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
     }
     if args.list {
-        println!("# K\tU\tV\tX\tY ({} pixels a unit)", editor.plane.scale);
-        for (k, p) in editor.contour.points.iter().enumerate() {
-            let (x, y) = editor.plane.to_screen([p.u, p.v]);
-            println!("{}\t{}\t{}\t{}\t{}", k + 1, p.u, p.v, x.round(), y.round());
-        }
+        list(&editor)?;
     }
     if let Some(out) = &args.screenshot {
         let screen = screen::draw(&editor, &fine_preview(&editor));
         write_png(out, &screen)?;
     }
     Ok(())
+}
+
+/// `--list`: the points on standard output; a reader that stops early
+/// (`| head`) ends the list quietly, as with any Unix filter.
+fn list(editor: &Editor) -> Result<(), Failure> {
+    use std::io::Write;
+    let mut text = format!("# K\tU\tV\tX\tY ({} pixels a unit)\n", editor.plane.scale);
+    for (k, p) in editor.contour.points.iter().enumerate() {
+        let (x, y) = editor.plane.to_screen([p.u, p.v]);
+        text.push_str(&format!("{}\t{}\t{}\t{}\t{}\n", k + 1, p.u, p.v, x.round(), y.round()));
+    }
+    match std::io::stdout().lock().write_all(text.as_bytes()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::other(format!("standard output: {e}"))),
+        _ => Ok(()),
+    }
 }
 
 /// The preview a screenshot shows: the finer pass, as the window shows it

@@ -14,6 +14,7 @@ pub mod heatmap;
 pub mod join;
 pub mod measure;
 pub mod pov;
+pub mod preview;
 pub mod stability;
 pub mod textures;
 pub mod vs_povray;

@@ -1,7 +1,7 @@
 //! Tools of the port: `texture` makes the texture raster the decks use;
 //! `frames` draws a key-frame deck's filmstrip; `gallery` draws every
 //! picture of the docs again from its deck; `bench` times the renderer
-//! on a deck; `chart` draws the speed/accuracy
+//! on a deck; `preview` times the contour editor's first preview; `chart` draws the speed/accuracy
 //! chart; `goal` measures the adaptive sampler's goal (its
 //! error and CPU time over the table's); `heatmap` shows where the
 //! adaptive sampler spends its rays;
@@ -74,6 +74,26 @@ enum Command {
         runs: usize,
         #[command(flatten)]
         render: RenderArgs,
+    },
+    /// Time the contour editor from an edit to the first preview on its screen (the quick
+    /// pass, 128×128 at one ray a pixel): a point moved, then the scene prepared, rendered
+    /// and drawn; N edits, the median.
+    Preview {
+        /// The deck.
+        #[arg(default_value = "legacy_pascal/decks/fig5_8.deck")]
+        deck: PathBuf,
+        /// The sweep to edit.
+        #[arg(default_value = "goblet")]
+        name: String,
+        /// The point moved (from 1).
+        #[arg(long, default_value_t = 11)]
+        point: usize,
+        /// Timed edits (after one untimed).
+        #[arg(long, default_value_t = 21)]
+        runs: usize,
+        /// Render threads (the goal is for one core).
+        #[arg(long, default_value_t = 1)]
+        threads: usize,
     },
     /// Draw the speed/accuracy chart: time samplers (error against render
     /// time) and root solvers (silhouette pixels wrong against time per ray).
@@ -247,6 +267,13 @@ fn run(command: Command) -> Result<(), Failure> {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
         Command::Stability { out } => tools::stability::run(&out),
+        Command::Preview {
+            deck,
+            name,
+            point,
+            runs,
+            threads,
+        } => tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256)),
         Command::Fuzz {
             target,
             seed,
