@@ -35,5 +35,6 @@ pub mod robust;
 pub mod sampler;
 pub mod scene;
 pub mod shapes;
+pub mod show;
 pub mod trace;
 pub mod types;
