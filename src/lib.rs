@@ -37,6 +37,7 @@ pub mod robust;
 pub mod sampler;
 pub mod scene;
 pub mod shapes;
+pub mod show;
 pub mod tile;
 pub mod trace;
 pub mod types;

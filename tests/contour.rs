@@ -214,3 +214,58 @@ fn a_new_deck_is_a_deck_with_a_sweep_to_edit() {
     let deck = DeckInput::read(&dir.path().join("n.deck")).unwrap();
     assert!(deck.initialize(Fidelity::Thesis).is_ok());
 }
+
+#[test]
+fn without_a_display_the_window_says_how_to_do_without() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = decks().join("fig5_8.deck");
+    let o = Command::new(env!("CARGO_BIN_EXE_contour"))
+        .args([deck.to_str().unwrap(), "goblet"])
+        .current_dir(dir.path())
+        .env_remove("DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("cannot open a window (DISPLAY is not set)"), "{e}");
+    assert!(
+        e.contains("--script EDITS -o NEW.deck") && e.contains("xvfb-run"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_screenshot_and_the_list_are_made_without_a_window() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("e"), "move 1 0.5 0\n").unwrap();
+    let deck = decks().join("fig5_10.deck");
+    let o = contour(
+        &[
+            deck.to_str().unwrap(),
+            "last",
+            "--script",
+            "e",
+            "--screenshot",
+            "s.png",
+            "--list",
+            "--time",
+            "0.5",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let list = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = list.lines().collect();
+    assert!(
+        lines[0].starts_with("# K\tU\tV\tX\tY (") && lines[0].ends_with(" pixels a unit)"),
+        "{list}"
+    );
+    assert_eq!(lines.len(), 5);
+    assert!(lines[1].starts_with("1\t1.5\t1\t"), "{list}");
+    let png = raytrace::image_file::read_image_file(&dir.path().join("s.png")).unwrap();
+    assert_eq!((png.width, png.height), (1024, 864));
+    let o = contour(&[deck.to_str().unwrap(), "last", "--screenshot", "s.ppm"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let o = contour(&[deck.to_str().unwrap(), "last", "--list", "--time", "2"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+}

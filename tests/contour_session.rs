@@ -241,3 +241,13 @@ fn the_screen_shows_the_points_and_the_refusal() {
     let red = |fb: &raytrace::psout::Framebuffer| fb.pixels.iter().filter(|&&p| p == 0xFF5050).count();
     assert!(red(&refused) > red(&ok) + 100, "the reason is written in red");
 }
+
+#[test]
+fn a_script_stops_at_the_line_it_cannot_make() {
+    let mut e = editor("fig5_10.deck", "last");
+    let err = e.run_script("delete 1\n# a comment\ndelete 4\n", "edits").unwrap_err();
+    assert_eq!(err, "edits:3: there is no point 4: the points are 1..3");
+    assert_eq!(e.contour.points.len(), 3, "the edits before it are made");
+    assert_eq!(e.undoable(), 1);
+    assert!(e.message.is_none());
+}

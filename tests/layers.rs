@@ -51,6 +51,8 @@ const LAYERS: &[(&str, u32)] = &[
     // The main program; the command line's words for a render.
     ("raytrace", 9),
     ("cli", 10),
+    // The picture as it renders (`raytrace --show`, `--watch`).
+    ("show", 10),
     // The port's contour editor (`contour`): edits a deck's sweep, shows
     // it rendered.
     ("editor", 11),

@@ -19,9 +19,7 @@ use std::process::ExitCode;
 use clap::Parser;
 use raytrace::cli::{DeckInput, FidelityArg};
 use raytrace::editor::document::Document;
-use raytrace::editor::preview::{render_pass, FINE};
-use raytrace::editor::screen::{self, Preview};
-use raytrace::editor::script;
+use raytrace::editor::screen;
 use raytrace::editor::session::{Editor, KEYS_HELP};
 use raytrace::exit::{exit_code, Failure};
 use raytrace::output::{write_atomically, OutputError};
@@ -107,12 +105,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
     if let Some(path) = &args.script {
         let (text, file) = read_script(path)?;
-        for line in script::parse(&text, &file).map_err(Failure::input)? {
-            editor.edit(line.edit);
-            if let Some(m) = editor.message.take() {
-                return Err(Failure::input(format!("{file}:{}: {}", line.line, m.text)));
-            }
-        }
+        editor.run_script(&text, &file).map_err(Failure::input)?;
     }
     if !headless {
         return window(editor, &args.deck);
@@ -129,7 +122,7 @@ fn run(args: &Args) -> Result<(), Failure> {
         list(&editor)?;
     }
     if let Some(out) = &args.screenshot {
-        let screen = screen::draw(&editor, &fine_preview(&editor));
+        let screen = screen::screenshot(&editor);
         write_png(out, &screen)?;
     }
     Ok(())
@@ -147,29 +140,6 @@ fn list(editor: &Editor) -> Result<(), Failure> {
     match std::io::stdout().lock().write_all(text.as_bytes()) {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::other(format!("standard output: {e}"))),
         _ => Ok(()),
-    }
-}
-
-/// The preview a screenshot shows: the finer pass, as the window shows it
-/// once idle.
-fn fine_preview(editor: &Editor) -> Preview {
-    if let Err(r) = editor.contour.check() {
-        return Preview {
-            note: Some(format!("not rendered: {r}")),
-            ..Preview::default()
-        };
-    }
-    let job = editor.job();
-    match render_pass(&job, FINE) {
-        Ok(raster) => Preview {
-            raster: Some(raster),
-            mask: job.mask(FINE),
-            note: None,
-        },
-        Err(e) => Preview {
-            note: Some(e),
-            ..Preview::default()
-        },
     }
 }
 

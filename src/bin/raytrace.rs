@@ -92,7 +92,20 @@ struct Cli {
     /// Write the listing's debug log (the Pascal `debugf`: a line per scanline, kfTIRcnt) to FILE.
     #[arg(long, value_name = "FILE")]
     debug: Option<PathBuf>,
+
+    /// Show the picture on psout's 1024×864 screen in a window as its rows finish, and keep
+    /// the window until a key is pressed (needs an X display).
+    #[arg(long)]
+    show: bool,
+
+    /// Show the picture as --show does, and render again (a quick pass first) whenever the
+    /// deck file changes, until q or Esc; each render writes the outputs again.
+    #[arg(long)]
+    watch: bool,
 }
+
+#[path = "raytrace/show.rs"]
+mod show;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -104,25 +117,100 @@ const DEFAULT_FOLDER: &str = "raster";
 
 /// Reads the deck, checks and reserves every output, renders the still or
 /// the film's frames (each written as soon as it is done), and prints the
-/// summary.
+/// summary; with `--show` in a window as the rows finish, with `--watch`
+/// again each time the deck changes.
 fn run(cli: &Cli) -> Result<(), Failure> {
     raytrace::output::remove_temp_files_on_signals()
         .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
     let opts = cli.render.options.options()?;
-    let output_format = check_output_names(cli)?;
-    let deck = match &cli.deck {
-        Some(path) => DeckInput::read(path)?,
-        None => DeckInput {
+    // Usage errors of the output names come first, before the deck is read.
+    let _ = check_output_names(cli)?;
+    let watched = match (&cli.deck, cli.watch) {
+        (Some(path), true) if path.as_os_str() != raytrace::cli::STDIN => Some(path.clone()),
+        (_, true) => {
+            return Err(Failure::usage(
+                "--watch renders a deck file again when it changes: name one (not - or the default deck)",
+            ))
+        }
+        _ => None,
+    };
+    if cli.show || cli.watch {
+        if let Some(reason) = raytrace::psout::display_missing() {
+            return Err(show::no_display(reason));
+        }
+    }
+    let deck = read_deck(cli)?;
+    let prepared = cli.render.scene(&deck, &opts)?;
+    if !(cli.show || cli.watch) {
+        return render_deck(cli, &opts, &deck, &prepared, None).map(|_| ());
+    }
+    let mut screen = show::Screen::open(&deck.name, watched.clone())?;
+    match render_deck(cli, &opts, &deck, &prepared, Some(&mut screen))? {
+        Outcome::Quit if watched.is_none() => {
+            return Err(Failure::other("stopped in the window: nothing more was written"))
+        }
+        Outcome::Quit => return Ok(()),
+        Outcome::Done | Outcome::Changed => {}
+    }
+    let Some(path) = watched else {
+        screen.hold();
+        return Ok(());
+    };
+    loop {
+        if !screen.wait_for_change() {
+            return Ok(());
+        }
+        let again = DeckInput::read(&path).and_then(|deck| {
+            let prepared = cli.render.scene(&deck, &opts)?;
+            let img = &prepared.scene().image;
+            screen.quick(&show::quick(&cli.render, &deck, &opts)?, (img.width, img.height));
+            render_deck(cli, &opts, &deck, &prepared, Some(&mut screen))
+        });
+        match again {
+            Ok(Outcome::Quit) => return Ok(()),
+            Ok(_) => {}
+            // The last picture stays; the next change is rendered again.
+            Err(e) => eprintln!("raytrace: {e}"),
+        }
+    }
+}
+
+/// The deck the command line names, or the embedded default deck.
+fn read_deck(cli: &Cli) -> Result<DeckInput, Failure> {
+    match &cli.deck {
+        Some(path) => DeckInput::read(path),
+        None => Ok(DeckInput {
             source: DEFAULT_DECK.as_bytes().to_vec(),
             name: "nec_morph.deck".to_string(),
             dir: PathBuf::from("legacy_pascal/decks"),
             stem: "default".to_string(),
-        },
-    };
-    let prepared = cli.render.scene(&deck, &opts)?;
+        }),
+    }
+}
+
+/// How a render in the window ended.
+enum Outcome {
+    Done,
+    /// q or Esc (or the window closed under --watch): stop.
+    Quit,
+    /// The watched deck changed during the render: render it again.
+    Changed,
+}
+
+/// Reserves the outputs of the prepared deck, renders its still or frames
+/// (in the window when `screen` is given) and writes them, and prints the
+/// summary line.
+fn render_deck(
+    cli: &Cli,
+    opts: &Options,
+    deck: &DeckInput,
+    prepared: &Prepared,
+    mut screen: Option<&mut show::Screen>,
+) -> Result<Outcome, Failure> {
+    let output_format = check_output_names(cli)?;
     let scene = prepared.scene();
-    let rows = cli.farm.rows(&prepared)?;
-    let mut job = Job::reserve(cli, scene, &deck, output_format)?;
+    let rows = cli.farm.rows(prepared)?;
+    let mut job = Job::reserve(cli, scene, deck, output_format)?;
 
     let pool = cli.render.thread_pool()?;
     let (written, film) = job.summary();
@@ -140,12 +228,19 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         bar.set_message(job.tracing(&deck.name, frame));
         let progress = || bar.inc(1);
         let request = Request::frame(frame).rows(rows.clone()).progress(&progress);
-        let render = pool
-            .install(|| raytrace::raytrace::render(&prepared, &request))
+        let rendered = match screen.as_deref_mut() {
+            Some(s) => match s.render(prepared, &request, &pool, &job.tracing(&deck.name, frame)) {
+                show::Shown::Done(r) => r,
+                show::Shown::Quit => return Ok(Outcome::Quit),
+                show::Shown::Changed => return Ok(Outcome::Changed),
+            },
+            None => pool.install(|| raytrace::raytrace::render(prepared, &request)),
+        };
+        let render = rendered
             .and_then(|r| r.check_finite().map(|()| r))
             .map_err(|e| Failure::other(format!("{}: {e}", job.what(&deck.name, frame))))?;
         rays += render.stats.rays;
-        job.write(frame, render, &prepared)?;
+        job.write(frame, render, prepared)?;
     }
     let elapsed = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
@@ -168,13 +263,13 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             film.as_ref().map(|f| format!("{f}, ")).unwrap_or_default(),
             img.width,
             img.height,
-            sampling(&opts, img),
+            sampling(opts, img),
             film.filter(|_| !frames.is_empty())
                 .map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
                 .unwrap_or_default()
         );
     }
-    Ok(())
+    Ok(Outcome::Done)
 }
 
 /// What a run writes, reserved before the render: one still (its image, a

@@ -13,6 +13,7 @@ use super::draw::{blank, fill, line, mark, picture, text, wrap, Mark, Rect};
 use super::keyshapes::{self, ChainView};
 use super::model::{class_word, curve_word};
 use super::plane::Plane;
+use super::preview::{render_pass, FINE};
 use super::session::Editor;
 use crate::psout::Framebuffer;
 use crate::raster::Raster;
@@ -98,6 +99,32 @@ pub struct Preview {
     pub mask: usize,
     /// A render that failed, or a contour that is not rendered.
     pub note: Option<String>,
+}
+
+/// The screen as the window shows it once idle: the finer preview
+/// rendered at once (`contour --screenshot`, the docs' pictures).
+pub fn screenshot(editor: &Editor) -> Framebuffer {
+    let preview = match editor.contour.check() {
+        Err(r) => Preview {
+            note: Some(format!("not rendered: {r}")),
+            ..Preview::default()
+        },
+        Ok(_) => {
+            let job = editor.job();
+            match render_pass(&job, FINE) {
+                Ok(raster) => Preview {
+                    raster: Some(raster),
+                    mask: job.mask(FINE),
+                    note: None,
+                },
+                Err(e) => Preview {
+                    note: Some(e),
+                    ..Preview::default()
+                },
+            }
+        }
+    };
+    draw(editor, &preview)
 }
 
 /// The screen of `editor` with `preview`.
@@ -356,7 +383,7 @@ fn draw_info(fb: &mut Framebuffer, editor: &Editor) -> i64 {
     lines.push((String::new(), TEXT));
     match c.check() {
         Ok(_) => lines.push(("a closed curve: s saves it".into(), GOOD)),
-        Err(r) => lines.extend(wrap(&format!("cannot save: {r}"), 54).into_iter().map(|l| (l, BAD))),
+        Err(r) => lines.extend(wrap(&format!("cannot save: {r}"), 52).into_iter().map(|l| (l, BAD))),
     }
     lines.push((String::new(), TEXT));
     for help in [

@@ -10,7 +10,7 @@
 //! Points are counted from 1, as the window numbers them. Blank lines and
 //! lines starting with `#` are skipped; words are case-insensitive.
 
-use super::model::{Contour, Edit};
+use super::model::Edit;
 use crate::types::{CurveKind, PrimitiveClass};
 
 /// An edit of the script and the line it stands on.
@@ -33,15 +33,6 @@ pub fn parse(text: &str, file: &str) -> Result<Vec<ScriptLine>, String> {
         out.push(ScriptLine { line, edit });
     }
     Ok(out)
-}
-
-/// Applies the script's edits in order; an edit that cannot be made is an
-/// error at its line, and the contour is left as the edits before it made it.
-pub fn apply(contour: &mut Contour, script: &[ScriptLine], file: &str) -> Result<(), String> {
-    for s in script {
-        contour.apply(s.edit).map_err(|e| format!("{file}:{}: {e}", s.line))?;
-    }
-    Ok(())
 }
 
 /// The edit of one line's words.
@@ -155,20 +146,5 @@ mod tests {
         ] {
             assert_eq!(parse(text, "e").unwrap_err(), want, "{text}");
         }
-    }
-
-    #[test]
-    fn an_edit_that_cannot_be_made_stops_at_its_line() {
-        let mut c = Contour::of_deck(
-            PrimitiveClass::Translation,
-            CurveKind::Bspline,
-            &[[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]],
-            1.0,
-            1.0,
-        );
-        let s = parse("delete 1\ndelete 4\n", "e").unwrap();
-        let e = apply(&mut c, &s, "e").unwrap_err();
-        assert_eq!(e, "e:2: there is no point 4: the points are 1..3");
-        assert_eq!(c.points.len(), 3);
     }
 }

@@ -171,6 +171,19 @@ impl Editor {
         }
     }
 
+    /// Makes the edits of a script ([`super::script`]) one by one as
+    /// [`Editor::edit`] does; the first that cannot be parsed or made is an
+    /// error at `FILE:LINE`, the edits before it made.
+    pub fn run_script(&mut self, text: &str, file: &str) -> Result<(), String> {
+        for line in super::script::parse(text, file)? {
+            self.edit(line.edit);
+            if let Some(m) = self.message.take() {
+                return Err(format!("{file}:{}: {}", line.line, m.text));
+            }
+        }
+        Ok(())
+    }
+
     fn refuse(&mut self, r: Refusal) -> Effect {
         self.message = Some(Message { text: r.0, error: true });
         Effect::Redraw

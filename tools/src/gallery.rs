@@ -39,6 +39,15 @@ pub enum Drawing {
     /// `--sampler adaptive` at `size`² and `mask`² rays a pixel: the image
     /// beside the heat map of its rays, as `tools heatmap` writes it.
     Heatmap { size: usize, mask: usize },
+    /// The contour editor's screen on the deck's sweep `sweep` after the
+    /// edits of `script` (one a line, as `--script` reads them), the time
+    /// slider at `time` for a key shape, as `contour DECK NAME --screenshot
+    /// FILE` writes it.
+    Editor {
+        sweep: &'static str,
+        script: &'static str,
+        time: Option<f64>,
+    },
 }
 
 /// One picture of the docs.
@@ -64,6 +73,18 @@ const fn render(image: &'static str, deck: &'static str) -> Picture {
         image,
         deck,
         drawing: Drawing::Render,
+    }
+}
+
+const fn editor(image: &'static str, deck: &'static str, sweep: &'static str, script: &'static str) -> Picture {
+    Picture {
+        image,
+        deck,
+        drawing: Drawing::Editor {
+            sweep,
+            script,
+            time: None,
+        },
     }
 }
 
@@ -155,6 +176,33 @@ pub const GALLERY: &[Picture] = &[
         128,
     ),
     render("docs/img/tutorial_5_path.png", "legacy_pascal/tutorial/5_path.deck"),
+    editor(
+        "docs/img/editor_goblet.png",
+        "legacy_pascal/decks/fig5_8.deck",
+        "goblet",
+        "",
+    ),
+    editor(
+        "docs/img/editor_refused.png",
+        "legacy_pascal/decks/fig5_8.deck",
+        "goblet",
+        "move 11 0.2 0\ndelete 20\n",
+    ),
+    Picture {
+        image: "docs/img/editor_keyshapes.png",
+        deck: "legacy_pascal/decks/fig5_10.deck",
+        drawing: Drawing::Editor {
+            sweep: "last",
+            script: "",
+            time: Some(0.5),
+        },
+    },
+    editor(
+        "docs/img/editor_tutorial.png",
+        "legacy_pascal/tutorial/2_sweep.deck",
+        "star",
+        "",
+    ),
 ];
 
 /// The checkout the tools were built from: the pictures and decks of
@@ -187,6 +235,14 @@ impl Picture {
             Drawing::Heatmap { size, mask } => {
                 format!("cargo run -p tools --release -- heatmap {deck} --size {size} --mask {mask} --out {image}")
             }
+            Drawing::Editor { sweep, script, time } => {
+                let time = time.map(|t| format!(" --time {t}")).unwrap_or_default();
+                let edits = match script {
+                    "" => String::new(),
+                    s => format!(" --script EDITS (EDITS: {})", s.trim_end().replace('\n', "; ")),
+                };
+                format!("cargo run --release --bin contour -- {deck} {sweep}{time} --screenshot {image}{edits}")
+            }
         }
     }
 
@@ -209,8 +265,21 @@ impl Picture {
                 Ok(crate::join::strip_of(&picked))
             }
             Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, size, mask)?.0),
+            Drawing::Editor { sweep, script, time } => editor_screen(&deck, sweep, script, time),
         }
     }
+}
+
+/// The contour editor's screen, as `contour --screenshot` draws it.
+fn editor_screen(deck: &Path, sweep: &str, script: &str, time: Option<f64>) -> Result<Raster, String> {
+    use raytrace::editor::{document::Document, screen::screenshot, session::Editor};
+    let input = raytrace::cli::DeckInput::read(deck).map_err(|e| e.message)?;
+    let mut editor = Editor::new(Document::open(input, sweep, Fidelity::Thesis).map_err(|e| e.message)?);
+    if let Some(t) = time {
+        editor.time = t;
+    }
+    editor.run_script(script, "EDITS")?;
+    Ok(screenshot(&editor).to_raster())
 }
 
 /// A film deck's first `limit` frames (all, when it has fewer) rendered as

@@ -1,5 +1,5 @@
 //! Docs that run: every command line of README.md, docs/*.md and
-//! legacy_pascal/*.md that invokes `cargo`, `raytrace`, `psout` or `tools`
+//! legacy_pascal/*.md that invokes `cargo`, `raytrace`, `psout`, `contour` or `tools`
 //! is run, or when it cannot be, checked, so that a renamed flag or binary
 //! fails here and not in a reader's hands.
 //!
@@ -11,7 +11,8 @@
 //! What happens to each:
 //! - A block's command lines run in order as one bash script (`set -eo
 //!   pipefail`) with the block's plumbing (`mkdir`, `for`, `cd`, an
-//!   assignment); a block's other lines are not run. An inline `cargo`
+//!   assignment, a `printf` that writes a file the commands read); a
+//!   block's other lines are not run. An inline `cargo`
 //!   command runs alone. Every script runs in a temporary copy of what a
 //!   fresh checkout gives the docs' commands (legacy_pascal/ and the texture
 //!   rasters), one copy a page, with stdin empty, and must exit 0: no doc
@@ -20,7 +21,10 @@
 //!   [-p P] [--bin B] -- ARGS` runs B's binary with ARGS; `raytrace` renders
 //!   at `--size 32x32` unless the line sets a size; `psout` writes
 //!   `--screenshot psout-window.png` unless the line does (a window needs a
-//!   display and waits for a key); `tools bench` renders at 32×32 and `tools
+//!   display and waits for a key), and so does `contour` (`--screenshot
+//!   contour-window.png`) unless it writes something else (`-o`, `--list`);
+//!   a `raytrace --show` or `--watch` line is not run (a window that waits
+//!   for a key) but must parse; `tools bench` renders at 32×32 and `tools
 //!   fuzz` tries 300 inputs unless the line says otherwise.
 //! - The placeholder DECK is `film200.deck`, the commercial's scene as a
 //!   film of 200 frames: DECK stands for any deck, and docs/farm.md's recipe
@@ -42,7 +46,7 @@
 //!   (the line with `--help` added exits 0).
 //!
 //! The test lives in the tools package, where `CARGO_BIN_EXE_tools` is
-//! this build's tools; raytrace and psout are the root package's binaries
+//! this build's tools; raytrace, psout and contour are the root package's binaries
 //! beside it, which `cargo test --workspace` builds in the same run (the
 //! test refuses them when they are older than the sources).
 
@@ -107,7 +111,7 @@ fn binaries() -> BTreeMap<&'static str, PathBuf> {
             PathBuf::from(env!("CARGO_BIN_EXE_fidelity-mutants")),
         ),
     ]);
-    for name in ["raytrace", "psout"] {
+    for name in ["raytrace", "psout", "contour"] {
         let path = dir.join(name);
         let built = std::fs::metadata(&path).and_then(|m| m.modified());
         assert!(
@@ -131,6 +135,13 @@ exec REAL --size 32x32 "$@"
 const PSOUT_SHIM: &str = r#"#!/bin/sh
 for a in "$@"; do case $a in --screenshot|-h|--help|-V|--version) exec REAL "$@";; esac; done
 exec REAL --screenshot psout-window.png "$@"
+"#;
+
+/// `contour`: writes its screen instead of opening a window, unless the
+/// line writes a deck or lists the points.
+const CONTOUR_SHIM: &str = r#"#!/bin/sh
+for a in "$@"; do case $a in --screenshot|-o|--output|--list|-h|--help|-V|--version) exec REAL "$@";; esac; done
+exec REAL --screenshot contour-window.png "$@"
 "#;
 
 /// `tools`: `bench` at 32×32 and `fuzz` over 300 inputs unless the line
@@ -161,6 +172,7 @@ esac; done
 case $pkg/$bin in
   raytrace/|raytrace/raytrace) exec raytrace "$@";;
   raytrace/psout) exec psout "$@";;
+  raytrace/contour) exec contour "$@";;
   tools/|tools/tools) exec tools "$@";;
   tools/fidelity-mutants) exec fidelity-mutants "$@";;
 esac
@@ -173,6 +185,7 @@ fn write_shims(dir: &Path, bins: &BTreeMap<&str, PathBuf>) {
     let shims = [
         ("raytrace", RAYTRACE_SHIM),
         ("psout", PSOUT_SHIM),
+        ("contour", CONTOUR_SHIM),
         ("tools", TOOLS_SHIM),
         ("fidelity-mutants", "#!/bin/sh\nexec REAL \"$@\"\n"),
         ("cargo", CARGO_SHIM),
@@ -223,6 +236,9 @@ fn skip(n: &Named, words: &[String]) -> Option<(String, bool)> {
     }
     let parse = |s: &str| Some((s.to_string(), true));
     match (n.program.as_deref(), n.sub.as_deref()) {
+        (Some("raytrace"), _) if has("--show") || has("--watch") => {
+            parse("opens a window that waits for a key (or for the deck to change)")
+        }
         (Some("tools"), Some("chart" | "goal")) => parse("times renders for minutes"),
         (Some("tools"), Some("stability")) => parse("solves hard cases for minutes"),
         (Some("tools"), Some("vs-povray")) => parse("times POV-Ray against the port for minutes"),
@@ -431,7 +447,7 @@ fn plumbing(code: &str) -> bool {
         && (code.is_empty()
             || code.starts_with('#')
             || assignment
-            || ["mkdir", "cd", "for", "do", "done"].contains(&first.as_str()))
+            || ["mkdir", "cd", "for", "do", "done", "printf"].contains(&first.as_str()))
 }
 
 /// What became of a page's lines.
@@ -571,8 +587,9 @@ fn every_command_line_of_the_docs_runs() {
 }
 
 /// The README's usage block gives each program's synopsis as `--help`
-/// gives its options: every long option of `raytrace --help` and `psout
-/// --help` is in it (its flags being real is the mention check's).
+/// gives its options: every long option of `raytrace --help`, `psout
+/// --help` and `contour --help` is in it (its flags being real is the
+/// mention check's).
 #[test]
 fn the_readme_synopsis_has_every_option_of_help() {
     let bins = binaries();
@@ -581,7 +598,7 @@ fn the_readme_synopsis_has_every_option_of_help() {
         .into_iter()
         .find(|b| b.lines.iter().any(|l| l.text.starts_with("raytrace [")))
         .expect("the README has a usage block");
-    for program in ["raytrace", "psout"] {
+    for program in ["raytrace", "psout", "contour"] {
         // The program's lines: its own, and the indented ones after it.
         let mut synopsis = String::new();
         let mut inside = false;

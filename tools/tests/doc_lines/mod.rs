@@ -3,17 +3,18 @@
 //! The rule (the test's doc, docs_commands.rs, says what happens to each):
 //! - In a fenced code block, a line (a line ending in `\` joined with the
 //!   next) is a command line when, outside a trailing `# comment`, it
-//!   starts with `cargo` or has `raytrace`, `psout` or `tools` as a word.
-//!   The block's other lines are its plumbing (`mkdir`, `for`, `cd`, an
+//!   starts with `cargo` or has `raytrace`, `psout`, `contour` or `tools`
+//!   as a word.
+//!   The block's other lines are its plumbing (`mkdir`, `for`, `cd`, `printf`, an
 //!   assignment, a comment) or not the port's (they are not run).
 //! - An inline code span that starts with `cargo ` is a whole command, as
 //!   a block's line is, unless it ends in `--` (then it names the way to
 //!   reach a program, as in "`cargo run --release --` runs raytrace").
-//! - An inline code span that starts with `raytrace`, `psout` or `tools` is
+//! - An inline code span that starts with `raytrace`, `psout`, `contour` or `tools` is
 //!   a program, a flag or a subcommand named in a sentence: a mention.
 
 /// The port's programs, as a doc names them when they are on PATH.
-pub const PROGRAMS: [&str; 4] = ["raytrace", "psout", "tools", "fidelity-mutants"];
+pub const PROGRAMS: [&str; 5] = ["raytrace", "psout", "contour", "tools", "fidelity-mutants"];
 
 /// One command line of a page.
 #[derive(Clone, Debug)]
@@ -168,7 +169,18 @@ pub fn names_a_program(line: &str) -> bool {
         return false;
     }
     let words = words(code);
-    words.first().is_some_and(|w| w == "cargo") || words.iter().any(|w| PROGRAMS.contains(&w.as_str()))
+    words.first().is_some_and(|w| w == "cargo") || (0..words.len()).any(|i| program_at(&words, i))
+}
+
+/// Program names that are also words of prose and of decks' comments
+/// (`{ control points of the closed contour }`): one names the program only
+/// where a command starts, first on the line or after a shell operator.
+const PLAIN_WORDS: [&str; 1] = ["contour"];
+
+/// Whether `words[i]` names one of the port's programs.
+fn program_at(words: &[String], i: usize) -> bool {
+    let w = words[i].as_str();
+    PROGRAMS.contains(&w) && (!PLAIN_WORDS.contains(&w) || i == 0 || ends_stage(&words[i - 1]))
 }
 
 /// A synopsis rather than a command: an optional `[…]` group or an `…`.
@@ -185,7 +197,7 @@ pub fn is_synopsis(line: &str) -> bool {
 /// subcommand and its own options.
 #[derive(Debug, Default, PartialEq)]
 pub struct Named {
-    /// `raytrace`, `psout`, `tools`, `fidelity-mutants`; None for a cargo
+    /// `raytrace`, `psout`, `contour`, `tools`, `fidelity-mutants`; None for a cargo
     /// command that runs no program (`cargo test`, `cargo install`).
     pub program: Option<String>,
     /// The tools subcommand (`join`), when one is named.
@@ -235,7 +247,7 @@ pub fn named(line: &str) -> Option<Named> {
         out.cargo = Some(sub);
         words.get(i + 1..).unwrap_or(&[])
     } else {
-        let at = words.iter().position(|w| PROGRAMS.contains(&w.as_str()))?;
+        let at = (0..words.len()).find(|&i| program_at(&words, i))?;
         out.program = Some(words[at].clone());
         &words[at + 1..]
     };
@@ -281,6 +293,12 @@ mod tests {
         assert_eq!(n.program.as_deref(), Some("tools"));
         assert_eq!(n.sub.as_deref(), Some("join"));
         assert_eq!(flags(&n.args), ["-o"]);
+        assert!(!names_a_program("sweep s r rotation bspline at 0 0 0 { the contour }"));
+        assert!(names_a_program("contour d.deck s --list"));
+        assert_eq!(
+            named("cat e | contour d s --script -").unwrap().args,
+            ["d", "s", "--script", "-"]
+        );
         let n = named("cargo run --release --bin psout -- --screenshot s.png f.ras").unwrap();
         assert_eq!(n.program.as_deref(), Some("psout"));
         let n = named("seq 36 | parallel -S 2/: raytrace d.deck --frames {} | head").unwrap();
