@@ -65,6 +65,9 @@ pub struct Poses<'a> {
     time: Option<f64>,
     /// The moving objects' poses of the instant, as they are made.
     posed: Vec<OnceCell<Pose>>,
+    /// Which of `posed` were made this instant, to be cleared at the next
+    /// (not all of them: a structure's rays reach few).
+    made: RefCell<Vec<usize>>,
 }
 
 impl<'a> Poses<'a> {
@@ -85,14 +88,15 @@ impl<'a> Poses<'a> {
             fidelity,
             time: None,
             posed: vec![OnceCell::new(); moving.len()],
+            made: RefCell::new(Vec::new()),
         }
     }
 
     /// A new instant, film time `time`: every moving object's pose is due.
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
-        for p in &mut self.posed {
-            p.take();
+        for m in self.made.get_mut().drain(..) {
+            self.posed[m].take();
         }
     }
 
@@ -102,6 +106,7 @@ impl<'a> Poses<'a> {
     pub fn get(&self, i: usize) -> &Pose {
         match (self.moving_of[i], self.time) {
             (Some(m), Some(time)) => self.posed[m].get_or_init(|| {
+                self.made.borrow_mut().push(m);
                 let moving = &self.moving[m];
                 moving.pose(&self.objects[moving.object], time, self.fidelity)
             }),
@@ -119,6 +124,9 @@ pub struct Scratch {
     crystals: RefCell<Vec<usize>>,
     /// A walk's nodes to come.
     stack: RefCell<WalkStack>,
+    /// The opaque object that stopped the last shadow ray stopped by one:
+    /// the next shadow ray, from a point near the last, asks it first.
+    blocker: Cell<Option<usize>>,
 }
 
 /// An in-between object of a key-frame chain (§3.2): its contour at the
@@ -371,8 +379,13 @@ pub fn for_each_blocker(
             ControlFlow::Continue(())
         }
         Some(s) => {
-            // Any opaque object stops the ray, whichever is found first;
-            // the crystals it passes are taken in the table's order.
+            // Any opaque object stops the ray, whichever is found first
+            // (the last one that stopped a shadow ray is asked first); the
+            // crystals it passes are taken in the table's order.
+            let last = &snap.scratch.blocker;
+            if last.get().is_some_and(&mut blocks) {
+                return ControlFlow::Break(());
+            }
             let mut crystals = snap.scratch.crystals.borrow_mut();
             crystals.clear();
             s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
@@ -384,7 +397,10 @@ pub fn for_each_blocker(
                         }
                         ControlFlow::Continue(tmax)
                     }
-                    Shadow::Opaque if blocks(i) => ControlFlow::Break(()),
+                    Shadow::Opaque if blocks(i) => {
+                        last.set(Some(i));
+                        ControlFlow::Break(())
+                    }
                     Shadow::Opaque => ControlFlow::Continue(tmax),
                 }
             })?;

@@ -109,7 +109,9 @@ pub const BOX_SLACK: f64 = 1e-9;
 /// ([`crate::shapes::bounding_radius`] of the object's `radius`, as
 /// `prepare` widened it to hold its own box, or its chain's), and by
 /// [`BOX_SLACK`]. The object lies within its radius of its origin
-/// whichever way it turns, so one box holds it over the whole path. The
+/// whichever way it turns, so one box holds it over the whole path. An
+/// object that does not move is held tighter where its shape's own box
+/// ([`crate::shapes::local_box`]) turned into the world is smaller. The
 /// port's (the thesis bounds objects at rest only).
 pub fn object_boxes(
     objects: &[ObjectRecord],
@@ -118,19 +120,55 @@ pub fn object_boxes(
     t1: f64,
     fidelity: Fidelity,
 ) -> Vec<BoundingBox> {
-    let mut centres: Vec<BoundingBox> = objects.iter().map(|o| BoundingBox::EMPTY.holding(o.sphereo)).collect();
+    let mut centres: Vec<Option<BoundingBox>> = vec![None; objects.len()];
     for m in moving {
-        centres[m.object] = m.centre_bounds(&objects[m.object], t0, t1, fidelity);
+        centres[m.object] = Some(m.centre_bounds(&objects[m.object], t0, t1, fidelity));
     }
     centres
         .iter()
         .zip(objects)
         .map(|(c, o)| {
-            let b = c.widened(crate::shapes::bounding_radius(o.radius));
+            let r = crate::shapes::bounding_radius(o.radius);
+            let b = match c {
+                Some(c) => c.widened(r),
+                None => {
+                    let sphere = BoundingBox::EMPTY.holding(o.sphereo).widened(r);
+                    match crate::shapes::local_box(o) {
+                        Some(local) => intersection(&sphere, &world_box(&local, o).widened(r - o.radius)),
+                        None => sphere,
+                    }
+                }
+            };
             let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
                 .iter()
                 .fold(1.0f64, |m, v| m.max(v.abs()));
             b.widened(BOX_SLACK * size)
         })
         .collect()
+}
+
+/// The world box of the local box `b` of object `o` at rest: its eight
+/// corners carried by `transfm`.
+fn world_box(b: &BoundingBox, o: &ObjectRecord) -> BoundingBox {
+    let mut w = BoundingBox::EMPTY;
+    for &x in &[b.xmin, b.xmax] {
+        for &y in &[b.ymin, b.ymax] {
+            for &z in &[b.zmin, b.zmax] {
+                w = w.holding(o.transfm.transform_point3(crate::types::DVec3::new(x, y, z)));
+            }
+        }
+    }
+    w
+}
+
+/// The box both boxes hold (a NaN in either leaves the other's bound).
+fn intersection(a: &BoundingBox, b: &BoundingBox) -> BoundingBox {
+    BoundingBox {
+        xmin: a.xmin.max(b.xmin),
+        xmax: a.xmax.min(b.xmax),
+        ymin: a.ymin.max(b.ymin),
+        ymax: a.ymax.min(b.ymax),
+        zmin: a.zmin.max(b.zmin),
+        zmax: a.zmax.min(b.zmax),
+    }
 }

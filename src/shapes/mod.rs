@@ -24,7 +24,7 @@ pub mod sweep;
 pub use posed::Posed;
 pub use sweep::{prepare_caches, SweepCache};
 
-use crate::types::{DVec3, LocalHit, ObjectRecord, Ray, Shape};
+use crate::types::{BoundingBox, DVec3, LocalHit, ObjectRecord, PrimitiveClass, Ray, Shape};
 
 /// A ray taken near an object: the same line from another origin,
 /// `ray.origin = original.at(shift)`, and `tmin` measured from there.
@@ -419,6 +419,46 @@ fn cylinder_hit(cylradius: f64, bottom: f64, top: f64, ray: &Ray, tmin: f64) -> 
 #[inline(always)]
 pub fn bounding_radius(radius: f64) -> f64 {
     radius * (1.0 + 1e-6) + 1e-9
+}
+
+/// The box in the object's local frame that holds its surface, where it
+/// is tighter than the bounding sphere: a block's, a cylinder's, a
+/// prism's extent; a sweep's from its `bbox` (its own, or in `listing`
+/// fidelity its class's, which holds it, erratum 9), for a rotation sweep
+/// ±its greatest radius across (the listing's `rbox` keeps the radius
+/// range min U … max U in x and y). `None` for a sphere (its sphere is its
+/// bound) and a sweep without segments.
+pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
+    let b = |lo: DVec3, hi: DVec3| BoundingBox {
+        xmin: lo.x,
+        xmax: hi.x,
+        ymin: lo.y,
+        ymax: hi.y,
+        zmin: lo.z,
+        zmax: hi.z,
+    };
+    match &obj.shape {
+        Shape::Sphere => None,
+        Shape::Block { lengths } => Some(b(-0.5 * *lengths, 0.5 * *lengths)),
+        Shape::Cylinder {
+            cylradius, top, bottom, ..
+        } => Some(b(
+            DVec3::new(-cylradius, -cylradius, bottom.min(*top)),
+            DVec3::new(*cylradius, *cylradius, top.max(*bottom)),
+        )),
+        Shape::Prism { height, vertex, .. } => {
+            let around = vertex.iter().fold(BoundingBox::EMPTY, |a, &[x, y]| {
+                a.holding(DVec3::new(x, y, 0.0)).holding(DVec3::new(x, y, *height))
+            });
+            (!vertex.is_empty()).then_some(around)
+        }
+        Shape::Sweep(sw) if sw.segment == 0 => None,
+        Shape::Sweep(sw) if obj.class == PrimitiveClass::Rotation => {
+            let r = sw.bbox.xmin.abs().max(sw.bbox.xmax.abs());
+            Some(b(DVec3::new(-r, -r, sw.bbox.zmin), DVec3::new(r, r, sw.bbox.zmax)))
+        }
+        Shape::Sweep(sw) => Some(sw.bbox),
+    }
 }
 
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
