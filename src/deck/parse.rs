@@ -101,8 +101,8 @@ fn edit_distance(a: &[char], b: &[char]) -> usize {
 /// The most characters of a word an error echoes.
 const SHOWN_CHARS: usize = 40;
 
-/// The most characters of a path an error echoes: any real path.
-const SHOWN_PATH_CHARS: usize = 256;
+/// The most characters of a path an error echoes: its last ones.
+const SHOWN_PATH_CHARS: usize = 160;
 
 /// A word as an error echoes it: quoted, control characters escaped (`\0`,
 /// `\t`, `\x1B`), cut after [`SHOWN_CHARS`] characters with its length.
@@ -110,10 +110,19 @@ pub(super) fn shown(word: &str) -> String {
     quoted(word, SHOWN_CHARS)
 }
 
-/// A path as an error echoes it: as [`shown`], cut only past
-/// [`SHOWN_PATH_CHARS`] (its end is what tells where it points).
+/// A path as an error echoes it: as [`shown`], but past
+/// [`SHOWN_PATH_CHARS`] its start is cut, not its end (the end is what
+/// tells where it points).
 pub(super) fn shown_path(path: &std::path::Path) -> String {
-    quoted(&path.to_string_lossy(), SHOWN_PATH_CHARS)
+    let path = path.to_string_lossy();
+    let n = path.chars().count();
+    if n <= SHOWN_PATH_CHARS {
+        return quoted(&path, SHOWN_PATH_CHARS);
+    }
+    // Its end is kept: a message stays under the fuzzer's 400 characters
+    // with a file name as written beside it.
+    let tail: String = path.chars().skip(n - SHOWN_PATH_CHARS).collect();
+    format!("'…{} ({n} characters)", &quoted(&tail, SHOWN_PATH_CHARS)[1..])
 }
 
 /// `word` quoted, control characters escaped, cut after `most` characters.
@@ -536,6 +545,20 @@ mod tests {
         assert_eq!(nearest(&"s".repeat(100), &names), None);
         assert_eq!(did_you_mean("swep", &names), " — did you mean 'sweep'?");
         assert_eq!(did_you_mean("zzz", &names), "");
+    }
+
+    #[test]
+    fn shown_path_keeps_the_end_of_a_long_path() {
+        let short = std::path::Path::new("a/b.deck");
+        assert_eq!(shown_path(short), "'a/b.deck'");
+        let long = format!("{}/end.ras", "d".repeat(300));
+        let shown = shown_path(std::path::Path::new(&long));
+        assert!(shown.starts_with("'…d"), "{shown}");
+        assert!(shown.ends_with("/end.ras' (308 characters)"), "{shown}");
+        assert_eq!(
+            shown.chars().count(),
+            1 + 1 + SHOWN_PATH_CHARS + 1 + " (308 characters)".len()
+        );
     }
 
     #[test]
