@@ -72,6 +72,7 @@ fn parts_that_do_not_fit_one_image_are_refused_naming_the_file() {
     let b: Vec<PathBuf> = (1..=3).map(|k| band(&p, k, 3, d, &format!("b{k}.ras"))).collect();
     let narrow = band(&prepared(16, 10), 2, 3, d, "narrow.ras");
     let of_two = band(&p, 2, 2, d, "of_two.ras");
+    let first_of_two = band(&p, 1, 2, d, "first_of_two.ras");
     let taller = band(&prepared(17, 11), 2, 3, d, "taller.ras");
     let plain = d.join("plain.ras");
     std::fs::write(&plain, encode_raster(&render(&p, &Request::STILL).unwrap().raster)).unwrap();
@@ -83,6 +84,16 @@ fn parts_that_do_not_fit_one_image_are_refused_naming_the_file() {
         (vec![&b[0], &taller, &b[2]], &taller, "17×11 image"),
         (vec![&b[0], &b[2]], &b[2], "tile 2/3 is missing before it"),
         (vec![&b[0], &b[1]], &b[1], "tile 3/3 is missing"),
+        (
+            vec![&first_of_two],
+            &first_of_two,
+            "the last tile given is 1/2: tile 2/2 is missing",
+        ),
+        (
+            vec![&b[0]],
+            &b[0],
+            "the last tile given is 1/3: tiles 2..3 of 3 are missing",
+        ),
         (vec![&b[1], &b[2]], &b[1], "tile 1/3 is missing before it"),
         (vec![&b[0], &b[0], &b[1]], &b[0], "again or out of order"),
         (vec![&b[0], &b[1], &b[2], &b[2]], &b[2], "again or out of order"),
