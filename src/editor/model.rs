@@ -137,7 +137,7 @@ impl Contour {
         let n = self.points.len();
         match self.curve {
             CurveKind::Bspline if n >= 4 => n,
-            CurveKind::Bezier if n >= 3 => n / 3,
+            CurveKind::Bezier => n / 3,
             _ => 0,
         }
     }
