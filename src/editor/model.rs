@@ -361,6 +361,14 @@ mod tests {
     }
 
     #[test]
+    fn an_empty_contour_has_no_point_to_name() {
+        let mut c = Contour::of_deck(PrimitiveClass::Translation, CurveKind::Bspline, &[], 1.0, 1.0);
+        let e = c.apply(Edit::Delete { k: 0 }).unwrap_err();
+        assert_eq!(e.0, "there is no point 1: the contour has none");
+        assert_eq!(c.segments(), 0);
+    }
+
+    #[test]
     fn the_checks_give_the_reason() {
         let mut c = square(CurveKind::Bspline);
         assert_eq!(c.check(), Ok(4));
