@@ -269,3 +269,18 @@ fn a_screenshot_and_the_list_are_made_without_a_window() {
     let o = contour(&[deck.to_str().unwrap(), "last", "--list", "--time", "2"], dir.path());
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn a_rotation_made_a_translation_gets_a_length_and_back_loses_it() {
+    let (o, new) = scripted("fig5_8.deck", "goblet", "sweep translation\n");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let new = new.unwrap();
+    assert!(
+        new.contains("\nsweep goblet red translation bezier at 0 0 0 axis z length 1\n"),
+        "{new}"
+    );
+    let (o, new) = scripted("fig5_6.deck", "star", "sweep rotation\nsweep translation\n");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let original = std::fs::read_to_string(decks().join("fig5_6.deck")).unwrap();
+    assert_eq!(new.unwrap(), original, "there and back is no change");
+}

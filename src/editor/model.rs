@@ -137,7 +137,7 @@ impl Contour {
         let n = self.points.len();
         match self.curve {
             CurveKind::Bspline if n >= 4 => n,
-            CurveKind::Bezier if n >= 3 => n / 3,
+            CurveKind::Bezier => n / 3,
             _ => 0,
         }
     }
@@ -358,6 +358,14 @@ mod tests {
         assert!(e.0.contains("1..6"), "{e}");
         assert!(c.apply(Edit::Move { k: 0, du: 2e7, dv: 0.0 }).is_err());
         assert_eq!(c.points.len(), 5);
+    }
+
+    #[test]
+    fn an_empty_contour_has_no_point_to_name() {
+        let mut c = Contour::of_deck(PrimitiveClass::Translation, CurveKind::Bspline, &[], 1.0, 1.0);
+        let e = c.apply(Edit::Delete { k: 0 }).unwrap_err();
+        assert_eq!(e.0, "there is no point 1: the contour has none");
+        assert_eq!(c.segments(), 0);
     }
 
     #[test]
