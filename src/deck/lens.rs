@@ -11,10 +11,7 @@ impl Builder<'_> {
     pub(super) fn lens(&mut self, pos: Pos) -> Result<(), DeckError> {
         self.p.begin("lens");
         if let Some(first) = &self.lens {
-            return Err(self.p.error_at(
-                pos,
-                format!("a second 'lens' record (the first is on line {})", first.pos.line),
-            ));
+            return Err(self.second(pos, "lens", first.pos.clone()));
         }
         let aperture = self.p.number_where("for APERTURE", ">= 0", |v| v >= 0.0)?.value;
         let focus = self.p.size("for FOCUS")?.value;

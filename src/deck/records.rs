@@ -24,7 +24,7 @@ const MAX_MASK: i64 = 8;
 
 impl Builder<'_> {
     /// An error for a record that may stand once in a deck.
-    fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
+    pub(super) fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
         self.p.error_at(
             pos,
             format!("a second '{keyword}' record (the first is on line {})", first.line),
