@@ -18,6 +18,7 @@ pub mod accel;
 pub mod adaptive;
 pub mod cli;
 pub mod deck;
+pub mod distributed;
 pub mod drt;
 pub mod editor;
 pub mod exit;

@@ -9,12 +9,31 @@ use std::sync::Arc;
 
 use crate::types::{DVec3, Intensity, ObjectRecord, SurfaceRecord};
 
-/// A point light (the base program's, not printed): deck `light`.
+/// A point light (the base program's, not printed): deck `light`; with
+/// `radius` > 0 a sphere of light (the port's extension, Cook 1984's soft
+/// shadows: each sample's shadow ray aims at its own point of it).
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightRecord {
     pub name: String,
     pub position: DVec3,
     pub color: Intensity,
+    /// The sphere's radius; 0 is the point light of the base program.
+    pub radius: f64,
+}
+
+/// Deck `lens APERTURE FOCUS` (the port's extension where the thesis
+/// stops: its `depthoffield` is "not completed" and never called): the
+/// lens's radius and the distance that is sharp.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LensRecord {
+    pub pos: Pos,
+    /// The aperture's radius (`fradius` of `depthoffield`); 0 is the
+    /// pinhole of the thesis.
+    pub aperture: f64,
+    /// How far from the eye the sharp plane stands: along the line of
+    /// sight (`thesis`), or the world plane y = FOCUS as `depthoffield`
+    /// reads `focuslength` (`listing`).
+    pub focus: f64,
 }
 
 /// The view (deck `view`; the Pascal read it from the file `fview`).
@@ -145,6 +164,8 @@ pub struct Scene {
     pub keyframes: Vec<KeyframeRecord>,
     pub blur: Option<BlurRecord>,
     pub pattern: Option<PatternRecord>,
+    /// The `lens` record (the port's extension); `None` is the pinhole.
+    pub lens: Option<LensRecord>,
     /// The `film` record (the port's extension, [`crate::film`]); `None`
     /// renders one still, as the thesis does.
     pub film: Option<FilmRecord>,

@@ -22,6 +22,7 @@
 //!   below [`MINWEIGHT`]; total internal reflection sends the transmitted
 //!   weight along the reflected direction and is counted (`kfTIRcnt`).
 
+use crate::distributed::{glossy, toward_light};
 use crate::intersect::{for_each_blocker, nearest, Snapshot};
 use crate::sampler::Sampler;
 use crate::shapes::face_coords;
@@ -190,16 +191,16 @@ pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut 
     }
     let reflected = d - 2.0 * d.dot(n) * n;
     if ks_weight > 0.0 && weight * ks_weight >= MINWEIGHT {
-        let r = Ray::new(near, reflected.normalize());
+        let r = Ray::new(near, turn(snap, surf, near, reflected.normalize(), n, 1.0, ctx));
         i += ks_weight * raytrace(snap, &r, weight * ks_weight, depth + 1, ctx);
     }
     if kt_weight > 0.0 && weight * kt_weight >= MINWEIGHT {
         let eta = if entering { 1.0 / surf.index } else { surf.index };
         let t = match refract(d, n, eta) {
-            Some(t) => Ray::new(far, t),
+            Some(t) => Ray::new(far, turn(snap, surf, far, t, n, -1.0, ctx)),
             None => {
                 ctx.stats.kftircnt += 1;
-                Ray::new(near, reflected.normalize())
+                Ray::new(near, turn(snap, surf, near, reflected.normalize(), n, 1.0, ctx))
             }
         };
         i += kt_weight * raytrace(snap, &t, weight * kt_weight, depth + 1, ctx);
@@ -207,14 +208,37 @@ pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut 
     i
 }
 
+/// The direction `dir` of a secondary ray from `p`, turned as the
+/// surface's `gloss` says ([`glossy`], the port's extension); `gloss 0`,
+/// the mirror, keeps it and draws nothing.
+fn turn(snap: &Snapshot, surf: &SurfaceRecord, p: DVec3, dir: DVec3, n: DVec3, side: f64, ctx: &mut Context) -> DVec3 {
+    if surf.gloss > 0.0 {
+        glossy(p, dir, n, side, surf.gloss, snap.opts.fidelity, ctx.sampler)
+    } else {
+        dir
+    }
+}
+
 /// Σ (N·L̂j) · light colour over the lights a shadow ray from `p` reaches,
-/// each shadow ray attenuated by the `crystal` objects it passes.
+/// each shadow ray attenuated by the `crystal` objects it passes. A sphere
+/// of light (`radius` > 0) sends each sample's shadow ray to a point of it
+/// of the sample's own ([`toward_light`]): the mean over a pixel's samples
+/// is Cook 1984's penumbra.
 fn diffuse(snap: &Snapshot, p: DVec3, n: DVec3, ctx: &mut Context) -> Intensity {
     let mut sum = Intensity::ZERO;
     for light in &snap.scene.lights {
-        let to_light = light.position - p;
-        let dist = to_light.length();
-        let l = to_light / dist;
+        // A sphere of light (the port's extension) surrounding `p` lights
+        // it fully, as from its centre, with nothing between.
+        let Some((l, dist)) = toward_light(light, p, ctx.sampler) else {
+            let to = light.position - p;
+            let cos = if to == DVec3::ZERO {
+                1.0
+            } else {
+                n.dot(to.normalize()).max(0.0)
+            };
+            sum += cos * light.color;
+            continue;
+        };
         let cos = n.dot(l);
         if cos <= 0.0 {
             continue;

@@ -173,6 +173,10 @@ pub struct SurfaceRecord {
     pub index: f64,
     pub paint: Option<Paint>,
     pub texture: Option<Texture>,
+    /// `gloss`: how far `jittering` turns the reflected and transmitted
+    /// rays, the tangent of the largest turn (the port's extension, Cook
+    /// 1984's blurred reflection); 0 is the mirror of the base program.
+    pub gloss: f64,
 }
 
 /// `coeff = record a, b, c, d, max, min, first, last : real end`: one

@@ -210,7 +210,7 @@ fn field_out_of_order_misspelt_or_given_twice() {
         // An optional field before a required one.
         (5, "cylinder ball red at 0 0 1 radius 1 bottom 0 axis x top 1", "5:46: cylinder 'ball': expected 'top', found 'axis' — 'top' comes before 'axis'"),
         // A required field again among the optional ones.
-        (4, "surface red opaque color 1 0 0 ka 0.1 kd 0.7 ks 0.2 kt 0 color 1 1 1", "4:58: surface 'red': expected end of line or 'ambient', 'reflect', 'index', found 'color' — the field 'color' is given twice"),
+        (4, "surface red opaque color 1 0 0 ka 0.1 kd 0.7 ks 0.2 kt 0 color 1 1 1", "4:58: surface 'red': expected end of line or 'ambient', 'reflect', 'index', 'gloss', found 'color' — the field 'color' is given twice"),
         // A word that is no slip of a field gets no suggestion.
         (5, "sphere ball red at 0 0 1 size 1", "5:26: sphere 'ball': expected 'radius', found 'size'"),
     ];

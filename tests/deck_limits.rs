@@ -134,7 +134,7 @@ fn unknown_records_fields_and_names_get_the_nearest_one() {
     assert_eq!(error(format!("{BASE}zzzz\n")), "6:1: deck: unknown record 'zzzz'");
     assert_eq!(
         error(BASE.replace("kt 0", "kt 0 refelct 0.5")),
-        "4:58: surface 'red': expected end of line or 'ambient', 'reflect', 'index', found 'refelct' — did you mean 'reflect'?"
+        "4:58: surface 'red': expected end of line or 'ambient', 'reflect', 'index', 'gloss', found 'refelct' — did you mean 'reflect'?"
     );
     assert_eq!(
         error(BASE.replace("opaque", "opaqe")),

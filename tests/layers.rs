@@ -46,6 +46,8 @@ const LAYERS: &[(&str, u32)] = &[
     // How many samples a pixel gets; which object a ray meets.
     ("adaptive", 7),
     ("intersect", 7),
+    // Cook's soft shadows and blurred reflection (the port's).
+    ("distributed", 7),
     // The reconstructed shading.
     ("trace", 8),
     // The main program; the command line's words for a render.

@@ -1052,6 +1052,7 @@ fn a_chain_of_three_key_shapes() {
         blur: None,
         pattern: None,
         film: None,
+        lens: None,
     };
     assert_eq!(
         PaperChain::from_keyframe(&scene, &rec, Fidelity::Thesis).unwrap(),

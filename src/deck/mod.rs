@@ -192,6 +192,7 @@
 //! A missing `view` or `image` is reported at the end of the deck.
 
 mod film;
+mod lens;
 mod lex;
 mod library;
 mod objects;
@@ -276,6 +277,7 @@ pub const RECORDS: &[&str] = &[
     "film",
     "path",
     "include",
+    "lens",
 ];
 
 /// Each record's field names in DECK.md's order, the required ones first
@@ -287,9 +289,10 @@ pub const RECORDS: &[&str] = &[
 pub const FIELDS: &[(&str, &[&str])] = &[
     ("view", &["eye", "look", "screen", "distance"]),
     ("image", &["mask", "aliasing"]),
+    ("light", &["radius"]),
     (
         "surface",
-        &["color", "ka", "kd", "ks", "kt", "ambient", "reflect", "index"],
+        &["color", "ka", "kd", "ks", "kt", "ambient", "reflect", "index", "gloss"],
     ),
     ("paint", &["scale", "color"]),
     ("sphere", &["at", "radius"]),
@@ -389,6 +392,7 @@ pub fn initialize(
         blur: None,
         pattern: None,
         film: None,
+        lens: None,
     };
     // A motion that named a path not defined above it stands before any
     // later error: its error is reported first.
@@ -463,6 +467,7 @@ struct Builder<'a> {
     blur: Option<BlurRecord>,
     pattern: Option<PatternRecord>,
     film: Option<crate::scene::FilmRecord>,
+    lens: Option<crate::scene::LensRecord>,
 }
 
 impl Builder<'_> {
@@ -511,6 +516,7 @@ impl Builder<'_> {
             "film" => self.film(pos),
             "path" => self.path(),
             "include" => self.include(),
+            "lens" => self.lens(pos),
             _ => Err(self.p.error_at(
                 pos,
                 format!(
@@ -584,6 +590,7 @@ impl Builder<'_> {
             blur: self.blur,
             pattern: self.pattern,
             film: self.film,
+            lens: self.lens,
         })
     }
 }

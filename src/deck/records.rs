@@ -24,7 +24,7 @@ const MAX_MASK: i64 = 8;
 
 impl Builder<'_> {
     /// An error for a record that may stand once in a deck.
-    fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
+    pub(super) fn second(&self, pos: Pos, keyword: &str, first: Pos) -> DeckError {
         self.p.error_at(
             pos,
             format!("a second '{keyword}' record (the first is on line {})", first.line),
@@ -174,7 +174,8 @@ impl Builder<'_> {
         Ok(())
     }
 
-    /// `light NAME X Y Z R G B`.
+    /// `light NAME X Y Z R G B [radius R]`: R ≥ 0, a sphere of light (the
+    /// port's extension; 0, the default, the base program's point).
     pub(super) fn light(&mut self) -> Result<(), DeckError> {
         self.p.begin("light");
         let (name, pos) = self.p.name("a light name")?;
@@ -189,18 +190,25 @@ impl Builder<'_> {
         let y = self.p.number("for Y")?.value;
         let z = self.p.number("for Z")?.value;
         let color = self.rgb(["for R", "for G", "for B"], false)?;
+        let mut radius = 0.0;
+        let mut seen = Vec::new();
+        if self.p.field(&["radius"], &mut seen)?.is_some() {
+            radius = self.p.number_where("after 'radius'", ">= 0", |v| v >= 0.0)?.value;
+        }
         self.p.end_of_line()?;
         self.light_index.insert(name.clone(), (self.lights.len(), pos));
         self.lights.push(LightRecord {
             name,
             position: DVec3::new(x, y, z),
             color,
+            radius,
         });
         Ok(())
     }
 
     /// `surface NAME KIND color R G B ka K kd K ks K kt K [ambient R G B]
-    /// [reflect P] [index N]`.
+    /// [reflect P] [index N] [gloss G]` (`gloss`, G ≥ 0, the port's
+    /// extension: Cook 1984's blurred reflection).
     pub(super) fn surface(&mut self, record_pos: Pos) -> Result<(), DeckError> {
         self.p.begin("surface");
         let (name, pos) = self.p.name("a surface name")?;
@@ -240,11 +248,13 @@ impl Builder<'_> {
             0.0
         };
         let mut index = 1.0;
+        let mut gloss = 0.0;
         let mut seen = Vec::new();
-        while let Some((field, _)) = self.p.field(&["ambient", "reflect", "index"], &mut seen)? {
+        while let Some((field, _)) = self.p.field(&["ambient", "reflect", "index", "gloss"], &mut seen)? {
             match field {
                 "ambient" => iobject = self.rgb(["after 'ambient'"; 3], emissive)?,
                 "reflect" => prcntrfl = self.p.unit("after 'reflect'")?.value,
+                "gloss" => gloss = self.p.number_where("after 'gloss'", ">= 0", |v| v >= 0.0)?.value,
                 _ => index = self.p.size("after 'index'")?.value,
             }
         }
@@ -267,6 +277,7 @@ impl Builder<'_> {
             index,
             paint: None,
             texture: None,
+            gloss,
         });
         Ok(())
     }

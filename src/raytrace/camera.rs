@@ -3,7 +3,9 @@
 //! sight; `translookpt`, a point of the screen to the world; and where on
 //! the screen a subpixel lies (DEVIATIONS D5).
 
+use super::lens::Lens;
 use crate::options::Fidelity;
+use crate::sampler::{CameraSample, Sampler};
 use crate::scene::{Scene, View};
 use crate::types::{DVec3, Ray};
 
@@ -54,6 +56,8 @@ pub struct Camera {
     virthighy: usize,
     /// Where on the window subpixel k lies (DEVIATIONS D5).
     fidelity: Fidelity,
+    /// The deck's `lens` of aperture > 0 (the port's extension).
+    lens: Option<Lens>,
 }
 
 impl Camera {
@@ -61,6 +65,10 @@ impl Camera {
         let (sinz, cosz, sinx, cosx) = getangle(&scene.view);
         let img = &scene.image;
         let screen_w = scene.view.screensize;
+        let eye = scene.view.eyept;
+        // The view frame's −x is the viewer's right.
+        let right = translookpt(-1.0, 0.0, 0.0, -sinz, cosz, -sinx, cosx, eye) - eye;
+        let lens = Lens::new(scene.lens.as_ref(), scene.view.lookpt - eye, right, fidelity);
         let screen_h = match fidelity {
             // Erratum 14, listing: `xpt` and `zpt` both span `screensize`,
             // so a raster that is not square gets pixels that are not.
@@ -80,6 +88,7 @@ impl Camera {
             virthighx: img.width * img.masksize,
             virthighy: img.height * img.masksize,
             fidelity,
+            lens,
         }
     }
 
@@ -98,6 +107,27 @@ impl Camera {
     /// extra one, at the left edge); `Fidelity::Thesis` at the centre of
     /// the k-th of N equal cells, (k − ½)/N.
     pub fn ray(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> Ray {
+        let p = self.screen_point(scancol, scanline, jx, jz);
+        Ray::new(self.eyept, (p - self.eyept).normalize())
+    }
+
+    /// The primary ray of a sample: [`Camera::ray`] through its place, or
+    /// with a `lens` the lens's ray, whose lens point the sample's further
+    /// dimensions give. Without a lens nothing is drawn.
+    pub fn ray_of(&self, c: CameraSample, sampler: &mut dyn Sampler) -> Ray {
+        match &self.lens {
+            None => self.ray(c.scancol, c.scanline, c.jx, c.jz),
+            Some(lens) => lens.ray(
+                self.eyept,
+                self.screen_point(c.scancol, c.scanline, c.jx, c.jz),
+                sampler,
+            ),
+        }
+    }
+
+    /// The point of the screen plane, in the world, that [`Camera::ray`]
+    /// aims through (`translookpt` of `xpt`, `ypt`, `zpt`).
+    fn screen_point(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> DVec3 {
         let along = |k: f64, j: f64, n: usize| match self.fidelity {
             // Listing: (scancol+jitter)/(halfvirtualx*2.0-1.0).
             Fidelity::Listing => (k + j) / ((2 * (n / 2)) as f64 - 1.0).max(1.0),
@@ -109,8 +139,7 @@ impl Camera {
         let xpt = -right;
         let ypt = -self.scrndistance;
         let zpt = up;
-        let p = translookpt(xpt, ypt, zpt, self.sinz, self.cosz, self.sinx, self.cosx, self.eyept);
-        Ray::new(self.eyept, (p - self.eyept).normalize())
+        translookpt(xpt, ypt, zpt, self.sinz, self.cosz, self.sinx, self.cosx, self.eyept)
     }
 }
 

@@ -25,6 +25,7 @@
 //! subpixel lies.
 
 mod camera;
+mod lens;
 mod passes;
 mod prepare;
 mod scanline;
@@ -33,6 +34,7 @@ mod tracer;
 use std::ops::Range;
 
 pub use camera::{getangle, translookpt, Camera};
+pub use lens::Lens;
 pub use prepare::{key_frame_chains, time_table, Prepared};
 
 use crate::film::Frame;

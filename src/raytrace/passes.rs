@@ -97,7 +97,7 @@ fn trace_row(
                     posed = true;
                 }
                 let c = sampler.camera();
-                let aray = camera.ray(c.scancol, c.scanline, c.jx, c.jz);
+                let aray = camera.ray_of(c, &mut sampler);
                 let before = tracer.stats.searched;
                 sums[x].add(tracer.shoot(&aray, &mut sampler));
                 sums[x].add_searched(tracer.stats.searched - before);

@@ -54,7 +54,7 @@ pub(super) fn render_grid(
                 for scancol in first_col..=w * m {
                     sampler.start(scanline, scancol);
                     let c = sampler.camera();
-                    let aray = camera.ray(c.scancol, c.scanline, c.jx, c.jz);
+                    let aray = camera.ray_of(c, &mut sampler);
                     if timed {
                         tracer.at(frame.time(sampler.time()));
                     }

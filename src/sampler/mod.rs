@@ -36,10 +36,12 @@ mod grid;
 mod keys;
 mod pixel;
 pub mod sobol;
+mod warp;
 
 pub use grid::{GridKind, GridSampler, Tables, TABLE_DIMENSIONS};
 pub use keys::{random_time, strata, stratified_time};
 pub use pixel::{sample, PixelSampler, PixelSamples, Sample, SHIFT_BLOCK};
+pub use warp::{concentric_disk, uniform_cone};
 
 /// Where a primary ray crosses the screen, in the units the camera takes
 /// ([`crate::raytrace::Camera::ray`]): the subpixel (`scancol`, `scanline`,

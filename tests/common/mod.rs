@@ -22,6 +22,7 @@ pub fn surface(kind: SurfaceAttribute, color: [f64; 3], ka: f64, kd: f64, ks: f6
         index: 1.5,
         paint: None,
         texture: None,
+        gloss: 0.0,
     }
 }
 
@@ -81,6 +82,7 @@ pub fn scene() -> Scene {
         blur: None,
         pattern: None,
         film: None,
+        lens: None,
     }
 }
 
@@ -89,6 +91,7 @@ pub fn light(at: [f64; 3], color: [f64; 3]) -> LightRecord {
         name: "l".into(),
         position: DVec3::from_array(at),
         color: DVec3::from_array(color),
+        radius: 0.0,
     }
 }
 

@@ -112,6 +112,7 @@ pub const GALLERY: &[Picture] = &[
         drawing: Drawing::Screen,
     },
     render("docs/img/still_life.png", "legacy_pascal/decks/still_life.deck"),
+    render("docs/img/cook.png", "legacy_pascal/decks/cook.deck"),
     render("docs/img/fig5_1.png", "legacy_pascal/decks/fig5_1.deck"),
     render("docs/img/fig5_2.png", "legacy_pascal/decks/fig5_2.deck"),
     render("docs/img/fig5_3.png", "legacy_pascal/decks/fig5_3.deck"),
