@@ -33,6 +33,8 @@ pub struct Snapshot<'a> {
     pub scene: &'a Scene,
     pub opts: &'a Options,
     pub poses: &'a Poses<'a>,
+    /// `poses.all()`, at hand: the loop reads every object's pose here.
+    pub all: &'a [Pose],
     /// The in-between objects' contours of the instant.
     pub deforming: &'a [Deforming<'a>],
     /// For each object, its index in `deforming` if it deforms.
@@ -48,10 +50,11 @@ pub struct Snapshot<'a> {
 }
 
 /// Where each object stands at one instant: an object at rest where the
-/// deck left it, a moving one where its motion puts it then, posed the
-/// first time a ray of the instant reaches it (`motionblur` posed every
-/// moving object for every ray; with a structure over the objects, those
-/// no ray comes near cost nothing).
+/// deck left it, a moving one where its motion puts it then. With the
+/// loop, which meets every object, every moving object is posed when the
+/// instant begins, as `motionblur` did for every ray; with a structure
+/// over the objects, a moving object is posed the first time a ray of the
+/// instant reaches it, and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
     objects: &'a [ObjectRecord],
@@ -63,23 +66,44 @@ pub struct Poses<'a> {
     fidelity: crate::options::Fidelity,
     /// The instant; `None` (every object at rest) before the first.
     time: Option<f64>,
-    /// The moving objects' poses of the instant, as they are made.
-    posed: Vec<OnceCell<Pose>>,
-    /// Which of `posed` were made this instant, to be cleared at the next
-    /// (not all of them: a structure's rays reach few).
-    made: RefCell<Vec<usize>>,
+    now: Now,
+}
+
+/// The poses of the instant, as [`Poses`] keeps them.
+#[derive(Debug)]
+enum Now {
+    /// For the loop: every object's.
+    All(Vec<Pose>),
+    /// For a structure: the moving objects', as they are made, and which
+    /// were made this instant, to be cleared at the next (not all of
+    /// them: a structure's rays reach few).
+    Lazy {
+        posed: Vec<OnceCell<Pose>>,
+        made: RefCell<Vec<usize>>,
+    },
 }
 
 impl<'a> Poses<'a> {
     /// Every object at rest: `rest[i]` for `objects[i]`, which `moving`
-    /// (`moving_of[i]` its index there) moves from [`Poses::at`] on.
+    /// (`moving_of[i]` its index there) moves from [`Poses::at`] on, all
+    /// of them at once if `eager` (for the loop), else each when first
+    /// asked.
     pub fn new(
         objects: &'a [ObjectRecord],
         rest: &'a [Pose],
         moving: &'a [Moving],
         moving_of: &'a [Option<usize>],
         fidelity: crate::options::Fidelity,
+        eager: bool,
     ) -> Poses<'a> {
+        let now = if eager {
+            Now::All(rest.to_vec())
+        } else {
+            Now::Lazy {
+                posed: vec![OnceCell::new(); moving.len()],
+                made: RefCell::new(Vec::new()),
+            }
+        };
         Poses {
             objects,
             rest,
@@ -87,26 +111,52 @@ impl<'a> Poses<'a> {
             moving_of,
             fidelity,
             time: None,
-            posed: vec![OnceCell::new(); moving.len()],
-            made: RefCell::new(Vec::new()),
+            now,
         }
     }
 
     /// A new instant, film time `time`: every moving object's pose is due.
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
-        for m in self.made.get_mut().drain(..) {
-            self.posed[m].take();
+        match &mut self.now {
+            Now::All(all) => {
+                for m in self.moving {
+                    all[m.object] = m.pose(&self.objects[m.object], time, self.fidelity);
+                }
+            }
+            Now::Lazy { posed, made } => {
+                for m in made.get_mut().drain(..) {
+                    posed[m].take();
+                }
+            }
         }
     }
 
     /// Where object `i` stands at the instant (its rest pose until the
     /// first [`Poses::at`]).
-    #[inline]
+    #[inline(always)]
     pub fn get(&self, i: usize) -> &Pose {
+        match &self.now {
+            Now::All(all) => &all[i],
+            Now::Lazy { posed, made } => self.lazy(i, posed, made),
+        }
+    }
+
+    /// Every object's pose of the instant when all are posed at once (for
+    /// the loop); empty when each is posed when asked.
+    pub fn all(&self) -> &[Pose] {
+        match &self.now {
+            Now::All(all) => all,
+            Now::Lazy { .. } => &[],
+        }
+    }
+
+    /// [`Poses::get`] for a structure: a moving object posed on first use.
+    #[inline(never)]
+    fn lazy<'p>(&'p self, i: usize, posed: &'p [OnceCell<Pose>], made: &RefCell<Vec<usize>>) -> &'p Pose {
         match (self.moving_of[i], self.time) {
-            (Some(m), Some(time)) => self.posed[m].get_or_init(|| {
-                self.made.borrow_mut().push(m);
+            (Some(m), Some(time)) => posed[m].get_or_init(|| {
+                made.borrow_mut().push(m);
                 let moving = &self.moving[m];
                 moving.pose(&self.objects[moving.object], time, self.fidelity)
             }),
@@ -176,13 +226,22 @@ impl<'a> Deforming<'a> {
 }
 
 impl Snapshot<'_> {
+    /// Where object `i` stands at this instant ([`Poses::get`]).
+    #[inline(always)]
+    pub fn pose(&self, i: usize) -> &Pose {
+        match self.all.get(i) {
+            Some(p) => p,
+            None => self.poses.get(i),
+        }
+    }
+
     /// `f` of object `i` as it stands at this instant (its own shape and
     /// what was prepared for it, or its contour of the moment when it
     /// deforms), for a ray that reaches its bounding sphere beyond `tmin`;
     /// `None` for one that does not.
-    #[inline]
+    #[inline(always)]
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
-        let (obj, pose) = (&self.scene.objects[i], self.poses.get(i));
+        let (obj, pose) = (&self.scene.objects[i], self.pose(i));
         let mut at_rest = Posed {
             obj,
             shape: &obj.shape,
@@ -298,39 +357,59 @@ pub fn closer(a: (f64, usize), b: (f64, usize)) -> bool {
 /// searches the sweeps made.
 #[inline]
 pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
-    let mut best: Option<(usize, LocalHit)> = None;
-    let mut test = |i: usize, best: &mut Option<(usize, LocalHit)>| {
-        let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
-            return;
-        };
-        if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
-            *best = Some((i, h));
+    let Some(s) = snap.structure else {
+        // The loop, kept apart from the structures' walks so that it stays
+        // as small as the original's where it is inlined.
+        let mut best: Option<(usize, LocalHit)> = None;
+        for i in 0..snap.scene.objects.len() {
+            consider(snap, i, ray, tmin, searched, &mut best);
         }
+        return best;
     };
-    match snap.structure {
-        None => {
-            for i in 0..snap.scene.objects.len() {
-                test(i, &mut best);
-            }
+    nearest_in(snap, s, ray, tmin, searched)
+}
+
+/// [`nearest`] with a structure.
+#[inline(never)]
+fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
+    let mut best: Option<(usize, LocalHit)> = None;
+    if snap.aggregate.counted {
+        let mut candidates = snap.scratch.candidates.borrow_mut();
+        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        for &i in candidates.iter() {
+            consider(snap, i, ray, tmin, searched, &mut best);
         }
-        Some(s) if snap.aggregate.counted => {
-            let mut candidates = snap.scratch.candidates.borrow_mut();
-            s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
-            for &i in candidates.iter() {
-                test(i, &mut best);
-            }
-        }
-        Some(s) => {
-            // Front to back; an object whose box the ray enters beyond
-            // the nearest hit so far cannot be nearer (nor, entered at
-            // its t, tie it: such a box is still visited).
-            let _ = s.walk(ray, tmin, f64::INFINITY, &mut snap.scratch.stack.borrow_mut(), |i| {
-                test(i, &mut best);
-                ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
-            });
-        }
+        return best;
     }
+    // Front to back; an object whose box the ray enters beyond the nearest
+    // hit so far cannot be nearer (nor, entered at its t, tie it: such a
+    // box is still visited).
+    let _ = s.walk(ray, tmin, f64::INFINITY, &mut snap.scratch.stack.borrow_mut(), |i| {
+        consider(snap, i, ray, tmin, searched, &mut best);
+        ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
+    });
     best
+}
+
+/// Object `i`'s hit with `ray` beyond `tmin`, kept in `best` if it is
+/// nearer ([`closer`]): the loop's body, wherever the objects come from.
+#[inline]
+fn consider(snap: &Snapshot, i: usize, ray: &Ray, tmin: f64, searched: &mut u64, best: &mut Option<(usize, LocalHit)>) {
+    let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
+        return;
+    };
+    if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
+        *best = Some((i, h));
+    }
+}
+
+/// Does object `i` stand on the shadow ray between `tmin` and `tmax`?
+#[inline]
+fn blocks(snap: &Snapshot, i: usize, ray: &Ray, tmin: f64, tmax: f64, searched: &mut u64) -> bool {
+    snap.posed(i, ray, tmin, |p| {
+        p.blocks(ray, tmin, tmax, snap.opts, searched).then_some(())
+    })
+    .is_some()
 }
 
 /// What stands on a shadow ray between `tmin` and `tmax`: `Break` if an
@@ -346,72 +425,78 @@ pub fn for_each_blocker(
     searched: &mut u64,
     mut f: impl FnMut(usize),
 ) -> ControlFlow<()> {
-    let mut blocks = |i: usize| {
-        snap.posed(i, ray, tmin, |p| {
-            p.blocks(ray, tmin, tmax, snap.opts, searched).then_some(())
-        })
-        .is_some()
-    };
     let agg = snap.aggregate;
-    match snap.structure {
-        None => {
-            for &(i, shadow) in &agg.casters {
-                match (blocks(i), shadow) {
-                    (false, _) | (_, Shadow::None) => {}
-                    (true, Shadow::Crystal) => f(i),
-                    (true, Shadow::Opaque) => return ControlFlow::Break(()),
-                }
+    let Some(s) = snap.structure else {
+        // The loop: every caster in the table's order.
+        for &(i, shadow) in &agg.casters {
+            match (blocks(snap, i, ray, tmin, tmax, searched), shadow) {
+                (false, _) | (_, Shadow::None) => {}
+                (true, Shadow::Crystal) => f(i),
+                (true, Shadow::Opaque) => return ControlFlow::Break(()),
             }
-            ControlFlow::Continue(())
         }
-        Some(s) if agg.counted => {
-            let mut candidates = snap.scratch.candidates.borrow_mut();
-            s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
-            for &i in candidates.iter() {
-                let shadow = agg.shadow[i];
-                match shadow {
-                    Shadow::None => {}
-                    Shadow::Crystal if blocks(i) => f(i),
-                    Shadow::Opaque if blocks(i) => return ControlFlow::Break(()),
-                    _ => {}
-                }
+        return ControlFlow::Continue(());
+    };
+    blockers_in(snap, s, ray, tmin, tmax, searched, &mut f)
+}
+
+/// [`for_each_blocker`] with a structure.
+#[inline(never)]
+fn blockers_in(
+    snap: &Snapshot,
+    s: &Structure,
+    ray: &Ray,
+    tmin: f64,
+    tmax: f64,
+    searched: &mut u64,
+    f: &mut dyn FnMut(usize),
+) -> ControlFlow<()> {
+    let agg = snap.aggregate;
+    let mut blocks = |i: usize| blocks(snap, i, ray, tmin, tmax, searched);
+    if agg.counted {
+        let mut candidates = snap.scratch.candidates.borrow_mut();
+        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        for &i in candidates.iter() {
+            match agg.shadow[i] {
+                Shadow::None => {}
+                Shadow::Crystal if blocks(i) => f(i),
+                Shadow::Opaque if blocks(i) => return ControlFlow::Break(()),
+                _ => {}
             }
-            ControlFlow::Continue(())
         }
-        Some(s) => {
-            // Any opaque object stops the ray, whichever is found first
-            // (the last one that stopped a shadow ray is asked first); the
-            // crystals it passes are taken in the table's order.
-            let last = &snap.scratch.blocker;
-            if last.get().is_some_and(&mut blocks) {
-                return ControlFlow::Break(());
-            }
-            let mut crystals = snap.scratch.crystals.borrow_mut();
-            crystals.clear();
-            s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
-                match agg.shadow[i] {
-                    Shadow::None => ControlFlow::Continue(tmax),
-                    Shadow::Crystal => {
-                        if blocks(i) {
-                            crystals.push(i);
-                        }
-                        ControlFlow::Continue(tmax)
-                    }
-                    Shadow::Opaque if blocks(i) => {
-                        last.set(Some(i));
-                        ControlFlow::Break(())
-                    }
-                    Shadow::Opaque => ControlFlow::Continue(tmax),
-                }
-            })?;
-            crystals.sort_unstable();
-            crystals.dedup();
-            for &i in crystals.iter() {
-                f(i);
-            }
-            ControlFlow::Continue(())
-        }
+        return ControlFlow::Continue(());
     }
+    // Any opaque object stops the ray, whichever is found first (the last
+    // one that stopped a shadow ray is asked first); the crystals it
+    // passes are taken in the table's order.
+    let last = &snap.scratch.blocker;
+    if last.get().is_some_and(&mut blocks) {
+        return ControlFlow::Break(());
+    }
+    let mut crystals = snap.scratch.crystals.borrow_mut();
+    crystals.clear();
+    s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
+        match agg.shadow[i] {
+            Shadow::None => ControlFlow::Continue(tmax),
+            Shadow::Crystal => {
+                if blocks(i) {
+                    crystals.push(i);
+                }
+                ControlFlow::Continue(tmax)
+            }
+            Shadow::Opaque if blocks(i) => {
+                last.set(Some(i));
+                ControlFlow::Break(())
+            }
+            Shadow::Opaque => ControlFlow::Continue(tmax),
+        }
+    })?;
+    crystals.sort_unstable();
+    crystals.dedup();
+    for &i in crystals.iter() {
+        f(i);
+    }
+    ControlFlow::Continue(())
 }
 
 /// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
@@ -441,7 +526,7 @@ mod tests {
         assert!(caches[first].is_some(), "the key shape has a cache");
         let rest = rest_poses(&scene);
         let no_moving = vec![None; scene.objects.len()];
-        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis);
+        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis, true);
         let deforming = [Deforming::new(first, &chain)];
         deforming[0].at(0.5);
         let mut deforming_of = vec![None; scene.objects.len()];
@@ -452,6 +537,7 @@ mod tests {
             scene: &scene,
             opts: &opts,
             poses: &poses,
+            all: poses.all(),
             deforming: &deforming,
             deforming_of: &deforming_of,
             caches: &caches,

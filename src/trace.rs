@@ -98,7 +98,7 @@ pub fn intersect(snap: &Snapshot, ray: &Ray, stats: &mut TraceStats) -> Option<I
 fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> IntersectionRecord {
     let obj = &snap.scene.objects[object];
     let point = ray.at(hit.t);
-    let normal = snap.poses.get(object).transfm.transform_vector3(hit.normal).normalize();
+    let normal = snap.pose(object).transfm.transform_vector3(hit.normal).normalize();
     let fudge = FUDGE * (1.0 + point.abs().max_element());
     IntersectionRecord {
         normal,

@@ -51,6 +51,7 @@ impl<'p> Probe<'p> {
             scene: p.scene(),
             opts: p.options(),
             poses: &self.poses,
+            all: self.poses.all(),
             deforming: &self.deforming,
             deforming_of: p.deforming_of(),
             caches: p.caches(),

@@ -183,10 +183,19 @@ impl Prepared {
         &self.rest
     }
 
-    /// A worker's poses of the objects, at rest until [`Poses::at`].
+    /// A worker's poses of the objects, at rest until [`Poses::at`]: all
+    /// posed at each instant for the loop, each when a ray reaches it for
+    /// a structure.
     pub fn poses(&self) -> Poses<'_> {
-        let fidelity = self.opts.fidelity;
-        Poses::new(&self.scene.objects, &self.rest, &self.moving, &self.moving_of, fidelity)
+        let (fidelity, eager) = (self.opts.fidelity, self.aggregate.structure().is_none());
+        Poses::new(
+            &self.scene.objects,
+            &self.rest,
+            &self.moving,
+            &self.moving_of,
+            fidelity,
+            eager,
+        )
     }
 
     /// A worker's scratch for the deforming objects' contours, one a chain.

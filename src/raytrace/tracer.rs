@@ -43,7 +43,7 @@ impl<'p> Tracer<'p> {
         for d in &self.deforming {
             d.at(time);
         }
-        self.bounded = self.prepared.bounds_time(time);
+        self.bounded = self.prepared.aggregate().structure().is_none() || self.prepared.bounds_time(time);
     }
 
     /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
@@ -81,6 +81,7 @@ fn snapshot<'a>(
         scene: prepared.scene(),
         opts: prepared.options(),
         poses,
+        all: poses.all(),
         deforming,
         deforming_of: prepared.deforming_of(),
         caches: prepared.caches(),
