@@ -126,17 +126,23 @@ fn run(cli: &Cli) -> Result<(), Failure> {
 
     let pool = cli.render.thread_pool()?;
     let (written, film) = job.summary();
-    let (frames, complete): (Vec<Frame>, Vec<Frame>) = job
+    // Each frame with whether its file is complete already (`--resume`).
+    let plan: Vec<(Frame, bool)> = job
         .frames()
         .into_iter()
-        .partition(|&f| !(cli.farm.resume && job.complete(f, &scene.image, cli.quiet)));
-    let bar = progress_bar(cli.quiet, rows.len() as u64 * frames.len() as u64)?;
+        .map(|f| (f, cli.farm.resume && job.complete(f, &scene.image, cli.quiet)))
+        .collect();
+    let kept = plan.iter().filter(|&&(_, complete)| complete).count();
+    let rendered = plan.len() - kept;
+    let bar = progress_bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
     let started = Instant::now();
     let mut rays = 0;
-    for &frame in &complete {
-        job.keep(frame)?;
-    }
-    for &frame in &frames {
+    // In frame order, so that the animated PNG has them in order.
+    for &(frame, complete) in &plan {
+        if complete {
+            job.keep(frame)?;
+            continue;
+        }
         bar.set_message(job.tracing(&deck.name, frame));
         let progress = || bar.inc(1);
         let request = Request::frame(frame).rows(rows.clone()).progress(&progress);
@@ -157,7 +163,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             .tile
             .map(|t| format!("band {t} (rows {}..{}) of ", rows.start, rows.end))
             .unwrap_or_default();
-        let kept = match (complete.len(), frames.len()) {
+        let kept = match (kept, rendered) {
             (0, _) => String::new(),
             (_, 0) => ", all complete already (--resume): nothing rendered".into(),
             (n, _) => format!(", {n} complete already (--resume) kept"),
@@ -169,8 +175,8 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             img.width,
             img.height,
             sampling(&opts, img),
-            film.filter(|_| !frames.is_empty())
-                .map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
+            film.filter(|_| rendered > 0)
+                .map(|_| format!(", {:.2} s a frame", elapsed / rendered as f64))
                 .unwrap_or_default()
         );
     }
@@ -196,7 +202,8 @@ enum Job {
         range: FrameRange,
         stem: PathBuf,
         apng: Option<PendingFile>,
-        /// The frames rendered, kept for the animated PNG.
+        /// The frames, rendered or read back (`--resume`), in order, for the
+        /// animated PNG.
         rasters: Vec<Raster>,
         tile: Option<Tile>,
     },
