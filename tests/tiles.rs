@@ -129,6 +129,8 @@ fn resume_keeps_complete_frames_and_renders_the_rest_again() {
         .args(&resume));
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("f.0002.ras: not complete"), "{}", stderr(&o));
+    // A missing frame is not "not complete": it is simply rendered.
+    assert!(!stderr(&o).contains("f.0003.ras"), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("2 complete already (--resume) kept"),
         "{}",
@@ -145,6 +147,34 @@ fn resume_keeps_complete_frames_and_renders_the_rest_again() {
         .args(&resume));
     assert!(stderr(&o).contains("nothing rendered"), "{}", stderr(&o));
     assert!(stderr(&o).contains(" 0 rays"), "{}", stderr(&o));
+    // Quiet, a frame cut short is rendered again without a word.
+    std::fs::write(frame(2), &first[1][..10]).unwrap();
+    let mut quiet = resume.clone();
+    quiet.push("-q");
+    let o = run(raytrace_command().arg(decks().join("nec_commercial.deck")).args(&quiet));
+    assert!(o.status.success() && o.stderr.is_empty(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(frame(2)).unwrap(), first[1]);
+}
+
+/// `--resume --apng`: the frames kept are read back, so the animated PNG
+/// holds every frame, the same bytes as a run that rendered them all.
+#[test]
+fn resume_with_apng_animates_the_kept_frames_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (stem, all, resumed) = (path("f.ras"), path("all.png"), path("resumed.png"));
+    render(
+        "nec_commercial.deck",
+        &["--size", "16x12", "--frames", "1..3", "-o", &stem, "--apng", &all],
+    );
+    std::fs::remove_file(dir.path().join("f.0002.ras")).unwrap();
+    render(
+        "nec_commercial.deck",
+        &[
+            "--size", "16x12", "--frames", "1..3", "-o", &stem, "--apng", &resumed, "--resume",
+        ],
+    );
+    assert_eq!(std::fs::read(&resumed).unwrap(), std::fs::read(&all).unwrap());
 }
 
 /// `--resume` of a band: kept when it is that band whole, rendered again

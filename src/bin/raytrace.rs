@@ -214,21 +214,27 @@ fn render_deck(
 
     let pool = cli.render.thread_pool()?;
     let (written, film) = job.summary();
-    let (frames, complete): (Vec<Frame>, Vec<Frame>) = job
+    // Each frame with whether its file is complete already (`--resume`).
+    let plan: Vec<(Frame, bool)> = job
         .frames()
         .into_iter()
-        .partition(|&f| !(cli.farm.resume && job.complete(f, &scene.image, cli.quiet)));
-    let bar = progress_bar(cli.quiet, rows.len() as u64 * frames.len() as u64)?;
+        .map(|f| (f, cli.farm.resume && job.complete(f, &scene.image, cli.quiet)))
+        .collect();
+    let kept = plan.iter().filter(|&&(_, complete)| complete).count();
+    let rendered = plan.len() - kept;
+    let bar = progress_bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
     let started = Instant::now();
     let mut rays = 0;
-    for &frame in &complete {
-        job.keep(frame)?;
-    }
-    for &frame in &frames {
+    // In frame order, so that the animated PNG has them in order.
+    for &(frame, complete) in &plan {
+        if complete {
+            job.keep(frame)?;
+            continue;
+        }
         bar.set_message(job.tracing(&deck.name, frame));
         let progress = || bar.inc(1);
         let request = Request::frame(frame).rows(rows.clone()).progress(&progress);
-        let rendered = match screen.as_deref_mut() {
+        let result = match screen.as_deref_mut() {
             Some(s) => match s.render(prepared, &request, &pool, &job.tracing(&deck.name, frame)) {
                 show::Shown::Done(r) => r,
                 show::Shown::Quit => return Ok(Outcome::Quit),
@@ -236,7 +242,7 @@ fn render_deck(
             },
             None => pool.install(|| raytrace::raytrace::render(prepared, &request)),
         };
-        let render = rendered
+        let render = result
             .and_then(|r| r.check_finite().map(|()| r))
             .map_err(|e| Failure::other(format!("{}: {e}", job.what(&deck.name, frame))))?;
         rays += render.stats.rays;
@@ -252,7 +258,7 @@ fn render_deck(
             .tile
             .map(|t| format!("band {t} (rows {}..{}) of ", rows.start, rows.end))
             .unwrap_or_default();
-        let kept = match (complete.len(), frames.len()) {
+        let kept = match (kept, rendered) {
             (0, _) => String::new(),
             (_, 0) => ", all complete already (--resume): nothing rendered".into(),
             (n, _) => format!(", {n} complete already (--resume) kept"),
@@ -264,8 +270,8 @@ fn render_deck(
             img.width,
             img.height,
             sampling(opts, img),
-            film.filter(|_| !frames.is_empty())
-                .map(|_| format!(", {:.2} s a frame", elapsed / frames.len() as f64))
+            film.filter(|_| rendered > 0)
+                .map(|_| format!(", {:.2} s a frame", elapsed / rendered as f64))
                 .unwrap_or_default()
         );
     }
@@ -291,7 +297,8 @@ enum Job {
         range: FrameRange,
         stem: PathBuf,
         apng: Option<PendingFile>,
-        /// The frames rendered, kept for the animated PNG.
+        /// The frames, rendered or read back (`--resume`), in order, for the
+        /// animated PNG.
         rasters: Vec<Raster>,
         tile: Option<Tile>,
     },
