@@ -387,6 +387,15 @@ mod tests {
         assert!(e.0.ends_with("(add 1 or delete 2)"), "{e}");
         // A square a thousandth wide, far from the origin, is a closed curve.
         assert_eq!(ring(4, CurveKind::Bspline, 1000.0, 0.001).check(), Ok(4));
+        // Points on a line away from the origin enclose nothing, and so do
+        // points on a line whose cross products are rounding, not area.
+        let line = |pts: &[[f64; 2]]| Contour::of_deck(PrimitiveClass::Translation, CurveKind::Bspline, pts, 1.0, 1.0);
+        assert!(line(&[[1.0, 1.0], [2.0, 3.0], [3.0, 5.0], [4.0, 7.0]]).check().is_err());
+        let rounded: Vec<[f64; 2]> = [0.1, 0.7, 1.3, 2.9]
+            .iter()
+            .map(|k| [k * 1e5 / 3.0, k * 7e5 / 3.0])
+            .collect();
+        assert!(line(&rounded).check().is_err());
     }
 
     #[test]
