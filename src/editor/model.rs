@@ -369,6 +369,36 @@ mod tests {
     }
 
     #[test]
+    fn the_checks_stop_at_their_bounds() {
+        let ring = |n: usize, curve, centre: f64, r: f64| {
+            let pts: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let a = k as f64 * std::f64::consts::TAU / n as f64;
+                    [centre + r * a.cos(), centre + r * a.sin()]
+                })
+                .collect();
+            Contour::of_deck(PrimitiveClass::Translation, curve, &pts, 1.0, 1.0)
+        };
+        assert_eq!(ring(6, CurveKind::Bezier, 0.0, 1.0).check(), Ok(2));
+        assert_eq!(ring(60, CurveKind::Bspline, 0.0, 1.0).check(), Ok(60));
+        assert_eq!(ring(180, CurveKind::Bezier, 0.0, 1.0).check(), Ok(60));
+        assert!(ring(183, CurveKind::Bezier, 0.0, 1.0).check().is_err());
+        let e = ring(5, CurveKind::Bezier, 0.0, 1.0).check().unwrap_err();
+        assert!(e.0.ends_with("(add 1 or delete 2)"), "{e}");
+        // A square a thousandth wide, far from the origin, is a closed curve.
+        assert_eq!(ring(4, CurveKind::Bspline, 1000.0, 0.001).check(), Ok(4));
+        // Points on a line away from the origin enclose nothing, and so do
+        // points on a line whose cross products are rounding, not area.
+        let line = |pts: &[[f64; 2]]| Contour::of_deck(PrimitiveClass::Translation, CurveKind::Bspline, pts, 1.0, 1.0);
+        assert!(line(&[[1.0, 1.0], [2.0, 3.0], [3.0, 5.0], [4.0, 7.0]]).check().is_err());
+        let rounded: Vec<[f64; 2]> = [0.1, 0.7, 1.3, 2.9]
+            .iter()
+            .map(|k| [k * 1e5 / 3.0, k * 7e5 / 3.0])
+            .collect();
+        assert!(line(&rounded).check().is_err());
+    }
+
+    #[test]
     fn the_checks_give_the_reason() {
         let mut c = square(CurveKind::Bspline);
         assert_eq!(c.check(), Ok(4));
