@@ -286,15 +286,19 @@ fn tick(v: f64) -> String {
 }
 
 /// One series of a panel: its label, colour, marker and points.
-struct Series {
-    label: String,
-    colour: RGBColor,
-    marker: usize,
-    points: Vec<(f64, f64)>,
+pub(crate) struct Series {
+    pub(crate) label: String,
+    pub(crate) colour: RGBColor,
+    pub(crate) marker: usize,
+    pub(crate) points: Vec<(f64, f64)>,
 }
 
+/// A log-log panel of `series` on `area`: `floor` is where a value of 0
+/// is drawn, `note` the line under it, `legend` where the series are
+/// named (none: not named), `x_room` how far the x axis reaches past the
+/// last point (room for a legend). `tools scale` draws its panels so too.
 #[allow(clippy::too_many_arguments)]
-fn panel<DB: DrawingBackend>(
+pub(crate) fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     title: &str,
     x_desc: &str,

@@ -4,7 +4,7 @@
 //! the adaptive image over the thesis table's, both against the chart's
 //! reference (1024 stratified time samples a pixel), and the CPU time of
 //! the adaptive render over the table's (one thread, the two interleaved,
-//! median of `runs` rounds; the thread's own CPU time, [`thread_cpu_secs`],
+//! median of `runs` rounds; the thread's own CPU time, [`thread_cpu_timed`],
 //! so that other work on the machine counts less). The goal is an RMSE
 //! ratio ≤ 0.5 and a time ratio ≤ 1.1.
 //!
@@ -20,7 +20,7 @@ use raytrace::types::Intensity;
 
 use crate::chart::BLUR_REFERENCE_MASK;
 use crate::decks::{prepared, still, BLUR_DECKS};
-use crate::measure::{median, rmse, thread_cpu_secs};
+use crate::measure::{interleaved_medians_of, rmse, thread_cpu_timed};
 
 /// The masks of the goal: 16 and 64 rays a pixel.
 pub const GOAL_MASKS: [usize; 2] = [4, 8];
@@ -110,29 +110,18 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
 /// `runs` rounds of all of them in turn after an untimed one (NaN for
 /// `runs` 0, the clock where the thread's CPU time cannot be read).
 fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[&Prepared], runs: usize) -> Vec<f64> {
-    let time = |scene: &Prepared| {
-        pool.install(|| {
-            let (cpu, wall) = (thread_cpu_secs(), std::time::Instant::now());
-            drop(std::hint::black_box(still(scene)));
-            match (cpu, thread_cpu_secs()) {
-                (Some(a), Some(b)) => b - a,
-                _ => wall.elapsed().as_secs_f64(),
-            }
-        })
-    };
     if runs == 0 {
         return vec![f64::NAN; jobs.len()];
     }
-    for scene in jobs {
-        time(scene);
-    }
-    let mut secs = vec![Vec::with_capacity(runs); jobs.len()];
-    for _ in 0..runs {
-        for (k, scene) in jobs.iter().enumerate() {
-            secs[k].push(time(scene));
-        }
-    }
-    secs.iter().map(|s| median(s)).collect()
+    let mut timed: Vec<Box<dyn FnMut() -> Result<f64, String>>> = jobs
+        .iter()
+        .map(|&scene| {
+            Box::new(move || Ok(pool.install(|| thread_cpu_timed(|| drop(std::hint::black_box(still(scene)))).0)))
+                as Box<dyn FnMut() -> Result<f64, String>>
+        })
+        .collect();
+    let mut refs: Vec<&mut dyn FnMut() -> Result<f64, String>> = timed.iter_mut().map(|j| j.as_mut() as _).collect();
+    interleaved_medians_of(&mut refs, runs).unwrap_or_else(|e| unreachable!("a render never fails: {e}"))
 }
 
 /// A row of the goal's Markdown table.

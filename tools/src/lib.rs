@@ -15,6 +15,7 @@ pub mod join;
 pub mod measure;
 pub mod pov;
 pub mod preview;
+pub mod scale;
 pub mod stability;
 pub mod textures;
 pub mod vs_povray;

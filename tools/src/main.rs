@@ -4,7 +4,8 @@
 //! on a deck; `preview` times the contour editor's first preview; `chart` draws the speed/accuracy
 //! chart; `goal` measures the adaptive sampler's goal (its
 //! error and CPU time over the table's); `heatmap` shows where the
-//! adaptive sampler spends its rays;
+//! adaptive sampler spends its rays; `scale` times the structures over
+//! the objects (`--accel`) and POV-Ray on scenes of up to 100,000 objects;
 //! `stability` writes the root solvers' stability report; `pov` exports a
 //! deck to POV-Ray and `vs-povray` compares the two renderers. Timings are
 //! measured and printed, never asserted in tests; `join` makes a film's
@@ -190,6 +191,43 @@ enum Command {
         #[arg(long, default_value_t = 5)]
         runs: usize,
     },
+    /// Time a sample against the number of objects: N spheres, fig5_6 stars and fig5_8
+    /// goblets at random in a box, with each --accel and with POV-Ray when installed, one
+    /// thread each; writes scale.png and scale.svg and prints the figures (docs/scale.md).
+    Scale {
+        /// Where to write scale.png and scale.svg.
+        #[arg(long, default_value = "docs")]
+        dir: PathBuf,
+        /// A run small enough for a test: 24×24 at one sample a pixel, N = 1, 10, 100
+        /// spheres and 1, 10 sweeps, one round (the flags below still apply).
+        #[arg(long)]
+        quick: bool,
+        /// Width and height of every render, in pixels [default: 256].
+        #[arg(long, value_parser = clap::value_parser!(u16).range(8..=4096))]
+        size: Option<u16>,
+        /// M×M samples a pixel on both sides [default: 2].
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=8))]
+        mask: Option<u16>,
+        /// Timed rounds, after one untimed (the medians are plotted) [default: 5].
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+        runs: Option<u16>,
+        /// The most objects a scene has (fewer points, a shorter run).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+        max: Option<u32>,
+        /// The loop (--accel none) only on scenes of at most this many objects
+        /// [default: 10000; beyond, a render of the loop takes minutes].
+        #[arg(long)]
+        loop_max: Option<usize>,
+        /// Leave POV-Ray out even when it is installed.
+        #[arg(long)]
+        no_povray: bool,
+        /// Also count the instructions a sample with valgrind (cachegrind): minutes more.
+        #[arg(long)]
+        instructions: bool,
+        /// Write the scenes' decks (sphere100.deck, …) to this folder instead of measuring.
+        #[arg(long, value_name = "DIR")]
+        decks: Option<PathBuf>,
+    },
     /// Write the stability report of the root solvers on hard cases.
     Stability {
         /// The report to write.
@@ -267,6 +305,37 @@ fn run(command: Command) -> Result<(), Failure> {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
         Command::Stability { out } => tools::stability::run(&out),
+        Command::Scale {
+            dir,
+            quick,
+            size,
+            mask,
+            runs,
+            max,
+            loop_max,
+            no_povray,
+            instructions,
+            decks,
+        } => {
+            let mut set = if quick {
+                tools::scale::Settings::quick()
+            } else {
+                tools::scale::Settings::full()
+            };
+            set.size = size.map_or(set.size, usize::from);
+            set.mask = mask.map_or(set.mask, usize::from);
+            set.runs = runs.map_or(set.runs, usize::from);
+            set.loop_max = loop_max.unwrap_or(set.loop_max);
+            set.povray &= !no_povray;
+            set.instructions = instructions;
+            if let Some(max) = max {
+                set.keep_at_most(max as usize);
+            }
+            match decks {
+                Some(to) => tools::scale::write_decks(&set, &to),
+                None => tools::scale::run(&mut set, &dir),
+            }
+        }
         Command::Preview {
             deck,
             name,

@@ -30,28 +30,58 @@ pub fn median(samples: &[f64]) -> f64 {
 /// On a shared machine a burst of other work then spreads over all jobs
 /// instead of spoiling every run of one.
 pub fn interleaved_medians(jobs: &mut [&mut dyn FnMut()], rounds: usize) -> Vec<f64> {
+    let mut timed: Vec<Box<dyn FnMut() -> Result<f64, String> + '_>> = jobs
+        .iter_mut()
+        .map(|job| {
+            Box::new(move || {
+                let t = Instant::now();
+                job();
+                Ok(t.elapsed().as_secs_f64())
+            }) as Box<dyn FnMut() -> Result<f64, String>>
+        })
+        .collect();
+    let mut refs: Vec<&mut dyn FnMut() -> Result<f64, String>> = timed.iter_mut().map(|j| j.as_mut() as _).collect();
+    interleaved_medians_of(&mut refs, rounds).unwrap_or_else(|e| unreachable!("a clock never fails: {e}"))
+}
+
+/// As [`interleaved_medians`], each job measuring itself: it returns the
+/// seconds it took (a CPU time, say, or what a program it ran reports),
+/// or why it could not run. The untimed round's seconds are dropped.
+pub fn interleaved_medians_of(
+    jobs: &mut [&mut dyn FnMut() -> Result<f64, String>],
+    rounds: usize,
+) -> Result<Vec<f64>, String> {
     for job in jobs.iter_mut() {
-        job();
+        job()?;
     }
     let mut secs = vec![Vec::with_capacity(rounds); jobs.len()];
     for _ in 0..rounds.max(1) {
         for (k, job) in jobs.iter_mut().enumerate() {
-            let t = Instant::now();
-            job();
-            secs[k].push(t.elapsed().as_secs_f64());
+            secs[k].push(job()?);
         }
     }
-    secs.iter().map(|s| median(s)).collect()
+    Ok(secs.iter().map(|s| median(s)).collect())
 }
 
-/// The CPU time the calling thread has used, in seconds, from
-/// `/proc/thread-self/schedstat` (Linux: its first field, nanoseconds on
-/// a CPU); `None` where that cannot be read. Unlike the clock it does not
-/// count the time other work on a shared machine takes the core away.
+/// The CPU time the calling thread has used, in seconds
+/// (`clock_gettime` of `CLOCK_THREAD_CPUTIME_ID`, to the nanosecond);
+/// `None` where that clock cannot be read. Unlike the wall clock it does
+/// not count the time other work on a shared machine takes the core away.
 pub fn thread_cpu_secs() -> Option<f64> {
-    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
-    Some(ns as f64 * 1e-9)
+    let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
+    Some(t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9)
+}
+
+/// The CPU seconds `f` takes on the calling thread (the wall clock's
+/// where the thread's CPU time cannot be read), and what it returns.
+pub fn thread_cpu_timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    let (cpu, wall) = (thread_cpu_secs(), Instant::now());
+    let out = f();
+    let secs = match (cpu, thread_cpu_secs()) {
+        (Some(a), Some(b)) => b - a,
+        _ => wall.elapsed().as_secs_f64(),
+    };
+    (secs, out)
 }
 
 /// Whether an object is a sweep (translation, conic, rotation).
@@ -136,6 +166,30 @@ mod tests {
         assert_eq!(m.len(), 2);
         assert!(m.iter().all(|s| *s >= 0.0));
         assert_eq!((a, b), (4, 4));
+    }
+
+    /// Each job's own seconds are its median; an error stops the rounds.
+    #[test]
+    fn self_measured_jobs_give_their_medians() {
+        let mut k = 0.0;
+        let mut rising = || {
+            k += 1.0;
+            Ok(k)
+        };
+        let mut fixed = || Ok(0.5);
+        let m = interleaved_medians_of(&mut [&mut rising, &mut fixed], 3).unwrap();
+        // The untimed round gave 1; the rounds 2, 3, 4.
+        assert_eq!(m, vec![3.0, 0.5]);
+        let mut failing = || Err::<f64, _>("no".to_string());
+        assert_eq!(interleaved_medians_of(&mut [&mut failing], 3), Err("no".into()));
+    }
+
+    /// A busy loop takes CPU time; a sleep takes almost none.
+    #[test]
+    fn thread_cpu_time_counts_work_not_sleep() {
+        let (busy, _) = thread_cpu_timed(|| (0..20_000_000u64).fold(0, |a, k| std::hint::black_box(a ^ k)));
+        let (asleep, _) = thread_cpu_timed(|| std::thread::sleep(std::time::Duration::from_millis(20)));
+        assert!(busy > 0.0 && asleep < busy, "busy {busy} s, asleep {asleep} s");
     }
 
     #[test]

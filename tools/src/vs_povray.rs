@@ -73,30 +73,65 @@ fn clock_ticks() -> f64 {
         .unwrap_or(100.0)
 }
 
-/// Renders `pov` with POV-Ray on one thread at `size`², `mask`² samples a
-/// pixel (1: no anti-aliasing), into `out` (PPM); returns its CPU seconds.
-fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<f64, String> {
-    let mut cmd = Command::new("povray");
-    cmd.arg(format!("+I{}", pov.display()))
-        .arg(format!("+O{}", out.display()))
-        .args(["+FP", "-D", "-V", "+WT1", "-GA"])
-        .arg(format!("+W{size}"))
-        .arg(format!("+H{size}"));
+/// What one POV-Ray run cost, in CPU seconds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PovRun {
+    /// The whole process (from /proc/self/stat's cutime and cstime: clock
+    /// ticks, 10 ms on Linux).
+    pub process: f64,
+    /// What POV-Ray reports for its trace ("Trace Time: … with S
+    /// CPU-seconds total"), without its start-up, parse and bounding.
+    pub trace: Option<f64>,
+    /// What it reports for its parse and its bounding boxes, together.
+    pub setup: Option<f64>,
+}
+
+/// The CPU seconds of POV-Ray's report line `NAME Time:` (the number
+/// before "CPU-seconds" on the line after it), if it is there.
+pub fn reported_cpu(report: &str, name: &str) -> Option<f64> {
+    let mut lines = report.lines();
+    lines.find(|l| l.trim_start().starts_with(&format!("{name} Time:")))?;
+    let next = lines.next()?;
+    let (before, _) = next.split_once("CPU-seconds")?;
+    before.split_whitespace().last()?.parse().ok()
+}
+
+/// POV-Ray's arguments to render `pov` on one thread at `size`², `mask`²
+/// samples a pixel (1: no anti-aliasing), into `out` (PPM).
+pub fn povray_args(pov: &Path, out: &Path, size: usize, mask: usize) -> Vec<String> {
+    let mut args = vec![format!("+I{}", pov.display()), format!("+O{}", out.display())];
+    args.extend(["+FP", "-D", "-V", "+WT1"].map(String::from));
+    args.extend([format!("+W{size}"), format!("+H{size}")]);
     if mask > 1 {
-        cmd.args(["+A0.0", "+AM1", "-J"]).arg(format!("+R{mask}"));
+        args.extend(["+A0.0", "+AM1", "-J"].map(String::from));
+        args.push(format!("+R{mask}"));
     } else {
-        cmd.arg("-A");
+        args.push("-A".into());
     }
+    args
+}
+
+/// Renders `pov` with POV-Ray as [`povray_args`] says; returns what it cost.
+pub fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<PovRun, String> {
+    let mut cmd = Command::new("povray");
+    cmd.args(povray_args(pov, out, size, mask));
     let before = cpu_seconds()?.1;
     let o = cmd.output().map_err(|e| format!("povray: {e}"))?;
+    let report = String::from_utf8_lossy(&o.stderr);
     if !o.status.success() {
         return Err(format!(
             "povray failed on {}: {}",
             pov.display(),
-            String::from_utf8_lossy(&o.stderr).lines().last().unwrap_or("")
+            report.lines().last().unwrap_or("")
         ));
     }
-    Ok(cpu_seconds()?.1 - before)
+    let parse = reported_cpu(&report, "Parse");
+    let bounding = reported_cpu(&report, "Bounding");
+    Ok(PovRun {
+        process: cpu_seconds()?.1 - before,
+        trace: reported_cpu(&report, "Trace"),
+        setup: parse.zip(bounding).map(|(p, b)| p + b),
+    })
 }
 
 /// Our render of `scene` on a one-thread pool; returns its CPU seconds
@@ -213,7 +248,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
         for k in 0..solvers.len() {
             ours_t[k].push(ours(pool, &scenes[k])?.0);
         }
-        pov_t.push(povray(&pov, &ppm, set.size, set.mask)?);
+        pov_t.push(povray(&pov, &ppm, set.size, set.mask)?.process);
     }
     let pov_m = median(pov_t);
     let ours_m: Vec<f64> = ours_t.into_iter().map(median).collect();
@@ -293,5 +328,21 @@ mod tests {
         assert_eq!(read_ppm(&w).unwrap(), (1, 1, vec![[255, 127, 0]]));
         assert!(read_ppm(b"P3 1 1 255\n1 2 3").is_err());
         assert!(read_ppm(b"P6 2 2 255\n\x01\x02").is_err());
+    }
+
+    /// The CPU seconds of POV-Ray's report, as POV-Ray 3.7 prints them.
+    #[test]
+    fn reported_cpu_seconds() {
+        let report = "  Parse Time:       0 hours  0 minutes  0 seconds (0.001 seconds)
+              using 1 thread(s) with 0.002 CPU-seconds total
+  Bounding Time:    0 hours  0 minutes  0 seconds (0.000 seconds)
+              using 1 thread(s) with 0.000 CPU-seconds total
+  Trace Time:       0 hours  0 minutes  1 seconds (1.042 seconds)
+              using 1 thread(s) with 1.031 CPU-seconds total
+";
+        assert_eq!(reported_cpu(report, "Parse"), Some(0.002));
+        assert_eq!(reported_cpu(report, "Trace"), Some(1.031));
+        assert_eq!(reported_cpu(report, "Photon"), None);
+        assert_eq!(reported_cpu("  Trace Time:  no CPU line", "Trace"), None);
     }
 }

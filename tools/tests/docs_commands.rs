@@ -36,7 +36,8 @@
 //!   the farm/ scripts, which CI's farm/check.sh runs on a one-node
 //!   cluster; [`farm_md_quotes_the_scripts_and_the_lines_ci_runs`] holds the
 //!   page to them), GNU parallel over remote hosts, the tools that time or
-//!   draw for minutes or write into the checkout, and lines whose outside
+//!   draw for minutes or write into the checkout (`tools scale` runs with
+//!   `--quick` or `--decks`), and lines whose outside
 //!   program (`parallel`, `povray`, …) is not installed. A synopsis (a
 //!   `[…]` group or an `…`) is not run either.
 //! - Every line, run or not, is checked as a mention: its program exists,
@@ -242,6 +243,9 @@ fn skip(n: &Named, words: &[String]) -> Option<(String, bool)> {
         (Some("tools"), Some("chart" | "goal")) => parse("times renders for minutes"),
         (Some("tools"), Some("stability")) => parse("solves hard cases for minutes"),
         (Some("tools"), Some("vs-povray")) => parse("times POV-Ray against the port for minutes"),
+        (Some("tools"), Some("scale")) if !has("--quick") && !has("--decks") => {
+            parse("times scenes of up to 100,000 objects for many minutes (`--quick` runs)")
+        }
         (Some("tools"), Some("gallery")) if !has("--list") => {
             parse("draws into the checkout's docs/ (`--check` renders every picture: minutes)")
         }

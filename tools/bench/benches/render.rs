@@ -9,7 +9,11 @@
 //! - `solver/DEGREE/SOLVER`: one solve of a cubic and of a sextic with
 //!   separated roots in [0, 1], by `laguerre` and by the robust solver;
 //! - `sweep/KIND/SOLVER`: one `Sweep::intersect` call a ray, on the sweep of
-//!   fig5_6, fig5_7 and fig5_8 with rays aimed into its box.
+//!   fig5_6, fig5_7 and fig5_8 with rays aimed into its box;
+//! - `scale/KIND/N`: N = 10, 100, 1000, 10000 spheres, fig5_6 stars or
+//!   fig5_8 goblets at random in a 6×6×3 box (`tools scale`'s scenes),
+//!   256×256, 2×2, `--accel auto` (samples a second: flat means time
+//!   independent of N).
 //!
 //! Sample counts are modest (10 samples, 3 s) so that the whole run takes a
 //! few minutes on two cores. Renders use every core (rayon's global pool).
@@ -27,6 +31,7 @@ use raytrace::robust::{poly_from_roots, real_roots};
 use raytrace::shapes::sweep::{Sweep, SweepCache};
 use raytrace::types::{DVec3, Ray, Shape};
 use tools::decks::{circle_sweep_deck, load_source, prepare, prepared, still, CHAPTER5, SWEEP_KINDS};
+use tools::scale::scenes::{deck, Frame, Kind};
 
 fn modest<M: criterion::measurement::Measurement>(g: &mut BenchmarkGroup<'_, M>) {
     g.sample_size(10)
@@ -171,5 +176,26 @@ fn sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, chapter5, rays, resolution, segments, solver, sweep);
+fn scale(c: &mut Criterion) {
+    let mut g = c.benchmark_group("scale");
+    modest(&mut g);
+    let frame = Frame {
+        size: 256,
+        mask: 2,
+        moving: false,
+    };
+    g.throughput(Throughput::Elements(256 * 256 * 4));
+    for kind in Kind::ALL {
+        for n in [10, 100, 1000, 10000] {
+            let s = deck(kind, n, frame)
+                .and_then(|text| load_source(&text, kind.name(), Path::new("."), Fidelity::Thesis))
+                .and_then(|s| prepare(s, &Options::default()))
+                .unwrap_or_else(|e| panic!("{} {n}: {e}", kind.name()));
+            g.bench_function(format!("{}/{n}", kind.name()), |b| b.iter(|| still(black_box(&s))));
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, chapter5, rays, resolution, segments, solver, sweep, scale);
 criterion_main!(benches);
