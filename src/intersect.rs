@@ -395,11 +395,13 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
 /// nearer ([`closer`]): the loop's body, wherever the objects come from.
 #[inline]
 fn consider(snap: &Snapshot, i: usize, ray: &Ray, tmin: f64, searched: &mut u64, best: &mut Option<(usize, LocalHit)>) {
-    let Some(h) = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched)) else {
-        return;
-    };
-    if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
-        *best = Some((i, h));
+    let hit = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched));
+    // The hit read where it was written, its t first, and copied only if
+    // it is kept.
+    if let Some(h) = &hit {
+        if best.is_none_or(|(j, b)| closer((h.t, i), (b.t, j))) {
+            *best = Some((i, *h));
+        }
     }
 }
 

@@ -262,12 +262,7 @@ fn a_deck_from_standard_input() {
 fn threads_are_bounded() {
     let (_dir, deck) = small_deck();
     let out = deck.with_extension("ras");
-    let with = |n: &str| {
-        let mut command = raytrace_command();
-        command.arg(&deck).args(["-q", "--threads", n, "-o"]).arg(&out);
-        let run = command.output().unwrap();
-        (run.status.code(), String::from_utf8_lossy(&run.stderr).into_owned())
-    };
+    let with = |n: &str| run_small(&deck, &out, &["--threads", n]);
     for n in ["10000", "257"] {
         let (code, err) = with(n);
         assert_eq!(code, Some(2), "--threads {n}");
@@ -285,6 +280,29 @@ fn threads_are_bounded() {
         "the same image for any number"
     );
     help_says("1..256, or 0 for one per core");
+}
+
+/// `--accel` takes auto, none, bvh or octree, each giving the same image;
+/// another word is a usage error naming them, and nothing is written.
+#[test]
+fn accel_takes_four_words_and_gives_one_image() {
+    let (_dir, deck) = small_deck();
+    let out = deck.with_extension("ras");
+    let with = |word: &str| run_small(&deck, &out, &["--accel", word]);
+    let (code, err) = with("kdtree");
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        ["auto", "none", "bvh", "octree"].iter().all(|w| err.contains(w)),
+        "{err}"
+    );
+    assert!(!out.exists());
+    let mut rasters = Vec::new();
+    for word in ["auto", "none", "bvh", "octree"] {
+        let (code, err) = with(word);
+        assert_eq!(code, Some(0), "--accel {word}: {err}");
+        rasters.push(std::fs::read(&out).unwrap());
+    }
+    assert!(rasters.iter().all(|r| r == &rasters[0]));
 }
 
 /// The summary line (without --quiet) names the deck, what was written,
@@ -331,6 +349,14 @@ fn small_deck() -> (tempfile::TempDir, std::path::PathBuf) {
     let deck = dir.path().join("small.deck");
     std::fs::write(&deck, SMALL_DECK).unwrap();
     (dir, deck)
+}
+
+/// `raytrace DECK -q ARGS -o OUT`: its exit status and standard error.
+fn run_small(deck: &std::path::Path, out: &std::path::Path, args: &[&str]) -> (Option<i32>, String) {
+    let mut command = raytrace_command();
+    command.arg(deck).arg("-q").args(args).arg("-o").arg(out);
+    let run = command.output().unwrap();
+    (run.status.code(), String::from_utf8_lossy(&run.stderr).into_owned())
 }
 
 /// `raytrace --help` says `words`.

@@ -396,18 +396,26 @@ impl<'a> Parser<'a> {
     /// A number that meets `ok`; `what` places it in the message ("after
     /// 'radius'", "for X"). A number past the deck's range, ±[`MAX_MAGNITUDE`]
     /// (or too large for a 64-bit real), is refused as outside `outer`, one
-    /// in range that fails `ok` as outside `range`.
-    fn number_in(&mut self, what: &str, outer: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
+    /// in range that fails `ok` as outside `range`. The ranges are written
+    /// only for an error (formatting them for every number was a tenth of
+    /// reading a deck of many objects).
+    fn number_in(
+        &mut self,
+        what: &str,
+        outer: impl FnOnce() -> String,
+        range: impl FnOnce() -> String,
+        ok: impl Fn(f64) -> bool,
+    ) -> Result<Num, DeckError> {
         if let Some((w, pos)) = self.peek_word()? {
             if is_number(&w) {
                 // Rust parses every text of the number grammar; one too
                 // large for a real gives infinity.
                 let value = w.parse::<f64>().unwrap_or(f64::INFINITY);
-                let range = if value.abs() <= MAX_MAGNITUDE { range } else { outer };
                 if value.abs() <= MAX_MAGNITUDE && ok(value) {
                     self.advance();
                     return Ok(Num { value, pos, text: w });
                 }
+                let range = if value.abs() <= MAX_MAGNITUDE { range() } else { outer() };
                 return Err(self.error_at(pos, format!("expected a number {range} {what}, found {}", shown(&w))));
             }
         }
@@ -416,21 +424,18 @@ impl<'a> Parser<'a> {
 
     /// A number in the deck's range, −[`MAX_MAGNITUDE`]..=[`MAX_MAGNITUDE`].
     pub fn number(&mut self, what: &str) -> Result<Num, DeckError> {
-        let outer = format!("in -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}");
-        self.number_in(what, &outer, &outer, |_| true)
+        self.number_in(what, deck_range, deck_range, |_| true)
     }
 
     /// A number in the deck's range that must also meet `ok`, described by
     /// `range` ("> 0", "in 0..1").
     pub fn number_where(&mut self, what: &str, range: &str, ok: impl Fn(f64) -> bool) -> Result<Num, DeckError> {
-        let outer = format!("in -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}");
-        self.number_in(what, &outer, range, ok)
+        self.number_in(what, deck_range, || range.to_string(), ok)
     }
 
     /// A size: a number in [`MIN_SIZE`]..=[`MAX_MAGNITUDE`].
     pub fn size(&mut self, what: &str) -> Result<Num, DeckError> {
-        let range = format!("in {MIN_SIZE:e}..{MAX_MAGNITUDE:e}");
-        self.number_in(what, &range, &range, |v| v >= MIN_SIZE)
+        self.number_in(what, size_range, size_range, |v| v >= MIN_SIZE)
     }
 
     /// A number in 0..=1.
@@ -507,6 +512,16 @@ impl<'a> Parser<'a> {
             Err(self.expected_near(&what, &unseen))
         }
     }
+}
+
+/// The deck's range of numbers, as an error writes it.
+fn deck_range() -> String {
+    format!("in -{MAX_MAGNITUDE:e}..{MAX_MAGNITUDE:e}")
+}
+
+/// The range of sizes, as an error writes it.
+fn size_range() -> String {
+    format!("in {MIN_SIZE:e}..{MAX_MAGNITUDE:e}")
 }
 
 #[cfg(test)]
