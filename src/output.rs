@@ -189,8 +189,10 @@ impl PendingFile {
                 let result = write_buffered(&mut file, write).and_then(|()| {
                     file.sync_all().map_err(OutputError::from)?;
                     let mut registry = temp_files();
+                    // The target's folder is the temporary file's, so a
+                    // rename that finds nothing found no temporary file.
                     fs::rename(&temp, &target).map_err(|e| match e.kind() {
-                        io::ErrorKind::NotFound if !temp.exists() => OutputError::TempVanished(temp.clone()),
+                        io::ErrorKind::NotFound => OutputError::TempVanished(temp.clone()),
                         _ => OutputError::from(e),
                     })?;
                     registry.retain(|t| t != &temp);
@@ -309,10 +311,16 @@ pub fn this_host() -> &'static str {
             .map(|h| h.trim().to_string())
             .filter(|h| !h.is_empty())
             .unwrap_or_else(|| "localhost".into());
-        name.chars()
-            .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
-            .collect()
+        host_word(&name)
     })
+}
+
+/// A host name as one word of a temporary file's name: each character
+/// other than a letter, a digit or `-` made `_` (so no dot).
+fn host_word(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+        .collect()
 }
 
 /// Creates `.NAME.HOST.PID.N.tmp` in `dir`, a name no other writer uses.
@@ -514,6 +522,13 @@ mod tests {
         w.flush().unwrap();
         assert!(!w.closed);
         assert_eq!(w.inner.got, b"abc");
+    }
+
+    #[test]
+    fn a_host_name_becomes_one_word_without_dots() {
+        assert_eq!(host_word("node-7.cluster.example"), "node-7_cluster_example");
+        assert_eq!(host_word("Vm2"), "Vm2");
+        assert_eq!(host_word("a b/c"), "a_b_c");
     }
 
     #[test]

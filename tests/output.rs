@@ -285,6 +285,24 @@ fn the_next_write_removes_stale_temporary_files_of_dead_processes_of_this_host()
     assert_eq!(file_names(dir.path()), expected);
 }
 
+/// The host of a temporary file's name is the kernel's host name, each
+/// character other than a letter, a digit or `-` made `_` (the rule's own
+/// test is `output::tests::a_host_name_becomes_one_word_without_dots`).
+#[test]
+fn the_host_is_the_kernels_host_name() {
+    let Ok(name) = std::fs::read_to_string("/proc/sys/kernel/hostname") else {
+        eprintln!("skipped: no /proc/sys/kernel/hostname");
+        return;
+    };
+    let want: String = name
+        .trim()
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+        .collect();
+    assert!(!want.is_empty());
+    assert_eq!(this_host(), want);
+}
+
 /// A temporary file's name is `.NAME.HOST.PID.N.tmp`, with this host and
 /// this process.
 #[test]
