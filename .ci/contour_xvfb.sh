@@ -10,19 +10,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 name=contour_xvfb
 
-missing=()
-for tool in xvfb-run xdotool xwd xwdtopnm pngtopnm ppmtoppm cmp; do
-    command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
-done
-if ((${#missing[@]})); then
-    msg="missing ${missing[*]} (apt-get install -y xvfb xdotool x11-apps netpbm)"
-    if [[ -n "${CI:-}" ]]; then
-        echo "$name: FAIL: $msg"
-        exit 1
-    fi
-    echo "$name: SKIP: $msg"
-    exit 0
-fi
+# shellcheck source=.ci/needs.sh
+source .ci/needs.sh
+needs "$name" "xvfb xdotool x11-apps netpbm" xvfb-run xdotool xwd xwdtopnm pngtopnm ppmtoppm cmp
 
 cargo build --quiet --bin contour
 bin="$(pwd)/${CARGO_TARGET_DIR:-target}/debug/contour"

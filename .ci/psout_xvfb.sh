@@ -8,19 +8,9 @@ cd "$(dirname "$0")/.."
 name=psout_xvfb
 ras=tests/data/psout_check.ras
 
-missing=()
-for tool in xvfb-run xwd xwdtopnm pngtopnm ppmtoppm cmp; do
-    command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
-done
-if ((${#missing[@]})); then
-    msg="missing ${missing[*]} (apt-get install -y xvfb x11-apps netpbm)"
-    if [[ -n "${CI:-}" ]]; then
-        echo "$name: FAIL: $msg"
-        exit 1
-    fi
-    echo "$name: SKIP: $msg"
-    exit 0
-fi
+# shellcheck source=.ci/needs.sh
+source .ci/needs.sh
+needs "$name" "xvfb x11-apps netpbm" xvfb-run xwd xwdtopnm pngtopnm ppmtoppm cmp
 
 cargo build --quiet --bin psout
 bin="${CARGO_TARGET_DIR:-target}/debug/psout"

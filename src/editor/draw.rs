@@ -56,6 +56,26 @@ pub fn fill(fb: &mut Framebuffer, r: Rect, colour: u32) {
     }
 }
 
+/// The one-pixel border just inside `r`.
+pub fn outline(fb: &mut Framebuffer, r: Rect, colour: u32) {
+    for side in [
+        Rect { h: 1, ..r },
+        Rect {
+            y: r.y + r.h - 1,
+            h: 1,
+            ..r
+        },
+        Rect { w: 1, ..r },
+        Rect {
+            x: r.x + r.w - 1,
+            w: 1,
+            ..r
+        },
+    ] {
+        fill(fb, side, colour);
+    }
+}
+
 /// A line from (x0, y0) to (x1, y1), one pixel wide, drawn inside `clip`;
 /// a line far outside it is cut to it first, so its length costs nothing.
 pub fn line(fb: &mut Framebuffer, clip: Rect, (x0, y0): (f64, f64), (x1, y1): (f64, f64), colour: u32) {
@@ -266,6 +286,14 @@ mod tests {
         assert_eq!(fb.pixel(7, 5), 0x0000FF);
         assert_eq!(fb.pixel(1, 3), 0);
         assert_eq!(lit(&fb), 18);
+    }
+
+    #[test]
+    fn an_outline_is_the_border_only() {
+        let mut fb = blank();
+        outline(&mut fb, Rect { x: 2, y: 3, w: 4, h: 5 }, 9);
+        assert_eq!(lit(&fb), 2 * 4 + 2 * 3);
+        assert_eq!((fb.pixel(2, 3), fb.pixel(5, 7), fb.pixel(3, 4)), (9, 9, 0));
     }
 
     #[test]

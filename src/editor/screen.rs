@@ -9,7 +9,7 @@
 //! same for the window and for `--screenshot`.
 
 use super::curve::{joints, polylines, shape};
-use super::draw::{blank, fill, line, mark, picture, text, wrap, Mark, Rect};
+use super::draw::{blank, fill, line, mark, outline, picture, text, wrap, Mark, Rect};
 use super::keyshapes::{self, ChainView};
 use super::model::{class_word, curve_word};
 use super::plane::Plane;
@@ -268,36 +268,16 @@ fn draw_grid(fb: &mut Framebuffer, p: &Plane) {
 /// The preview's picture, enlarged to fill its box, and its pass.
 fn draw_preview(fb: &mut Framebuffer, preview: &Preview) {
     fill(fb, PREVIEW, 0x000000);
-    let frame = |fb: &mut Framebuffer, r: Rect| {
-        fill(fb, Rect { h: 1, ..r }, AXES);
-        fill(
-            fb,
-            Rect {
-                y: r.y + r.h - 1,
-                h: 1,
-                ..r
-            },
-            AXES,
-        );
-        fill(fb, Rect { w: 1, ..r }, AXES);
-        fill(
-            fb,
-            Rect {
-                x: r.x + r.w - 1,
-                w: 1,
-                ..r
-            },
-            AXES,
-        );
-    };
-    frame(
+    let r = PREVIEW;
+    outline(
         fb,
         Rect {
-            x: PREVIEW.x - 1,
-            y: PREVIEW.y - 1,
-            w: PREVIEW.w + 2,
-            h: PREVIEW.h + 2,
+            x: r.x - 1,
+            y: r.y - 1,
+            w: r.w + 2,
+            h: r.h + 2,
         },
+        AXES,
     );
     if let Some(r) = &preview.raster {
         let zoom = (PREVIEW.w / r.width.max(r.height).max(1) as i64).max(1);

@@ -1,0 +1,20 @@
+# Sourced by the .ci/*_xvfb.sh checks: `needs NAME "APT PACKAGES" TOOL…`
+# returns when every TOOL is on PATH; otherwise it says which are missing
+# and how to install them, and exits: 0 (SKIP) on a developer's machine,
+# 1 (FAIL) when CI is set.
+needs() {
+    local name=$1 packages=$2 tool
+    shift 2
+    local missing=()
+    for tool in "$@"; do
+        command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+    done
+    ((${#missing[@]})) || return 0
+    local msg="missing ${missing[*]} (apt-get install -y $packages)"
+    if [[ -n "${CI:-}" ]]; then
+        echo "$name: FAIL: $msg"
+        exit 1
+    fi
+    echo "$name: SKIP: $msg"
+    exit 0
+}
