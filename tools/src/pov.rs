@@ -265,7 +265,8 @@ pub fn focal_blur(scene: &Scene, location: DVec3, direction: DVec3) -> String {
 /// the port's extension; nothing for a point light): a `circular` light
 /// of diameter 2R that POV-Ray turns to face each point it lights
 /// (`orient`), which is the disk the sphere shows that point; its M×M
-/// point lights (`samples` M, the deck's mask) `jitter`ed in their cells.
+/// point lights (`samples` M, the deck's mask; at least 2×2, as POV-Ray
+/// 3.7 refuses `circular` with one) `jitter`ed in their cells.
 /// `orient` needs both axes of one length and one count (POV-Ray 3.7
 /// reference, area lights).
 pub fn area_light(light: &LightRecord, samples: usize) -> String {
@@ -273,7 +274,9 @@ pub fn area_light(light: &LightRecord, samples: usize) -> String {
         return String::new();
     }
     let d = num(2.0 * light.radius);
-    format!(" area_light <{d}, 0, 0>, <0, 0, {d}>, {samples}, {samples} jitter circular orient")
+    // POV-Ray 3.7 refuses `circular` with one light ("Cannot parse input").
+    let n = samples.max(2);
+    format!(" area_light <{d}, 0, 0>, <0, 0, {d}>, {n}, {n} jitter circular orient")
 }
 
 /// The whole scene as POV-Ray 3.7 SDL (see the module doc).

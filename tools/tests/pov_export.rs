@@ -69,6 +69,14 @@ fn a_lens_is_focal_blur_and_a_sphere_of_light_an_area_light() {
         light,
         "light_source { <3.0, 8.0, -4.0> color rgb <1.0, 0.5, 0.25> area_light <1.0, 0, 0>, <0, 0, 1.0>, 3, 3 jitter circular orient } // sun"
     );
+    // Mask 1: 2×2 lights, as POV-Ray refuses `circular` with one.
+    let mut one = scene(&deck("0 -10 0", "0 0 0", "radius 0.5", ""), Fidelity::Thesis);
+    one.resize(20, 10, 1);
+    let text = scene_sdl(&one, Fidelity::Thesis);
+    assert!(
+        line(&text, "light_source {").contains(", 2, 2 jitter circular orient }"),
+        "{text}"
+    );
 }
 
 /// Seen obliquely, the focal point is FOCUS along the line of sight (the
