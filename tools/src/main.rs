@@ -190,6 +190,11 @@ enum Command {
         /// Timed rounds (the medians are printed).
         #[arg(long, default_value_t = 5)]
         runs: usize,
+        /// Instead of the decks: the depth-of-field scene (cook.deck, lens
+        /// only), CPU at equal RMSE against each renderer's own 1024-ray
+        /// reference.
+        #[arg(long)]
+        depth_of_field: bool,
     },
     /// Time a sample against the number of objects: N spheres, fig5_6 stars and fig5_8
     /// goblets at random in a box, with each --accel and with POV-Ray when installed, one
@@ -369,12 +374,16 @@ fn run(command: Command) -> Result<(), Failure> {
             size,
             mask,
             runs,
+            depth_of_field,
         } => {
             let set = tools::vs_povray::Settings {
                 size: size.clamp(8, 4096),
                 mask: mask.clamp(1, 16),
                 runs: runs.max(1),
             };
+            if depth_of_field {
+                return tools::vs_povray::depth_of_field(&set).map_err(Failure::other);
+            }
             let decks: Vec<PathBuf> = decks.iter().map(PathBuf::from).collect();
             tools::vs_povray::run(&decks, &set)
         }

@@ -24,12 +24,19 @@
 //! points). Not exported, and said so in the file: motion and key frames
 //! (the scene stands as at rest, a key-frame object as its first shape),
 //! paints and textures (the surface's plain colour).
+//!
+//! Cook's distributed ray tracing (the port's extension, docs/cook.md):
+//! a `lens` of aperture > 0 becomes the camera's focal blur
+//! ([`focal_blur`]), a light of `radius` > 0 an `area_light`
+//! ([`area_light`]); a deck without them exports as before. Surface
+//! `gloss` is not exported (POV-Ray's blurred reflection is a micro-normal
+//! average, not a turn of the ray), and said so in the file.
 
 use std::fmt::Write as _;
 
 use raytrace::options::Fidelity;
 use raytrace::raytrace::{getangle, translookpt};
-use raytrace::scene::Scene;
+use raytrace::scene::{LightRecord, Scene};
 use raytrace::shapes::sweep::segment_points;
 use raytrace::types::{
     CurveKind, DMat4, DVec3, PrimitiveClass, Shape, SurfaceAttribute, SurfaceRecord, SweepShape, MAXSEGMENTS,
@@ -148,6 +155,9 @@ fn texture(s: &SurfaceRecord) -> String {
     if s.paint.is_some() || s.texture.is_some() {
         out.push_str(" /* the paint or texture is not exported */");
     }
+    if s.gloss > 0.0 {
+        out.push_str(" /* gloss is not exported */");
+    }
     out
 }
 
@@ -223,6 +233,52 @@ fn shape_sdl(class: PrimitiveClass, shape: &Shape, radius: f64) -> Option<String
     })
 }
 
+/// POV-Ray's focal blur for a `lens` of aperture > 0 (the port's
+/// extension; nothing for no lens or `lens 0 F`, which render as the
+/// pinhole): the camera's ` aperture … focal_point … blur_samples N, N`.
+/// POV-Ray 3.7 moves the eye by `aperture`/2 times a point of its sample
+/// grid, which fills the disk of radius ½ (`TracePixel::JitterCameraRay`,
+/// `FocalBlurData`): its lens radius is `aperture`/4, so `aperture` is 4
+/// times the deck's APERTURE (the lens's radius). Its plane of focus is the
+/// plane through `focal_point` across `direction`: the point FOCUS along
+/// the line of sight is our plane of focus (thesis fidelity). N is the
+/// deck's M×M rays a pixel, as both the minimum and the maximum, so that
+/// POV-Ray's adaptive stop never ends a pixel early; with focal blur
+/// POV-Ray jitters each of those rays in the pixel too (its antialiasing
+/// is then not needed).
+pub fn focal_blur(scene: &Scene, location: DVec3, direction: DVec3) -> String {
+    let Some(lens) = scene.lens.as_ref().filter(|l| l.aperture > 0.0) else {
+        return String::new();
+    };
+    let focal_point = location + direction.normalize() * lens.focus;
+    let m = scene.image.masksize.max(1);
+    format!(
+        " aperture {} focal_point {} blur_samples {}, {}",
+        num(4.0 * lens.aperture),
+        pov_vec(focal_point),
+        m * m,
+        m * m
+    )
+}
+
+/// POV-Ray's area light for a sphere of light (`light … radius R`, R > 0;
+/// the port's extension; nothing for a point light): a `circular` light
+/// of diameter 2R that POV-Ray turns to face each point it lights
+/// (`orient`), which is the disk the sphere shows that point; its M×M
+/// point lights (`samples` M, the deck's mask; at least 2×2, as POV-Ray
+/// 3.7 refuses `circular` with one) `jitter`ed in their cells.
+/// `orient` needs both axes of one length and one count (POV-Ray 3.7
+/// reference, area lights).
+pub fn area_light(light: &LightRecord, samples: usize) -> String {
+    if light.radius <= 0.0 {
+        return String::new();
+    }
+    let d = num(2.0 * light.radius);
+    // POV-Ray 3.7 refuses `circular` with one light ("Cannot parse input").
+    let n = samples.max(2);
+    format!(" area_light <{d}, 0, 0>, <0, 0, {d}>, {n}, {n} jitter circular orient")
+}
+
 /// The whole scene as POV-Ray 3.7 SDL (see the module doc).
 pub fn scene_sdl(scene: &Scene, fidelity: Fidelity) -> String {
     let mut out = String::new();
@@ -244,23 +300,32 @@ pub fn scene_sdl(scene: &Scene, fidelity: Fidelity) -> String {
     );
     let b = scene.backgrnd;
     let _ = writeln!(out, "background {{ rgb <{}, {}, {}> }}", num(b.x), num(b.y), num(b.z));
+    if fidelity == Fidelity::Listing && scene.lens.as_ref().is_some_and(|l| l.aperture > 0.0) {
+        let _ = writeln!(
+            out,
+            "// The lens as the thesis's thin lens: the listing's depthoffield (sharp on the plane y = FOCUS, a lens of one dimension) has no POV-Ray form."
+        );
+    }
     let _ = writeln!(
         out,
-        "camera {{ perspective location {} direction {} right {} up {} }}",
+        "camera {{ perspective location {} direction {} right {} up {}{} }}",
         pov_vec(location),
         pov_vec(direction),
         pov_vec(right),
-        pov_vec(up)
+        pov_vec(up),
+        focal_blur(scene, location, direction)
     );
+    let samples = scene.image.masksize.max(1);
     for l in &scene.lights {
         let c = l.color;
         let _ = writeln!(
             out,
-            "light_source {{ {} color rgb <{}, {}, {}> }} // {}",
+            "light_source {{ {} color rgb <{}, {}, {}>{} }} // {}",
             pov_vec(l.position),
             num(c.x),
             num(c.y),
             num(c.z),
+            area_light(l, samples),
             l.name
         );
     }

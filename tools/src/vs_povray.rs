@@ -7,6 +7,10 @@
 //! pixel. Not the thesis's: a cross-check of the port. Linux only (CPU
 //! times from /proc/self/stat).
 //!
+//! With `--depth-of-field`, [`depth_of_field`] instead: `cook.deck`'s lens
+//! against POV-Ray's focal blur, CPU at equal RMSE against each renderer's
+//! own 1024-ray reference (issue 26).
+//!
 //! POV-Ray is the Debian package `povray`; without it the tool says so and
 //! stops. Nothing here is asserted in tests.
 
@@ -314,6 +318,132 @@ pub fn run(decks: &[PathBuf], set: &Settings) -> Result<(), String> {
     result
 }
 
+/// The rays a pixel of the depth-of-field reference, on both sides.
+const REFERENCE_RAYS: usize = 1024;
+
+/// RMSE of two rasters' pixels, 0..1 a channel.
+fn rmse(a: &[[u8; 3]], b: &[[u8; 3]]) -> f64 {
+    let n = (a.len().min(b.len()) * 3).max(1);
+    let sum: f64 = a
+        .iter()
+        .zip(b)
+        .flat_map(|(p, q)| (0..3).map(move |k| (p[k] as f64 - q[k] as f64) / 255.0))
+        .map(|d| d * d)
+        .sum();
+    (sum / n as f64).sqrt()
+}
+
+/// POV-Ray's CPU seconds at the RMSE `target`, from its (RMSE, CPU)
+/// points: log-log interpolation between the two that bracket it (or the
+/// nearest two, extrapolated), `None` with fewer than two.
+fn cpu_at(points: &[(f64, f64)], target: f64) -> Option<f64> {
+    let mut p: Vec<(f64, f64)> = points.iter().copied().filter(|&(e, c)| e > 0.0 && c > 0.0).collect();
+    p.sort_by(|a, b| b.0.total_cmp(&a.0));
+    if p.len() < 2 {
+        return None;
+    }
+    let i = p.windows(2).position(|w| w[1].0 <= target).unwrap_or(p.len() - 2);
+    let ((e0, c0), (e1, c1)) = (p[i], p[i + 1]);
+    let t = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
+    Some((c0.ln() + t * (c1.ln() - c0.ln())).exp())
+}
+
+/// The depth-of-field scene: `cook.deck` (its `lens` focused on the
+/// middle letter) with its sphere of light a point and its gloss 0, so
+/// that the lens is the only effect, `size`² pixels.
+fn dof_scene(size: usize, rays_side: usize) -> Result<Scene, String> {
+    let mut s = load("cook", Options::default().fidelity)?;
+    s.lights.iter_mut().for_each(|l| l.radius = 0.0);
+    s.surfaces.iter_mut().for_each(|f| f.gloss = 0.0);
+    s.motions.clear();
+    s.keyframes.clear();
+    s.resize(size, size, rays_side);
+    Ok(s)
+}
+
+/// One side's render of the depth-of-field scene at `rays_side`² rays a
+/// pixel: ours (CPU seconds, pixels) or POV-Ray's focal blur with
+/// `blur_samples` the same count and no antialiasing.
+fn dof_render(
+    theirs: bool,
+    size: usize,
+    rays_side: usize,
+    pool: &rayon::ThreadPool,
+    dir: &Path,
+) -> Result<(f64, Vec<[u8; 3]>), String> {
+    let scene = dof_scene(size, rays_side)?;
+    if !theirs {
+        return ours(pool, &crate::decks::prepare(scene, &Options::default())?);
+    }
+    let pov = dir.join(format!("dof_{rays_side}.pov"));
+    let ppm = dir.join(format!("dof_{rays_side}.ppm"));
+    std::fs::write(&pov, scene_sdl(&scene, Options::default().fidelity))
+        .map_err(|e| format!("{}: {e}", pov.display()))?;
+    let cpu = povray(&pov, &ppm, size, 1)?.process;
+    let bytes = std::fs::read(&ppm).map_err(|e| format!("{}: {e}", ppm.display()))?;
+    Ok((cpu, read_ppm(&bytes)?.2))
+}
+
+/// The depth-of-field comparison (issue 26): for each renderer its own
+/// reference of 1024 rays a pixel, then 4, 16 and 64 rays a pixel timed
+/// (`runs` rounds, interleaved, medians) and their RMSE against that
+/// reference; POV-Ray's CPU at our RMSE by log-log interpolation of its
+/// points, and the ratio. Printed as a Markdown table.
+pub fn depth_of_field(set: &Settings) -> Result<(), String> {
+    check_povray()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let dir = std::env::temp_dir().join(format!("tools-vs-povray-dof-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let result = (|| {
+        let side = (REFERENCE_RAYS as f64).sqrt() as usize;
+        let (_, ref_ours) = dof_render(false, set.size, side, &pool, &dir)?;
+        let (_, ref_pov) = dof_render(true, set.size, side, &pool, &dir)?;
+        println!(
+            "cook.deck, lens only, {}², one thread each; RMSE (0..1) against each renderer's own {REFERENCE_RAYS}-ray render; CPU seconds, median of {} interleaved.\n",
+            set.size, set.runs
+        );
+        println!("| rays | ours RMSE | ours CPU | POV-Ray RMSE | POV-Ray CPU |");
+        println!("|---|---|---|---|---|");
+        let mut rows = Vec::new();
+        for m in [2, 4, 8] {
+            let (mut t_ours, mut t_pov) = (Vec::new(), Vec::new());
+            let (mut e_ours, mut e_pov) = (0.0, 0.0);
+            for _ in 0..set.runs {
+                let (c, px) = dof_render(false, set.size, m, &pool, &dir)?;
+                t_ours.push(c);
+                e_ours = rmse(&px, &ref_ours);
+                let (c, px) = dof_render(true, set.size, m, &pool, &dir)?;
+                t_pov.push(c);
+                e_pov = rmse(&px, &ref_pov);
+            }
+            let row = (e_ours, median(t_ours), e_pov, median(t_pov));
+            println!(
+                "| {} | {:.4} | {:.3} | {:.4} | {:.3} |",
+                m * m,
+                row.0,
+                row.1,
+                row.2,
+                row.3
+            );
+            rows.push(row);
+        }
+        let pov_points: Vec<(f64, f64)> = rows.iter().map(|r| (r.2, r.3)).collect();
+        println!("\n| rays (ours) | ours RMSE | ours CPU | POV-Ray CPU at that RMSE | ours/POV |");
+        println!("|---|---|---|---|---|");
+        for (m, r) in [2, 4, 8].iter().zip(&rows) {
+            if let Some(c) = cpu_at(&pov_points, r.0) {
+                println!("| {} | {:.4} | {:.3} | {:.3} | {:.2} |", m * m, r.0, r.1, c, r.1 / c);
+            }
+        }
+        Ok(())
+    })();
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -344,5 +474,17 @@ mod tests {
         assert_eq!(reported_cpu(report, "Trace"), Some(1.031));
         assert_eq!(reported_cpu(report, "Photon"), None);
         assert_eq!(reported_cpu("  Trace Time:  no CPU line", "Trace"), None);
+    }
+
+    #[test]
+    fn rmse_and_cpu_at_equal_rmse() {
+        assert_eq!(rmse(&[[0, 0, 0]], &[[255, 255, 255]]), 1.0);
+        assert!((rmse(&[[0, 0, 0], [0, 0, 0]], &[[255, 0, 0], [0, 0, 0]]) - (1.0f64 / 6.0).sqrt()).abs() < 1e-12);
+        // CPU ∝ RMSE⁻²: at RMSE 0.02 between (0.04, 1) and (0.01, 16), 4.
+        let pts = [(0.04, 1.0), (0.01, 16.0), (0.08, 0.25)];
+        assert!((cpu_at(&pts, 0.02).unwrap() - 4.0).abs() < 1e-9);
+        // Beyond the points: extrapolated on the nearest two.
+        assert!((cpu_at(&pts, 0.005).unwrap() - 64.0).abs() < 1e-9);
+        assert!(cpu_at(&pts[..1], 0.02).is_none());
     }
 }
