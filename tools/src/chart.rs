@@ -178,10 +178,7 @@ fn sweeps_of(scene: &Scene) -> Vec<usize> {
 
 /// Panel 3's measurements.
 pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, String> {
-    let one = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
+    let one = crate::measure::one_thread()?;
     let mut out = Vec::new();
     for &deck in SOLVER_DECKS {
         let robust = opts(Fidelity::Thesis, Solver::Robust, TimeSampler::Table);

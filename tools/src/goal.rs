@@ -77,10 +77,7 @@ fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<Intens
 
 /// Measures the goal's table at `size`² with `runs` timed rounds.
 pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<GoalRow>, String> {
-    let one = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
+    let one = crate::measure::one_thread()?;
     let (table, adaptive) = (opts(TimeSampler::Table), opts(TimeSampler::Adaptive));
     let mut rows = Vec::new();
     for &deck in BLUR_DECKS {

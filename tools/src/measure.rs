@@ -84,6 +84,22 @@ pub fn thread_cpu_timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
     (secs, out)
 }
 
+/// A pool of one thread: the timings of one thread each.
+pub fn one_thread() -> Result<rayon::ThreadPool, String> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .map_err(|e| e.to_string())
+}
+
+/// A new folder for a tool's scratch files, `tools-NAME-PID` in the
+/// system's temporary folder (the caller removes it).
+pub fn scratch_dir(name: &str) -> Result<std::path::PathBuf, String> {
+    let dir = std::env::temp_dir().join(format!("tools-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    Ok(dir)
+}
+
 /// Whether an object is a sweep (translation, conic, rotation).
 pub fn is_sweep(class: PrimitiveClass) -> bool {
     matches!(

@@ -297,12 +297,8 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
 /// Compares every deck (see the module doc) and prints a Markdown table.
 pub fn run(decks: &[PathBuf], set: &Settings) -> Result<(), String> {
     check_povray()?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
-    let dir = std::env::temp_dir().join(format!("tools-vs-povray-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let pool = crate::measure::one_thread()?;
+    let dir = crate::measure::scratch_dir("vs-povray")?;
     println!(
         "{}², {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
         set.size,
@@ -391,12 +387,8 @@ fn dof_render(
 /// points, and the ratio. Printed as a Markdown table.
 pub fn depth_of_field(set: &Settings) -> Result<(), String> {
     check_povray()?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
-    let dir = std::env::temp_dir().join(format!("tools-vs-povray-dof-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let pool = crate::measure::one_thread()?;
+    let dir = crate::measure::scratch_dir("vs-povray-dof")?;
     let result = (|| {
         let side = (REFERENCE_RAYS as f64).sqrt() as usize;
         let (_, ref_ours) = dof_render(false, set.size, side, &pool, &dir)?;

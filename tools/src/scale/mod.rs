@@ -320,12 +320,8 @@ fn measure_moving(set: &Settings, pool: &rayon::ThreadPool) -> Result<(f64, f64)
 
 /// Measures everything `set` asks for.
 pub fn measure(set: &Settings) -> Result<Measured, String> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
-    let tmp = std::env::temp_dir().join(format!("tools-scale-{}", std::process::id()));
-    std::fs::create_dir_all(&tmp).map_err(|e| format!("{}: {e}", tmp.display()))?;
+    let pool = crate::measure::one_thread()?;
+    let tmp = crate::measure::scratch_dir("scale")?;
     let result = (|| {
         let mut out = Measured::default();
         for kind in Kind::ALL {
