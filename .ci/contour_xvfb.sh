@@ -89,15 +89,7 @@ case $status in
 4) echo "$name: FAIL: no contour window appeared"; exit 1 ;;
 5) echo "$name: FAIL: q did not close the window after the save"; exit 1 ;;
 6) echo "$name: FAIL: contour exited with an error: $(tr '\n' ' ' <"$tmp/contour.err")"; exit 1 ;;
-*)
-    if [[ -s "$tmp/screen.ppm" ]]; then
-        diff=$(cmp -l "$tmp/screen.ppm" "$tmp/expected.ppm" 2>/dev/null | wc -l || true)
-        echo "$name: FAIL: the window's screen differs from the scripted run's in $diff bytes"
-    else
-        echo "$name: FAIL: could not grab the Xvfb screen (status $status)"
-    fi
-    exit 1
-    ;;
+*) screen_differs "$name" "$tmp" "$status" "the window's screen differs from the scripted run's" ;;
 esac
 if ! cmp -s "$tmp/window/star.deck" "$tmp/expected.deck"; then
     echo "$name: FAIL: the deck the window saved differs from the scripted run's:"

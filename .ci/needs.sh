@@ -18,3 +18,17 @@ needs() {
     echo "$name: SKIP: $msg"
     exit 0
 }
+
+# `screen_differs NAME TMP STATUS WHAT`: says that the Xvfb screen never
+# matched TMP/expected.ppm (WHAT "differs … in N bytes"), or that it could
+# not be grabbed, and exits 1 (FAIL).
+screen_differs() {
+    local name=$1 tmp=$2 status=$3 what=$4 diff
+    if [[ -s "$tmp/screen.ppm" ]]; then
+        diff=$(cmp -l "$tmp/screen.ppm" "$tmp/expected.ppm" 2>/dev/null | wc -l || true)
+        echo "$name: FAIL: $what in $diff bytes"
+    else
+        echo "$name: FAIL: could not grab the Xvfb screen (status $status)"
+    fi
+    exit 1
+}

@@ -55,13 +55,5 @@ case $status in
     echo "$name: FAIL: psout exited before its window showed the raster: $(tr '\n' ' ' <"$tmp/psout.err")"
     exit 1
     ;;
-*)
-    if [[ -s "$tmp/screen.ppm" ]]; then
-        diff=$(cmp -l "$tmp/screen.ppm" "$tmp/expected.ppm" 2>/dev/null | wc -l || true)
-        echo "$name: FAIL: the grabbed screen differs from psout --screenshot in $diff bytes ($ras)"
-    else
-        echo "$name: FAIL: could not grab the Xvfb screen (status $status)"
-    fi
-    exit 1
-    ;;
+*) screen_differs "$name" "$tmp" "$status" "the grabbed screen differs from psout --screenshot ($ras)" ;;
 esac

@@ -21,12 +21,21 @@ use crate::types::DVec3;
 /// light (`radius` > 0, deck `light … radius R`) gives a direction in the
 /// cone it fills seen from `p`, uniform over the solid angle, and the
 /// distance to where that direction enters it.
+#[inline]
 pub fn toward_light(light: &LightRecord, p: DVec3, sampler: &mut dyn Sampler) -> Option<(DVec3, f64)> {
     let to_light = light.position - p;
     let dist = to_light.length();
     if light.radius <= 0.0 {
         return Some((to_light / dist, dist));
     }
+    toward_sphere(light, to_light, dist, sampler)
+}
+
+/// [`toward_light`] for a sphere of light, kept out of line: the point
+/// lights' path, every deck's before the port's extension, stays as short
+/// as it was.
+#[inline(never)]
+fn toward_sphere(light: &LightRecord, to_light: DVec3, dist: f64, sampler: &mut dyn Sampler) -> Option<(DVec3, f64)> {
     let u = sampler.get_2d();
     // Inside the sphere (or a distance that is NaN): no cone.
     if dist.partial_cmp(&light.radius) != Some(std::cmp::Ordering::Greater) {

@@ -106,6 +106,7 @@ impl Camera {
     /// `halfvirtualx` = N div 2 for N subpixels (column 0, erratum 13's
     /// extra one, at the left edge); `Fidelity::Thesis` at the centre of
     /// the k-th of N equal cells, (k − ½)/N.
+    #[inline]
     pub fn ray(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> Ray {
         let p = self.screen_point(scancol, scanline, jx, jz);
         Ray::new(self.eyept, (p - self.eyept).normalize())
@@ -114,6 +115,7 @@ impl Camera {
     /// The primary ray of a sample: [`Camera::ray`] through its place, or
     /// with a `lens` the lens's ray, whose lens point the sample's further
     /// dimensions give. Without a lens nothing is drawn.
+    #[inline]
     pub fn ray_of(&self, c: CameraSample, sampler: &mut dyn Sampler) -> Ray {
         match &self.lens {
             None => self.ray(c.scancol, c.scanline, c.jx, c.jz),
