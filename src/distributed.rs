@@ -94,3 +94,31 @@ pub fn glossy(
         dir
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::Listed;
+
+    /// `listing`'s `jittering` turns a ray along one direction across it,
+    /// so every turn lies in one plane with the mirror's direction;
+    /// `thesis` turns it over a disk, out of any one plane.
+    #[test]
+    fn the_listings_gloss_turns_in_one_plane_and_the_thesis_over_a_disk() {
+        let (p, n) = (DVec3::new(0.3, -0.2, 1.0), DVec3::Z);
+        let dir = DVec3::new(0.2, 0.1, 1.0).normalize();
+        let turns = |fidelity| -> Vec<DVec3> {
+            [[0.1, 0.35], [0.9, 0.5], [0.6, 0.95]]
+                .iter()
+                .map(|u| glossy(p, dir, n, 1.0, 0.2, fidelity, &mut Listed(u.to_vec(), 0)))
+                .collect()
+        };
+        let (listing, thesis) = (turns(Fidelity::Listing), turns(Fidelity::Thesis));
+        for t in listing.iter().chain(&thesis) {
+            assert!(t.dot(n) > 0.0 && (t.length() - 1.0).abs() < 1e-12 && *t != dir, "{t}");
+        }
+        let out_of_plane = |t: &[DVec3]| (t[0] - dir).cross(t[1] - dir).dot(t[2] - dir).abs();
+        assert!(out_of_plane(&listing) < 1e-12, "{listing:?}");
+        assert!(out_of_plane(&thesis) > 1e-6, "{thesis:?}");
+    }
+}

@@ -94,3 +94,41 @@ impl Lens {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampler::Listed;
+
+    /// The thin lens (`thesis`) moves the eye over a disk across the line
+    /// of sight and aims through the pinhole ray's point on the plane of
+    /// focus; the printed `depthoffield` (`listing`) moves it in z only.
+    #[test]
+    fn the_thin_lens_moves_the_eye_across_the_sight_and_the_listings_in_z_only() {
+        let record = LensRecord {
+            pos: Default::default(),
+            aperture: 0.5,
+            focus: 10.0,
+        };
+        // Looking along +y: right is +x, up is +z.
+        let lens = |fidelity| Lens::new(Some(&record), DVec3::Y, DVec3::X, fidelity).unwrap();
+        let (thesis, listing) = (lens(Fidelity::Thesis), lens(Fidelity::Listing));
+        let (eye, screen) = (DVec3::ZERO, DVec3::new(0.3, 5.0, 0.2));
+        let d = (screen - eye).normalize();
+        let sharp = d * (10.0 / d.y);
+        let (mut across_x, mut along_z) = (false, false);
+        for u in [0.1, 0.3, 0.7, 0.9] {
+            for v in [0.2, 0.8] {
+                let r = thesis.ray(eye, screen, &mut Listed(vec![u, v], 0));
+                assert!(r.origin.y.abs() < 1e-12 && r.origin.length() <= 0.5 + 1e-12, "{r:?}");
+                let at_focus = r.origin + r.dir * ((sharp.y - r.origin.y) / r.dir.y);
+                assert!((at_focus - sharp).length() < 1e-9, "{at_focus} against {sharp}");
+                across_x |= r.origin.x.abs() > 1e-3;
+                let l = listing.ray(eye, screen, &mut Listed(vec![u, v], 0));
+                assert_eq!((l.origin.x, l.origin.y), (0.0, 0.0), "listing: the eye moves in z only");
+                along_z |= l.origin.z.abs() > 1e-3;
+            }
+        }
+        assert!(across_x && along_z);
+    }
+}

@@ -77,3 +77,28 @@ pub trait Sampler {
         [a, self.get_1d()]
     }
 }
+
+/// A sampler for tests: time 0, the first subpixel's place, and its
+/// further dimensions from a list, in turn (`Listed(values, 0)`).
+#[cfg(test)]
+pub(crate) struct Listed(pub Vec<f64>, pub usize);
+
+#[cfg(test)]
+impl Sampler for Listed {
+    fn time(&mut self) -> f64 {
+        0.0
+    }
+    fn camera(&self) -> CameraSample {
+        CameraSample {
+            scancol: 1.0,
+            scanline: 1.0,
+            jx: 0.0,
+            jz: 0.0,
+        }
+    }
+    fn get_1d(&mut self) -> f64 {
+        let v = self.0[self.1 % self.0.len()];
+        self.1 += 1;
+        v
+    }
+}
