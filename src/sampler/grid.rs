@@ -253,8 +253,8 @@ impl Sampler for GridSampler<'_> {
     /// lens, when there is one) the cell of Bose's array of the
     /// subpixel's place ([`Field::cell`]) with its columns and rows
     /// shuffled, so that the lens is stratified with the place in the
-    /// pixel too; for the others, and where M has no field, a permutation
-    /// of the cells. Within its cell a point of one of M×M sub-cells, the
+    /// pixel too (where M has no field, along each axis only); for the
+    /// others a permutation of the cells. Within its cell a point of one of M×M sub-cells, the
     /// sub-column by a permutation of the cell's row and the sub-row by
     /// one of its column, the same for the whole pixel (Kensler's
     /// correlated multi-jitter), so that each coordinate alone also takes
@@ -286,13 +286,18 @@ impl Sampler for GridSampler<'_> {
             deal
         });
         let n = m * m;
-        let array = Field::of(m).filter(|_| d == 0);
-        let (column, row) = match array {
-            Some(field) => {
+        let (column, row) = match (d, Field::of(m)) {
+            (0, Some(field)) => {
                 let (c, r) = field.cell(j % m, j / m);
                 (deal[n + 2 * m + c] as usize, deal[n + 3 * m + r] as usize)
             }
-            None => (deal[j] as usize % m, deal[j] as usize / m),
+            // No array of four columns (M = 2, 6, …): the cell's column by
+            // the place's row and its row by the place's column, shuffled,
+            // a bijection that takes every (place column, cell column) and
+            // (place row, cell row) once, the pairs a defocused surface
+            // adds along one axis.
+            (0, None) => (deal[n + 2 * m + j / m] as usize, deal[n + 3 * m + j % m] as usize),
+            _ => (deal[j] as usize % m, deal[j] as usize / m),
         };
         let (sub_column, sub_row) = (deal[n + row], deal[n + m + column]);
         let k = self.k();
@@ -442,21 +447,26 @@ mod tests {
 
     /// Table and stratified: the first pair's cells (the lens) with the
     /// subpixel's place in the pixel form an orthogonal array where M has
-    /// a field: every (place column or row, cell column or row) once.
+    /// a field: every (place column or row, cell column or row) once;
+    /// without one, every (place column, cell column) and (place row,
+    /// cell row) once.
     #[test]
     fn the_first_pair_is_stratified_with_the_place() {
         let t = tables();
         for kind in [GridKind::Table, GridKind::Stratified] {
-            for m in [3usize, 4, 5, 8] {
+            for m in [2usize, 3, 4, 5, 6, 8] {
                 let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, 4, m, 0.5);
                 s.start_row(1);
+                // Without a field, the pairs along each axis only.
+                let projections = if Field::of(m).is_some() { 4 } else { 2 };
                 for x in 0..4 {
                     let (cells, _) = pixel_cells(&mut s, x, 1, 1);
                     let mut seen = vec![[false; 4]; m * m];
                     for (j, &cell) in cells[0].iter().enumerate() {
                         let (i, r) = (j % m, j / m);
-                        for (k, (a, b)) in [(i, cell % m), (i, cell / m), (r, cell % m), (r, cell / m)]
+                        for (k, (a, b)) in [(i, cell % m), (r, cell / m), (i, cell / m), (r, cell % m)]
                             .into_iter()
+                            .take(projections)
                             .enumerate()
                         {
                             assert!(
