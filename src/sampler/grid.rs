@@ -100,8 +100,8 @@ pub struct GridSampler<'a> {
     /// (stratified), each made when first asked.
     dimension_strata: Vec<Vec<Option<Vec<u32>>>>,
     /// For each pair of further dimensions drawn together (by its first),
-    /// the M×M cells of each pixel of the row in the order they are dealt
-    /// (table, stratified), each made when first asked.
+    /// the shuffles that deal each pixel of the row its M×M cells and
+    /// sub-cells (table, stratified), each made when first asked.
     cell_strata: Vec<Vec<Option<Vec<u32>>>>,
     scanline: usize,
     scancol: usize,
@@ -254,13 +254,13 @@ impl Sampler for GridSampler<'_> {
     /// subpixel's place ([`Field::cell`]) with its columns and rows
     /// shuffled, so that the lens is stratified with the place in the
     /// pixel too (where M has no field, along each axis only); for the
-    /// others a permutation of the cells. Within its cell a point of one of M×M sub-cells, the
-    /// sub-column by a permutation of the cell's row and the sub-row by
-    /// one of its column, the same for the whole pixel (Kensler's
-    /// correlated multi-jitter), so that each coordinate alone also takes
-    /// each of M² strata once; the place in the sub-cell from the tables d
-    /// and d + 1 at the subpixel's cursor (`table`, as `get_1d`) or a
-    /// uniform (`stratified`).
+    /// others a permutation of the cells. Within its cell a point of one
+    /// of M×M sub-cells, the sub-column by a permutation of the cell's
+    /// row and the sub-row by one of its column, the same for the whole
+    /// pixel (Kensler's correlated multi-jitter), so that each coordinate
+    /// alone also takes each of M² strata once; the place in the sub-cell
+    /// from the tables d and d + 1 at the subpixel's cursor (`table`, as
+    /// `get_1d`) or a uniform (`stratified`).
     fn get_2d(&mut self) -> [f64; 2] {
         if self.kind == GridKind::Random {
             let a = self.get_1d();
