@@ -32,7 +32,7 @@ impl Field {
             8 => Some(Field::Binary(8, 0b1011)),
             16 => Some(Field::Binary(16, 0b1_0011)),
             32 => Some(Field::Binary(32, 0b10_0101)),
-            _ if m >= 3 && (2..m).take_while(|p| p * p <= m).all(|p| !m.is_multiple_of(p)) => Some(Field::Prime(m)),
+            _ if m >= 3 && (2..m).all(|p| !m.is_multiple_of(p)) => Some(Field::Prime(m)),
             _ => None,
         }
     }

@@ -88,6 +88,8 @@ pub struct GridSampler<'a> {
     aliasing: f64,
     /// `masksize`.
     m: usize,
+    /// The field of M elements, if any: the first pair's array.
+    field: Option<Field>,
     /// Pixels a row.
     width: usize,
     /// `virthighx`: subpixels a scanline.
@@ -118,6 +120,7 @@ impl<'a> GridSampler<'a> {
             fidelity,
             aliasing,
             m,
+            field: Field::of(m),
             width,
             virthighx: width * m,
             row: 0,
@@ -286,7 +289,7 @@ impl Sampler for GridSampler<'_> {
             deal
         });
         let n = m * m;
-        let (column, row) = match (d, Field::of(m)) {
+        let (column, row) = match (d, self.field) {
             (0, Some(field)) => {
                 let (c, r) = field.cell(j % m, j / m);
                 (deal[n + 2 * m + c] as usize, deal[n + 3 * m + r] as usize)
@@ -346,27 +349,89 @@ mod tests {
         }
     }
 
-    /// The cells of subpixel j's pairs of further dimensions and its time's
-    /// stratum, over the pixel (`x`, `row`)'s M² subpixels: `cells[p][j]`
-    /// is the cell (column + M·row of the unit square's M×M) of pair p.
-    fn pixel_cells(s: &mut GridSampler, x: usize, row: usize, pairs: usize) -> (Vec<Vec<usize>>, Vec<usize>) {
+    /// The points of subpixel j's pairs of further dimensions and its
+    /// time's stratum, over the pixel (`x`, `row`)'s M² subpixels:
+    /// `points[p][j]` is pair p's.
+    fn pixel_points(s: &mut GridSampler, x: usize, row: usize, pairs: usize) -> (Vec<Vec<[f64; 2]>>, Vec<usize>) {
         let m = s.m;
         let n = m * m;
-        let mut cells = vec![vec![usize::MAX; n]; pairs];
+        let mut points = vec![vec![[f64::NAN; 2]; n]; pairs];
         let mut times = vec![usize::MAX; n];
         for sub in 0..m {
             for c in 0..m {
                 s.start(row * m + sub + 1, x * m + c + 1);
                 let j = sub * m + c;
                 times[j] = (s.time() * n as f64).min(n as f64 - 1.0) as usize;
-                for cell in cells.iter_mut() {
+                for point in points.iter_mut() {
                     let [u, v] = s.get_2d();
                     assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v), "{u} {v}");
-                    cell[j] = (u * m as f64) as usize + m * (v * m as f64) as usize;
+                    point[j] = [u, v];
                 }
             }
         }
-        (cells, times)
+        (points, times)
+    }
+
+    /// As [`pixel_points`], each point's cell (column + M·row of the unit
+    /// square's M×M).
+    fn pixel_cells(s: &mut GridSampler, x: usize, row: usize, pairs: usize) -> (Vec<Vec<usize>>, Vec<usize>) {
+        let m = s.m as f64;
+        let (points, times) = pixel_points(s, x, row, pairs);
+        let cell = |[u, v]: [f64; 2]| (u * m) as usize + s.m * (v * m) as usize;
+        (
+            points.iter().map(|p| p.iter().map(|&q| cell(q)).collect()).collect(),
+            times,
+        )
+    }
+
+    /// Table and stratified: within its cell each point lies in a sub-cell
+    /// such that each coordinate alone takes each of the M² strata once
+    /// over the pixel; the place in the sub-cell is the tables' entry at
+    /// the subpixel's cursor (`table`: `noise` for the first coordinate,
+    /// the next table for the second) or a uniform that differs from
+    /// coordinate to coordinate, subpixel to subpixel and pixel to pixel
+    /// (`stratified`).
+    #[test]
+    fn paired_coordinates_fill_their_strata() {
+        let t = tables();
+        let noise = noise_table();
+        let (m, width) = (4usize, 300);
+        let n = m * m;
+        for kind in [GridKind::Table, GridKind::Stratified] {
+            let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, width, m, 0.5);
+            let mut places = Vec::new();
+            for (x, row) in [(0, 0), (7, 2), (299, 3)] {
+                s.start_row(row);
+                let (points, _) = pixel_points(&mut s, x, row, 2);
+                for (p, pair) in points.iter().enumerate() {
+                    for axis in 0..2 {
+                        let mut strata: Vec<usize> = pair.iter().map(|q| (q[axis] * n as f64) as usize).collect();
+                        strata.sort_unstable();
+                        assert_eq!(
+                            strata,
+                            (0..n).collect::<Vec<_>>(),
+                            "{kind:?} ({x}, {row}) pair {p} axis {axis}"
+                        );
+                    }
+                }
+                for (j, q) in points[0].iter().enumerate() {
+                    let [pu, pv] = q.map(|c| c * n as f64 - (c * n as f64).floor());
+                    if kind == GridKind::Table {
+                        let k = (row * m + j / m) * width * m + x * m + j % m;
+                        assert!((pu - (noise[k % MAXINDEX] + 0.5)).abs() < 1e-9, "({x}, {row}) {j}");
+                        assert!(
+                            (pv - (t.dimensions[1][k % MAXINDEX] + 0.5)).abs() < 1e-9,
+                            "({x}, {row}) {j}"
+                        );
+                    }
+                    assert!((pu - pv).abs() > 1e-12, "{kind:?} ({x}, {row}) {j}");
+                    places.push(pu);
+                }
+            }
+            places.sort_by(f64::total_cmp);
+            places.dedup();
+            assert_eq!(places.len(), 3 * n, "{kind:?}");
+        }
     }
 
     /// Table and stratified: over a pixel's M² subpixels each pair of
