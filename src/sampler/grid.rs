@@ -9,6 +9,7 @@
 //! scan order to be k, which is what the sequential loop gives (and so the
 //! same for any number of threads and any window of rows).
 
+use super::array::Field;
 use super::keys::{dimension_key, dimension_uniform, random_time, shuffled, strata, stratified_time, Stream};
 use super::{CameraSample, Sampler};
 use crate::drt::{noise2_table, noise_table, MinimalStandard, TimeTable, MAXINDEX};
@@ -56,7 +57,9 @@ pub enum GridKind {
     /// Independent uniforms.
     Random,
     /// One value in each of the pixel's M² strata, dealt by a permutation
-    /// of the pixel's own, for the time and for each further dimension.
+    /// of the pixel's own, for the time and for each further dimension; a
+    /// pair of further dimensions drawn together, one point in each of
+    /// the unit square's M×M cells.
     Stratified,
 }
 
@@ -85,6 +88,8 @@ pub struct GridSampler<'a> {
     aliasing: f64,
     /// `masksize`.
     m: usize,
+    /// The field of M elements, if any: the first pair's array.
+    field: Option<Field>,
     /// Pixels a row.
     width: usize,
     /// `virthighx`: subpixels a scanline.
@@ -96,6 +101,10 @@ pub struct GridSampler<'a> {
     /// For each further dimension, the strata of each pixel of the row
     /// (stratified), each made when first asked.
     dimension_strata: Vec<Vec<Option<Vec<u32>>>>,
+    /// For each pair of further dimensions drawn together (by its first),
+    /// the shuffles that deal each pixel of the row its M×M cells and
+    /// sub-cells (table, stratified), each made when first asked.
+    cell_strata: Vec<Vec<Option<Vec<u32>>>>,
     scanline: usize,
     scancol: usize,
     dim: u32,
@@ -111,11 +120,13 @@ impl<'a> GridSampler<'a> {
             fidelity,
             aliasing,
             m,
+            field: Field::of(m),
             width,
             virthighx: width * m,
             row: 0,
             row_strata: Vec::new(),
             dimension_strata: Vec::new(),
+            cell_strata: Vec::new(),
             scanline: 1,
             scancol: 1,
             dim: 0,
@@ -127,6 +138,7 @@ impl<'a> GridSampler<'a> {
         self.row = row;
         self.row_strata.clear();
         self.dimension_strata.clear();
+        self.cell_strata.clear();
     }
 
     /// Starts the sample of subpixel (`scanline`, `scancol`), 1-based as in
@@ -234,6 +246,74 @@ impl Sampler for GridSampler<'_> {
             }
         }
     }
+
+    /// Further dimensions d and d + 1 together. `random`: two independent
+    /// uniforms, as [`GridSampler::get_1d`] twice. `table` and
+    /// `stratified` (the port's, D48): the pixel's M² subpixels take the
+    /// unit square's M×M cells once each, dealt by the pixel's own
+    /// shuffle for the pair, never the time's (a ray's time does not
+    /// decide its lens position, Cook 1984): for the first pair (the
+    /// lens, when there is one) the cell of Bose's array of the
+    /// subpixel's place ([`Field::cell`]) with its columns and rows
+    /// shuffled, so that the lens is stratified with the place in the
+    /// pixel too (where M has no field, along each axis only); for the
+    /// others a permutation of the cells. Within its cell a point of one
+    /// of M×M sub-cells, the sub-column by a permutation of the cell's
+    /// row and the sub-row by one of its column, the same for the whole
+    /// pixel (Kensler's correlated multi-jitter), so that each coordinate
+    /// alone also takes each of M² strata once; the place in the sub-cell
+    /// from the tables d and d + 1 at the subpixel's cursor (`table`, as
+    /// `get_1d`) or a uniform (`stratified`).
+    fn get_2d(&mut self) -> [f64; 2] {
+        if self.kind == GridKind::Random {
+            let a = self.get_1d();
+            return [a, self.get_1d()];
+        }
+        let d = self.dim;
+        self.dim += 2;
+        let (x, j) = self.pixel_and_index();
+        let pixel = (self.row * self.width + x) as u64;
+        let m = self.m;
+        let slot = d as usize;
+        if self.cell_strata.len() <= slot {
+            self.cell_strata.resize(slot + 1, vec![None; self.width]);
+        }
+        // Keys pixel · 2¹¹ + i: the cells (i < 1024), then M each for the
+        // sub-columns, sub-rows, and the array's columns and rows.
+        let deal = self.cell_strata[slot][x].get_or_insert_with(|| {
+            let key = dimension_key(Stream::Cells, d, pixel << 11);
+            let mut deal = shuffled(key, m * m);
+            for part in [1024, 1280, 1536, 1792] {
+                deal.extend(shuffled(key + part, m));
+            }
+            deal
+        });
+        let n = m * m;
+        let (column, row) = match (d, self.field) {
+            (0, Some(field)) => {
+                let (c, r) = field.cell(j % m, j / m);
+                (deal[n + 2 * m + c] as usize, deal[n + 3 * m + r] as usize)
+            }
+            // No array of four columns (M = 2, 6, …): the cell's column by
+            // the place's row and its row by the place's column, shuffled,
+            // a bijection that takes every (place column, cell column) and
+            // (place row, cell row) once, the pairs a defocused surface
+            // adds along one axis.
+            (0, None) => (deal[n + 2 * m + j / m] as usize, deal[n + 3 * m + j % m] as usize),
+            _ => (deal[j] as usize % m, deal[j] as usize / m),
+        };
+        let (sub_column, sub_row) = (deal[n + row], deal[n + m + column]);
+        let k = self.k();
+        let place = |e: u32| match (self.kind, self.tables.dimensions.get(e as usize)) {
+            (GridKind::Table, Some(table)) => table[k % MAXINDEX] + 0.5,
+            _ => dimension_uniform(Stream::Jitter, e, pixel << 11 | j as u64),
+        };
+        let n = n as f64;
+        [
+            ((column * m) as f64 + f64::from(sub_column) + place(d)) / n,
+            ((row * m) as f64 + f64::from(sub_row) + place(d + 1)) / n,
+        ]
+    }
 }
 
 #[cfg(test)]
@@ -245,7 +325,8 @@ mod tests {
     }
 
     /// Every further dimension: in (0, 1); the same values when a sample
-    /// is started again, whether drawn one by one or in pairs.
+    /// is started again. `random` gives the same whether drawn one by one
+    /// or in pairs; the others draw a pair from cells of its own.
     #[test]
     fn further_dimensions_repeat_and_stay_in_the_unit_interval() {
         let t = tables();
@@ -256,8 +337,212 @@ mod tests {
             let one: Vec<f64> = (0..12).map(|_| s.get_1d()).collect();
             s.start(8, 5);
             let two: Vec<f64> = (0..6).flat_map(|_| s.get_2d()).collect();
-            assert_eq!(one, two, "{kind:?}");
-            assert!(one.iter().all(|v| *v > 0.0 && *v < 1.0), "{kind:?}: {one:?}");
+            s.start(8, 5);
+            let again: Vec<f64> = (0..6).flat_map(|_| s.get_2d()).collect();
+            s.start(8, 5);
+            assert_eq!(s.get_1d(), one[0], "{kind:?}");
+            assert_eq!(two, again, "{kind:?}");
+            assert_eq!(one == two, kind == GridKind::Random, "{kind:?}");
+            for v in one.iter().chain(&two) {
+                assert!(*v > 0.0 && *v < 1.0, "{kind:?}: {one:?} {two:?}");
+            }
+        }
+    }
+
+    /// The points of subpixel j's pairs of further dimensions and its
+    /// time's stratum, over the pixel (`x`, `row`)'s M² subpixels:
+    /// `points[p][j]` is pair p's.
+    fn pixel_points(s: &mut GridSampler, x: usize, row: usize, pairs: usize) -> (Vec<Vec<[f64; 2]>>, Vec<usize>) {
+        let m = s.m;
+        let n = m * m;
+        let mut points = vec![vec![[f64::NAN; 2]; n]; pairs];
+        let mut times = vec![usize::MAX; n];
+        for sub in 0..m {
+            for c in 0..m {
+                s.start(row * m + sub + 1, x * m + c + 1);
+                let j = sub * m + c;
+                times[j] = (s.time() * n as f64).min(n as f64 - 1.0) as usize;
+                for point in points.iter_mut() {
+                    let [u, v] = s.get_2d();
+                    assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v), "{u} {v}");
+                    point[j] = [u, v];
+                }
+            }
+        }
+        (points, times)
+    }
+
+    /// As [`pixel_points`], each point's cell (column + M·row of the unit
+    /// square's M×M).
+    fn pixel_cells(s: &mut GridSampler, x: usize, row: usize, pairs: usize) -> (Vec<Vec<usize>>, Vec<usize>) {
+        let m = s.m as f64;
+        let (points, times) = pixel_points(s, x, row, pairs);
+        let cell = |[u, v]: [f64; 2]| (u * m) as usize + s.m * (v * m) as usize;
+        (
+            points.iter().map(|p| p.iter().map(|&q| cell(q)).collect()).collect(),
+            times,
+        )
+    }
+
+    /// Table and stratified: within its cell each point lies in a sub-cell
+    /// such that each coordinate alone takes each of the M² strata once
+    /// over the pixel; the place in the sub-cell is the tables' entry at
+    /// the subpixel's cursor (`table`: `noise` for the first coordinate,
+    /// the next table for the second) or a uniform that differs from
+    /// coordinate to coordinate, subpixel to subpixel and pixel to pixel
+    /// (`stratified`).
+    #[test]
+    fn paired_coordinates_fill_their_strata() {
+        let t = tables();
+        let noise = noise_table();
+        let (m, width) = (4usize, 300);
+        let n = m * m;
+        for kind in [GridKind::Table, GridKind::Stratified] {
+            let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, width, m, 0.5);
+            let mut places = Vec::new();
+            for (x, row) in [(0, 0), (7, 2), (299, 3)] {
+                s.start_row(row);
+                let (points, _) = pixel_points(&mut s, x, row, 2);
+                for (p, pair) in points.iter().enumerate() {
+                    for axis in 0..2 {
+                        let mut strata: Vec<usize> = pair.iter().map(|q| (q[axis] * n as f64) as usize).collect();
+                        strata.sort_unstable();
+                        assert_eq!(
+                            strata,
+                            (0..n).collect::<Vec<_>>(),
+                            "{kind:?} ({x}, {row}) pair {p} axis {axis}"
+                        );
+                    }
+                }
+                for (j, q) in points[0].iter().enumerate() {
+                    let [pu, pv] = q.map(|c| c * n as f64 - (c * n as f64).floor());
+                    if kind == GridKind::Table {
+                        let k = (row * m + j / m) * width * m + x * m + j % m;
+                        assert!((pu - (noise[k % MAXINDEX] + 0.5)).abs() < 1e-9, "({x}, {row}) {j}");
+                        assert!(
+                            (pv - (t.dimensions[1][k % MAXINDEX] + 0.5)).abs() < 1e-9,
+                            "({x}, {row}) {j}"
+                        );
+                    }
+                    assert!((pu - pv).abs() > 1e-12, "{kind:?} ({x}, {row}) {j}");
+                    places.push(pu);
+                }
+            }
+            places.sort_by(f64::total_cmp);
+            places.dedup();
+            assert_eq!(places.len(), 3 * n, "{kind:?}");
+        }
+    }
+
+    /// Table and stratified: over a pixel's M² subpixels each pair of
+    /// further dimensions drawn together takes each of the unit square's
+    /// M×M cells exactly once (a lens point in every cell of the
+    /// aperture), in every pixel, in an order that differs from pair to
+    /// pair and from pixel to pixel.
+    #[test]
+    fn paired_dimensions_take_every_cell_once() {
+        let t = tables();
+        for kind in [GridKind::Table, GridKind::Stratified] {
+            for m in [2usize, 3, 4, 8] {
+                let width = 6;
+                let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, width, m, 0.5);
+                let mut orders = Vec::new();
+                for row in [0, 5] {
+                    s.start_row(row);
+                    for x in 0..width {
+                        let (cells, _) = pixel_cells(&mut s, x, row, 3);
+                        for (p, c) in cells.iter().enumerate() {
+                            let mut sorted = c.clone();
+                            sorted.sort_unstable();
+                            assert_eq!(
+                                sorted,
+                                (0..m * m).collect::<Vec<_>>(),
+                                "{kind:?} m {m} ({x}, {row}) pair {p}"
+                            );
+                        }
+                        assert!(cells[1] != cells[0] || cells[2] != cells[1], "{kind:?} m {m}");
+                        orders.push(cells[0].clone());
+                    }
+                }
+                assert!(orders.iter().any(|o| o != &orders[0]), "{kind:?} m {m}");
+            }
+        }
+    }
+
+    /// Table and stratified: a subpixel's lens cell does not follow its
+    /// time (Cook 1984): over many pixels, the subpixels of each time
+    /// stratum take every lens cell about equally often (the cells are
+    /// not dealt by the time's permutation, nor by a fixed pattern as
+    /// the table's times are), with M = 2 (a permutation of the cells)
+    /// and M = 4 (Bose's array, its columns and rows shuffled).
+    #[test]
+    fn paired_cells_do_not_follow_the_time() {
+        for (m, width, rows) in [(2usize, 64, 32), (4, 128, 64)] {
+            let t = Tables::new(TimeTable::with_default_pattern(m, 1, Fidelity::Thesis));
+            let n = m * m;
+            for kind in [GridKind::Table, GridKind::Stratified] {
+                let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, width, m, 0.5);
+                let mut counts = vec![vec![0usize; n]; n];
+                let mut same = 0;
+                for row in 0..rows {
+                    s.start_row(row);
+                    for x in 0..width {
+                        let (cells, times) = pixel_cells(&mut s, x, row, 1);
+                        for j in 0..n {
+                            counts[times[j]][cells[0][j]] += 1;
+                        }
+                        same += usize::from(cells[0] == times);
+                    }
+                }
+                // 512 expected in each (stratum, cell), σ ≈ 20 (M = 2), 22.
+                let expected = width * rows / n;
+                for (stratum, row) in counts.iter().enumerate() {
+                    for (cell, &c) in row.iter().enumerate() {
+                        assert!(
+                            c.abs_diff(expected) < expected / 4,
+                            "{kind:?} m {m}: stratum {stratum}, cell {cell}: {c}"
+                        );
+                    }
+                }
+                // Equal orders by chance: 1 pixel in 24 (M = 2).
+                assert!(same < width * rows / 12, "{kind:?} m {m}: {same}");
+            }
+        }
+    }
+
+    /// Table and stratified: the first pair's cells (the lens) with the
+    /// subpixel's place in the pixel form an orthogonal array where M has
+    /// a field: every (place column or row, cell column or row) once;
+    /// without one, every (place column, cell column) and (place row,
+    /// cell row) once.
+    #[test]
+    fn the_first_pair_is_stratified_with_the_place() {
+        let t = tables();
+        for kind in [GridKind::Table, GridKind::Stratified] {
+            for m in [2usize, 3, 4, 5, 6, 8] {
+                let mut s = GridSampler::new(&t, kind, Fidelity::Thesis, 4, m, 0.5);
+                s.start_row(1);
+                // Without a field, the pairs along each axis only.
+                let projections = if Field::of(m).is_some() { 4 } else { 2 };
+                for x in 0..4 {
+                    let (cells, _) = pixel_cells(&mut s, x, 1, 1);
+                    let mut seen = vec![[false; 4]; m * m];
+                    for (j, &cell) in cells[0].iter().enumerate() {
+                        let (i, r) = (j % m, j / m);
+                        for (k, (a, b)) in [(i, cell % m), (r, cell / m), (i, cell / m), (r, cell % m)]
+                            .into_iter()
+                            .take(projections)
+                            .enumerate()
+                        {
+                            assert!(
+                                !seen[a * m + b][k],
+                                "{kind:?} m {m} pixel {x}: projection {k} ({a}, {b}) twice"
+                            );
+                            seen[a * m + b][k] = true;
+                        }
+                    }
+                }
+            }
         }
     }
 

@@ -58,6 +58,10 @@ pub enum Stream {
     Jitter = 3,
     /// `--sampler adaptive`: the scramble of a Sobol dimension.
     Scramble = 4,
+    /// `--sampler table` and `stratified`: the order in which a pixel's
+    /// subpixels take the M×M cells of a pair of dimensions (6: top
+    /// nibble 5 is the Sobol seeds').
+    Cells = 6,
 }
 
 /// The key of further dimension `d` of `index` (a subpixel, a pixel or a
@@ -83,7 +87,13 @@ mod tests {
     #[test]
     fn dimension_keys_are_apart() {
         let mut seen = std::collections::HashSet::new();
-        for stream in [Stream::Uniform, Stream::Strata, Stream::Jitter, Stream::Scramble] {
+        for stream in [
+            Stream::Uniform,
+            Stream::Strata,
+            Stream::Jitter,
+            Stream::Scramble,
+            Stream::Cells,
+        ] {
             for d in 0..16 {
                 for index in [0u64, 1, 2, 1 << 20, (1 << 40) - 1] {
                     let k = dimension_key(stream, d, index);
@@ -102,7 +112,7 @@ mod tests {
             (pixel << 2 | 3) ^ 0x5EED_0000_0000_0000,
         ];
         for k in older {
-            assert!(!(1..=4).contains(&(k >> 60)), "{k:#x}");
+            assert!(!(1..=4).contains(&(k >> 60)) && k >> 60 != 6, "{k:#x}");
         }
     }
 }

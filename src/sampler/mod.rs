@@ -32,6 +32,7 @@
 //! thread or the order samples are taken in: an image is the same for any
 //! number of threads and for any window of rows rendered alone.
 
+mod array;
 mod grid;
 mod keys;
 mod pixel;

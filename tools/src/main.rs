@@ -195,6 +195,10 @@ enum Command {
         /// reference.
         #[arg(long)]
         depth_of_field: bool,
+        /// With --depth-of-field: our samplers to measure, interleaved
+        /// (repeat or separate by commas; the deck default, table, if none).
+        #[arg(long, value_enum, value_delimiter = ',')]
+        sampler: Vec<raytrace::options::TimeSampler>,
     },
     /// Time a sample against the number of objects: N spheres, fig5_6 stars and fig5_8
     /// goblets at random in a box, with each --accel and with POV-Ray when installed, one
@@ -375,6 +379,7 @@ fn run(command: Command) -> Result<(), Failure> {
             mask,
             runs,
             depth_of_field,
+            sampler,
         } => {
             let set = tools::vs_povray::Settings {
                 size: size.clamp(8, 4096),
@@ -382,7 +387,12 @@ fn run(command: Command) -> Result<(), Failure> {
                 runs: runs.max(1),
             };
             if depth_of_field {
-                return tools::vs_povray::depth_of_field(&set).map_err(Failure::other);
+                let samplers = if sampler.is_empty() {
+                    vec![raytrace::options::Options::default().sampler]
+                } else {
+                    sampler
+                };
+                return tools::vs_povray::depth_of_field(&set, &samplers).map_err(Failure::other);
             }
             let decks: Vec<PathBuf> = decks.iter().map(PathBuf::from).collect();
             tools::vs_povray::run(&decks, &set)

@@ -4,8 +4,9 @@
 //! `+A0.0 +AM1 +RM -J`, M×M rays a pixel), the renders interleaved and the
 //! medians taken; then the silhouettes of the sweep objects at one sample
 //! a pixel (each sweep alone, white on black, no light), compared pixel by
-//! pixel. Not the thesis's: a cross-check of the port. Linux only (CPU
-//! times from /proc/self/stat).
+//! pixel. Not the thesis's: a cross-check of the port. Linux only (ours
+//! from the rendering thread's CPU clock, POV-Ray's process from
+//! /proc/self/stat's children's times).
 //!
 //! With `--depth-of-field`, [`depth_of_field`] instead: `cook.deck`'s lens
 //! against POV-Ray's focal blur, CPU at equal RMSE against each renderer's
@@ -17,7 +18,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use raytrace::options::{Options, Solver};
+use raytrace::options::{Options, Solver, TimeSampler};
 use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
 use raytrace::types::{DVec3, Shape, SurfaceAttribute};
@@ -139,11 +140,12 @@ pub fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<PovRun
 }
 
 /// Our render of `scene` on a one-thread pool; returns its CPU seconds
-/// and the raster's pixels.
+/// (the pool thread's CPU clock, to the nanosecond: the render only, as
+/// POV-Ray's reported trace time is its trace only) and the raster's
+/// pixels.
 fn ours(pool: &rayon::ThreadPool, scene: &Prepared) -> Result<(f64, Vec<[u8; 3]>), String> {
-    let before = cpu_seconds()?.0;
-    let r = pool.install(|| crate::decks::still(scene));
-    Ok((cpu_seconds()?.0 - before, r.raster.pixels))
+    let (cpu, r) = pool.install(|| crate::measure::thread_cpu_timed(|| crate::decks::still(scene)));
+    Ok((cpu, r.raster.pixels))
 }
 
 /// The pixels of a binary PPM (P6, 8 or 16 bits a channel).
@@ -357,83 +359,137 @@ fn dof_scene(size: usize, rays_side: usize) -> Result<Scene, String> {
     Ok(s)
 }
 
+/// A render's CPU seconds (all of it; the part like ours, POV-Ray's
+/// reported trace) and its pixels.
+type DofRender = (f64, Option<f64>, Vec<[u8; 3]>);
+
 /// One side's render of the depth-of-field scene at `rays_side`² rays a
-/// pixel: ours (CPU seconds, pixels) or POV-Ray's focal blur with
-/// `blur_samples` the same count and no antialiasing.
+/// pixel: ours with `sampler` (`None`: POV-Ray's focal blur, with
+/// `blur_samples` the same count and no antialiasing). Returns the CPU
+/// seconds (ours: the render; POV-Ray: its process and its reported
+/// trace) and the pixels.
 fn dof_render(
-    theirs: bool,
+    sampler: Option<TimeSampler>,
     size: usize,
     rays_side: usize,
     pool: &rayon::ThreadPool,
     dir: &Path,
-) -> Result<(f64, Vec<[u8; 3]>), String> {
+) -> Result<DofRender, String> {
     let scene = dof_scene(size, rays_side)?;
-    if !theirs {
-        return ours(pool, &crate::decks::prepare(scene, &Options::default())?);
-    }
-    let pov = dir.join(format!("dof_{rays_side}.pov"));
-    let ppm = dir.join(format!("dof_{rays_side}.ppm"));
-    std::fs::write(&pov, scene_sdl(&scene, Options::default().fidelity))
-        .map_err(|e| format!("{}: {e}", pov.display()))?;
-    let cpu = povray(&pov, &ppm, size, 1)?.process;
-    let bytes = std::fs::read(&ppm).map_err(|e| format!("{}: {e}", ppm.display()))?;
-    Ok((cpu, read_ppm(&bytes)?.2))
+    let Some(sampler) = sampler else {
+        let pov = dir.join(format!("dof_{rays_side}.pov"));
+        let ppm = dir.join(format!("dof_{rays_side}.ppm"));
+        std::fs::write(&pov, scene_sdl(&scene, Options::default().fidelity))
+            .map_err(|e| format!("{}: {e}", pov.display()))?;
+        let run = povray(&pov, &ppm, size, 1)?;
+        let bytes = std::fs::read(&ppm).map_err(|e| format!("{}: {e}", ppm.display()))?;
+        return Ok((run.process, run.trace, read_ppm(&bytes)?.2));
+    };
+    let opts = Options {
+        sampler,
+        ..Options::default()
+    };
+    let (cpu, px) = ours(pool, &crate::decks::prepare(scene, &opts)?)?;
+    Ok((cpu, Some(cpu), px))
+}
+
+/// The sides M of the measured counts M² (4, 16, 64 rays a pixel).
+const DOF_SIDES: [usize; 3] = [2, 4, 8];
+
+/// One count's figures: our RMSE and CPU for each sampler, POV-Ray's RMSE
+/// and CPU (process, reported trace).
+struct DofRow {
+    ours: Vec<(f64, f64)>,
+    pov_rmse: f64,
+    pov_process: f64,
+    pov_trace: Option<f64>,
 }
 
 /// The depth-of-field comparison (issue 26): for each renderer its own
-/// reference of 1024 rays a pixel, then 4, 16 and 64 rays a pixel timed
-/// (`runs` rounds, interleaved, medians) and their RMSE against that
-/// reference; POV-Ray's CPU at our RMSE by log-log interpolation of its
-/// points, and the ratio. Printed as a Markdown table.
-pub fn depth_of_field(set: &Settings) -> Result<(), String> {
+/// reference of 1024 rays a pixel (ours: `--sampler stratified`, its
+/// 32×32 cells of the lens, one reference for every sampler measured, so
+/// that a sampler's own pattern is not taken for the image), then 4, 16
+/// and 64 rays a pixel timed (`runs` rounds, every sampler and POV-Ray
+/// interleaved, medians) and their RMSE against that reference;
+/// POV-Ray's CPU at our RMSE by log-log interpolation of its points, and
+/// the ratio, against its reported trace time (like against like: ours
+/// is the render alone) and against its process. Printed as Markdown.
+pub fn depth_of_field(set: &Settings, samplers: &[TimeSampler]) -> Result<(), String> {
     check_povray()?;
     let pool = crate::measure::one_thread()?;
     let dir = crate::measure::scratch_dir("vs-povray-dof")?;
     let result = (|| {
         let side = (REFERENCE_RAYS as f64).sqrt() as usize;
-        let (_, ref_ours) = dof_render(false, set.size, side, &pool, &dir)?;
-        let (_, ref_pov) = dof_render(true, set.size, side, &pool, &dir)?;
+        let (.., ref_ours) = dof_render(Some(TimeSampler::Stratified), set.size, side, &pool, &dir)?;
+        let (.., ref_pov) = dof_render(None, set.size, side, &pool, &dir)?;
         println!(
-            "cook.deck, lens only, {}², one thread each; RMSE (0..1) against each renderer's own {REFERENCE_RAYS}-ray render; CPU seconds, median of {} interleaved.\n",
+            "cook.deck, lens only, {}², one thread each; RMSE (0..1) against each renderer's own {REFERENCE_RAYS}-ray render (ours: stratified); CPU seconds, median of {} interleaved rounds: ours the render (its thread's CPU clock), POV-Ray its process (/proc, 10 ms ticks) and its reported trace.\n",
             set.size, set.runs
         );
-        println!("| rays | ours RMSE | ours CPU | POV-Ray RMSE | POV-Ray CPU |");
-        println!("|---|---|---|---|---|");
         let mut rows = Vec::new();
-        for m in [2, 4, 8] {
-            let (mut t_ours, mut t_pov) = (Vec::new(), Vec::new());
-            let (mut e_ours, mut e_pov) = (0.0, 0.0);
+        for m in DOF_SIDES {
+            let mut t_ours = vec![Vec::new(); samplers.len()];
+            let mut e_ours = vec![0.0; samplers.len()];
+            let (mut t_pov, mut t_trace, mut e_pov) = (Vec::new(), Vec::new(), 0.0);
             for _ in 0..set.runs {
-                let (c, px) = dof_render(false, set.size, m, &pool, &dir)?;
-                t_ours.push(c);
-                e_ours = rmse(&px, &ref_ours);
-                let (c, px) = dof_render(true, set.size, m, &pool, &dir)?;
+                for (k, &sampler) in samplers.iter().enumerate() {
+                    let (c, _, px) = dof_render(Some(sampler), set.size, m, &pool, &dir)?;
+                    t_ours[k].push(c);
+                    e_ours[k] = rmse(&px, &ref_ours);
+                }
+                let (c, trace, px) = dof_render(None, set.size, m, &pool, &dir)?;
                 t_pov.push(c);
+                t_trace.extend(trace);
                 e_pov = rmse(&px, &ref_pov);
             }
-            let row = (e_ours, median(t_ours), e_pov, median(t_pov));
-            println!(
-                "| {} | {:.4} | {:.3} | {:.4} | {:.3} |",
-                m * m,
-                row.0,
-                row.1,
-                row.2,
-                row.3
-            );
-            rows.push(row);
+            rows.push(DofRow {
+                ours: e_ours.into_iter().zip(t_ours.into_iter().map(median)).collect(),
+                pov_rmse: e_pov,
+                pov_process: median(t_pov),
+                pov_trace: (!t_trace.is_empty()).then(|| median(t_trace)),
+            });
         }
-        let pov_points: Vec<(f64, f64)> = rows.iter().map(|r| (r.2, r.3)).collect();
-        println!("\n| rays (ours) | ours RMSE | ours CPU | POV-Ray CPU at that RMSE | ours/POV |");
-        println!("|---|---|---|---|---|");
-        for (m, r) in [2, 4, 8].iter().zip(&rows) {
-            if let Some(c) = cpu_at(&pov_points, r.0) {
-                println!("| {} | {:.4} | {:.3} | {:.3} | {:.2} |", m * m, r.0, r.1, c, r.1 / c);
-            }
-        }
+        print_dof(samplers, &rows);
         Ok(())
     })();
     let _ = std::fs::remove_dir_all(&dir);
     result
+}
+
+/// The depth-of-field tables: POV-Ray's points, then ours against them.
+fn print_dof(samplers: &[TimeSampler], rows: &[DofRow]) {
+    let secs = |c: Option<f64>| c.map_or("–".to_string(), |c| format!("{c:.3}"));
+    println!("| rays | POV-Ray RMSE | POV-Ray CPU s, process | POV-Ray CPU s, trace |");
+    println!("|---|---|---|---|");
+    for (m, r) in DOF_SIDES.iter().zip(rows) {
+        println!(
+            "| {} | {:.4} | {:.3} | {} |",
+            m * m,
+            r.pov_rmse,
+            r.pov_process,
+            secs(r.pov_trace)
+        );
+    }
+    let process: Vec<(f64, f64)> = rows.iter().map(|r| (r.pov_rmse, r.pov_process)).collect();
+    let trace: Vec<(f64, f64)> = rows.iter().filter_map(|r| Some((r.pov_rmse, r.pov_trace?))).collect();
+    println!("\n| sampler | rays | ours RMSE | ours CPU s | POV-Ray trace at that RMSE | ours/POV (trace) | POV-Ray process at that RMSE | ours/POV (process) |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for (k, sampler) in samplers.iter().enumerate() {
+        let name = format!("{sampler:?}").to_lowercase();
+        for (m, r) in DOF_SIDES.iter().zip(rows) {
+            let (e, c) = r.ours[k];
+            let at = |points: &[(f64, f64)]| cpu_at(points, e);
+            let ratio = |p: Option<f64>| p.map_or("–".to_string(), |p| format!("{:.2}", c / p));
+            println!(
+                "| {name} | {} | {e:.4} | {c:.3} | {} | {} | {} | {} |",
+                m * m,
+                secs(at(&trace)),
+                ratio(at(&trace)),
+                secs(at(&process)),
+                ratio(at(&process)),
+            );
+        }
+    }
 }
 
 #[cfg(test)]
