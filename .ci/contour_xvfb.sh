@@ -42,6 +42,7 @@ pngtopnm "$tmp/expected.png" | ppmtoppm >"$tmp/expected.ppm"
 status=0
 xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
     bin=$1 tmp=$2 x=$3 y=$4
+    source "$5"
     cd "$tmp/window"
     "$bin" star.deck star 2>"$tmp/contour.err" &
     pid=$!
@@ -64,9 +65,7 @@ xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
     deadline=$((SECONDS + 60))
     result=1
     while ((SECONDS < deadline)); do
-        if xwd -root -silent >"$tmp/screen.xwd" 2>/dev/null &&
-            xwdtopnm "$tmp/screen.xwd" 2>/dev/null | ppmtoppm >"$tmp/screen.ppm" 2>/dev/null &&
-            cmp -s "$tmp/screen.ppm" "$tmp/expected.ppm"; then
+        if screen_matches "$tmp"; then
             result=0
             break
         fi
@@ -81,7 +80,7 @@ xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
     fi
     wait "$pid" 2>/dev/null || result=6
     exit "$result"
-' _ "$bin" "$tmp" "$x" "$y" || status=$?
+' _ "$bin" "$tmp" "$x" "$y" "$(pwd)/.ci/needs.sh" || status=$?
 
 case $status in
 0) ;;

@@ -1,7 +1,8 @@
-# Sourced by the .ci/*_xvfb.sh checks: `needs NAME "APT PACKAGES" TOOL…`
-# returns when every TOOL is on PATH; otherwise it says which are missing
-# and how to install them, and exits: 0 (SKIP) on a developer's machine,
-# 1 (FAIL) when CI is set.
+# Sourced by the .ci/*_xvfb.sh checks and by their scripts inside Xvfb.
+#
+# `needs NAME "APT PACKAGES" TOOL…` returns when every TOOL is on PATH;
+# otherwise it says which are missing and how to install them, and exits:
+# 0 (SKIP) on a developer's machine, 1 (FAIL) when CI is set.
 needs() {
     local name=$1 packages=$2 tool
     shift 2
@@ -31,4 +32,12 @@ screen_differs() {
         echo "$name: FAIL: could not grab the Xvfb screen (status $status)"
     fi
     exit 1
+}
+
+# `screen_matches TMP`: grabs the Xvfb screen into TMP/screen.ppm; true
+# when it equals TMP/expected.ppm.
+screen_matches() {
+    xwd -root -silent >"$1/screen.xwd" 2>/dev/null &&
+        xwdtopnm "$1/screen.xwd" 2>/dev/null | ppmtoppm >"$1/screen.ppm" 2>/dev/null &&
+        cmp -s "$1/screen.ppm" "$1/expected.ppm"
 }

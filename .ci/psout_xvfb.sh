@@ -25,6 +25,7 @@ pngtopnm "$tmp/expected.png" | ppmtoppm >"$tmp/expected.ppm"
 status=0
 xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
     bin=$1 ras=$2 tmp=$3
+    source "$4"
     "$bin" "$ras" 2>"$tmp/psout.err" &
     pid=$!
     deadline=$((SECONDS + 30))
@@ -34,9 +35,7 @@ xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
             result=3
             break
         fi
-        if xwd -root -silent >"$tmp/screen.xwd" 2>/dev/null &&
-            xwdtopnm "$tmp/screen.xwd" 2>/dev/null | ppmtoppm >"$tmp/screen.ppm" 2>/dev/null &&
-            cmp -s "$tmp/screen.ppm" "$tmp/expected.ppm"; then
+        if screen_matches "$tmp"; then
             result=0
             break
         fi
@@ -45,7 +44,7 @@ xvfb-run -a -s "-screen 0 1024x864x24" bash -c '
     kill "$pid" 2>/dev/null || true
     wait "$pid" 2>/dev/null || true
     exit "$result"
-' _ "$bin" "$ras" "$tmp" || status=$?
+' _ "$bin" "$ras" "$tmp" "$(pwd)/.ci/needs.sh" || status=$?
 
 case $status in
 0)
