@@ -84,6 +84,15 @@ pub fn thread_cpu_timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
     (secs, out)
 }
 
+/// Our render of a prepared still on `pool` (of one thread, for the
+/// comparisons): the rendering thread's CPU seconds ([`thread_cpu_timed`]:
+/// the render only, as POV-Ray's reported trace time is its trace only)
+/// and the raster's pixels.
+pub fn timed_still(pool: &rayon::ThreadPool, prepared: &Prepared) -> (f64, Vec<[u8; 3]>) {
+    let (secs, r) = pool.install(|| thread_cpu_timed(|| crate::decks::still(prepared)));
+    (secs, r.raster.pixels)
+}
+
 /// A pool of one thread: the timings of one thread each.
 pub fn one_thread() -> Result<rayon::ThreadPool, String> {
     rayon::ThreadPoolBuilder::new()

@@ -19,11 +19,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use raytrace::options::{Options, Solver, TimeSampler};
-use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
 use raytrace::types::{DVec3, Shape, SurfaceAttribute};
 
 use crate::decks::{deck_path, load};
+use crate::measure::timed_still;
 use crate::pov::scene_sdl;
 
 /// The settings of one comparison.
@@ -139,15 +139,6 @@ pub fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<PovRun
     })
 }
 
-/// Our render of `scene` on a one-thread pool; returns its CPU seconds
-/// (the pool thread's CPU clock, to the nanosecond: the render only, as
-/// POV-Ray's reported trace time is its trace only) and the raster's
-/// pixels.
-fn ours(pool: &rayon::ThreadPool, scene: &Prepared) -> Result<(f64, Vec<[u8; 3]>), String> {
-    let (cpu, r) = pool.install(|| crate::measure::thread_cpu_timed(|| crate::decks::still(scene)));
-    Ok((cpu, r.raster.pixels))
-}
-
 /// The pixels of a binary PPM (P6, 8 or 16 bits a channel).
 pub fn read_ppm(bytes: &[u8]) -> Result<(usize, usize, Vec<[u8; 3]>), String> {
     let mut fields = Vec::new();
@@ -252,7 +243,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
     let mut pov_t = Vec::new();
     for _ in 0..set.runs {
         for k in 0..solvers.len() {
-            ours_t[k].push(ours(pool, &scenes[k])?.0);
+            ours_t[k].push(timed_still(pool, &scenes[k]).0);
         }
         pov_t.push(povray(&pov, &ppm, set.size, set.mask)?.process);
     }
@@ -273,7 +264,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
     }
     let mut agree = Vec::new();
     for s in solvers {
-        let (_, mine) = ours(pool, &crate::decks::prepare(sil.clone(), &opts(s))?)?;
+        let (_, mine) = timed_still(pool, &crate::decks::prepare(sil.clone(), &opts(s))?);
         let union = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) || lit(b)).count();
         let differ = mine.iter().zip(&theirs).filter(|(a, b)| lit(a) != lit(b)).count();
         agree.push((differ, union));
@@ -389,7 +380,7 @@ fn dof_render(
         sampler,
         ..Options::default()
     };
-    let (cpu, px) = ours(pool, &crate::decks::prepare(scene, &opts)?)?;
+    let (cpu, px) = timed_still(pool, &crate::decks::prepare(scene, &opts)?);
     Ok((cpu, Some(cpu), px))
 }
 

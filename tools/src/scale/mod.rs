@@ -33,7 +33,7 @@ use raytrace::options::{Fidelity, Options};
 use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
 
-use crate::measure::{interleaved_medians_of, thread_cpu_timed};
+use crate::measure::{interleaved_medians_of, timed_still};
 use scenes::{Frame, Kind};
 
 /// What one `tools scale` run measures.
@@ -188,13 +188,6 @@ impl Measured {
     }
 }
 
-/// Our render of a prepared scene on the one-thread `pool`: the thread's
-/// CPU seconds (the clock's where /proc has no schedstat) and the raster.
-fn ours(pool: &rayon::ThreadPool, prepared: &Prepared) -> (f64, Vec<[u8; 3]>) {
-    let (secs, r) = pool.install(|| thread_cpu_timed(|| crate::decks::still(prepared)));
-    (secs, r.raster.pixels)
-}
-
 /// A scene's deck read as `raytrace` reads it.
 fn scene(kind: Kind, n: usize, frame: Frame) -> Result<Scene, String> {
     let text = scenes::deck(kind, n, frame)?;
@@ -247,7 +240,7 @@ fn measure_scene(
     for (accel, p) in &prepared {
         let rasters = &rasters;
         jobs.push(Box::new(move || {
-            let (secs, raster) = ours(pool, p);
+            let (secs, raster) = timed_still(pool, p);
             let mut rasters = rasters.borrow_mut();
             if rasters.len() < ours_count {
                 rasters.push((*accel, raster));
@@ -305,8 +298,8 @@ fn measure_moving(set: &Settings, pool: &rayon::ThreadPool) -> Result<(f64, f64)
             .and_then(|s| Prepared::new(s, Options::default()).map_err(|e| e.to_string()))
     };
     let (rest, moving) = (prep(false)?, prep(true)?);
-    let mut a = || Ok(ours(pool, &rest).0);
-    let mut b = || Ok(ours(pool, &moving).0);
+    let mut a = || Ok(timed_still(pool, &rest).0);
+    let mut b = || Ok(timed_still(pool, &moving).0);
     let m = interleaved_medians_of(&mut [&mut a, &mut b], set.runs)?;
     eprintln!(
         "{} spheres: at rest {:.4} s, moving with blur 1 {:.4} s ({:.2}×)",
