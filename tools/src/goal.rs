@@ -105,7 +105,7 @@ pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Goa
 
 /// The median CPU seconds of each render on the one thread of `pool`,
 /// `runs` rounds of all of them in turn after an untimed one (NaN for
-/// `runs` 0, the clock where the thread's CPU time cannot be read).
+/// `runs` 0).
 fn cpu_medians(pool: &rayon::ThreadPool, jobs: &[&Prepared], runs: usize) -> Vec<f64> {
     if runs == 0 {
         return vec![f64::NAN; jobs.len()];

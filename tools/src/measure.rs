@@ -64,24 +64,19 @@ pub fn interleaved_medians_of(
 }
 
 /// The CPU time the calling thread has used, in seconds
-/// (`clock_gettime` of `CLOCK_THREAD_CPUTIME_ID`, to the nanosecond);
-/// `None` where that clock cannot be read. Unlike the wall clock it does
-/// not count the time other work on a shared machine takes the core away.
-pub fn thread_cpu_secs() -> Option<f64> {
+/// (`clock_gettime` of `CLOCK_THREAD_CPUTIME_ID`, to the nanosecond).
+/// Unlike the wall clock it does not count the time other work on a
+/// shared machine takes the core away.
+pub fn thread_cpu_secs() -> f64 {
     let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
-    Some(t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9)
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
 
-/// The CPU seconds `f` takes on the calling thread (the wall clock's
-/// where the thread's CPU time cannot be read), and what it returns.
+/// The CPU seconds `f` takes on the calling thread, and what it returns.
 pub fn thread_cpu_timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
-    let (cpu, wall) = (thread_cpu_secs(), Instant::now());
+    let before = thread_cpu_secs();
     let out = f();
-    let secs = match (cpu, thread_cpu_secs()) {
-        (Some(a), Some(b)) => b - a,
-        _ => wall.elapsed().as_secs_f64(),
-    };
-    (secs, out)
+    (thread_cpu_secs() - before, out)
 }
 
 /// Our render of a prepared still on `pool` (of one thread, for the
