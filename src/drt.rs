@@ -281,6 +281,7 @@ pub fn LAW(op: Law, maxval: f64, fract: f64) -> f64 {
 }
 
 /// The rotation about a world axis by `degrees`.
+#[inline]
 fn rotation(axis: Axis, degrees: f64) -> DMat3 {
     // Most motions turn about one axis or none: skip the others' sin and cos.
     if degrees == 0.0 {
@@ -297,8 +298,25 @@ fn rotation(axis: Axis, degrees: f64) -> DMat3 {
 /// A turn by `degrees` about x, then y, then z (through the object's own
 /// origin): the convention of every turn in the port's motions (`turn` of
 /// a `motion` record, the key-frame angle; DEVIATIONS D8).
+#[inline]
 pub fn turn_xyz(degrees: DVec3) -> DMat3 {
-    rotation(Axis::Z, degrees.z) * rotation(Axis::Y, degrees.y) * rotation(Axis::X, degrees.x)
+    // A turn about one axis or none, as most motions make: the product
+    // with the identities is that rotation (or the identity) to the bit.
+    // An entry of A·I or I·A is the entry plus products by 0, which change
+    // it only if it is −0 or a product is not finite; the rotation by a
+    // finite angle that is not 0 in radians has neither.
+    let still = |d: f64| d == 0.0;
+    let plain = |d: f64| {
+        let a = d.to_radians();
+        a != 0.0 && a.is_finite()
+    };
+    match (still(degrees.x), still(degrees.y), still(degrees.z)) {
+        (true, true, true) => DMat3::IDENTITY,
+        (false, true, true) if plain(degrees.x) => rotation(Axis::X, degrees.x),
+        (true, false, true) if plain(degrees.y) => rotation(Axis::Y, degrees.y),
+        (true, true, false) if plain(degrees.z) => rotation(Axis::Z, degrees.z),
+        _ => rotation(Axis::Z, degrees.z) * rotation(Axis::Y, degrees.y) * rotation(Axis::X, degrees.x),
+    }
 }
 
 /// The point of a motion path at the fraction `f` of the way (§3.2.2):
@@ -317,10 +335,11 @@ pub fn path_point(from: DVec3, motion: &MotionRecord, f: f64) -> DVec3 {
 /// `motionblur(r, int, temp1, temp2, object, msc)` (unit `drt`, OCR lines
 /// 2036–2186), for an object that moves but does not deform: from the
 /// rest pose (the listing restores `transfm`, `inverse` and `sphereo` from
-/// `temp1`, `temp2`), the pose at `time`. The time itself comes from
+/// `temp1`, `temp2`), the pose at `time`, written into `pose` as the
+/// listing writes it into the object's record. The time itself comes from
 /// [`TimeTable::time`]; the key-frame branch (`paper = 1`) comes with the
 /// `paper` unit. Erratum 3.
-pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity) -> Pose {
+pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity, pose: &mut Pose) {
     match fidelity {
         // Erratum 3, listing: `sphereo.x := sphereo.x+time*6;
         // rotate(name,xaxis,0,0,0,270*time*50); translate(name,sphereo…)`:
@@ -328,14 +347,14 @@ pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidel
         // whatever its motion record says.
         Fidelity::Listing => {
             let sphereo = object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0);
-            object.pose().turned(rotation(Axis::X, 270.0 * time * 50.0), sphereo)
+            pose.turn_from(&object.transfm, rotation(Axis::X, 270.0 * time * 50.0), sphereo);
         }
         // Thesis (§3.2.2): the user's path, the turn interpolated linearly,
         // both at LAW(law, 1, time); turns about x, then y, then z.
         Fidelity::Thesis => {
             let f = LAW(motion.law, 1.0, time);
             let sphereo = path_point(object.sphereo, motion, f);
-            object.pose().turned(turn_xyz(motion.turn * f), sphereo)
+            pose.turn_from(&object.transfm, turn_xyz(motion.turn * f), sphereo);
         }
     }
 }
@@ -553,6 +572,42 @@ mod tests {
             g.next_uniform();
         }
         assert_eq!(g.0, 1_043_618_065);
+    }
+
+    /// The bits of a matrix's entries, column by column (any NaN as one:
+    /// Rust leaves a NaN's sign and payload open).
+    fn bits(m: DMat3) -> Vec<u64> {
+        let bits = |v: &f64| if v.is_nan() { f64::NAN.to_bits() } else { v.to_bits() };
+        m.to_cols_array().iter().map(bits).collect()
+    }
+
+    /// `turn_xyz`'s short cut for a turn about one axis or none gives the
+    /// product of the three rotations to the bit, −0 and all; where the
+    /// rotation alone would not (an angle that is 0 once in radians, or
+    /// not finite), it makes the product.
+    #[test]
+    fn a_turn_about_one_axis_is_the_product_to_the_bit() {
+        let product = |d: DVec3| rotation(Axis::Z, d.z) * rotation(Axis::Y, d.y) * rotation(Axis::X, d.x);
+        let mut rng = MinimalStandard::new(7);
+        let mut angles = vec![
+            0.0, -0.0, 25.0, -12.0, 90.0, 180.0, -270.0, 360.0, 1e-300, 5e-324, -5e-324, 1e300,
+        ];
+        angles.extend([f64::INFINITY, f64::NAN]);
+        angles.extend((0..50).map(|_| (rng.next_uniform() - 0.5) * 1440.0));
+        for &a in &angles {
+            for axis in 0..3 {
+                let mut d = DVec3::ZERO;
+                d[axis] = a;
+                assert_eq!(bits(turn_xyz(d)), bits(product(d)), "{a}° about axis {axis}");
+            }
+        }
+        // The cases the short cut must leave to the product: the rotation
+        // alone differs from it there.
+        let tiny = DVec3::new(5e-324, 0.0, 0.0);
+        assert_ne!(bits(rotation(Axis::X, tiny.x)), bits(product(tiny)));
+        // Two axes: the product.
+        let two = DVec3::new(30.0, 0.0, 45.0);
+        assert_eq!(bits(turn_xyz(two)), bits(product(two)));
     }
 
     #[test]

@@ -116,12 +116,13 @@ impl<'a> Poses<'a> {
     }
 
     /// A new instant, film time `time`: every moving object's pose is due.
+    #[inline]
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
         match &mut self.now {
             Now::All(all) => {
                 for m in self.moving {
-                    all[m.object] = m.pose(&self.objects[m.object], time, self.fidelity);
+                    m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
                 }
             }
             Now::Lazy { posed, made } => {
@@ -241,7 +242,25 @@ impl Snapshot<'_> {
     /// `None` for one that does not.
     #[inline(always)]
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
-        let (obj, pose) = (&self.scene.objects[i], self.pose(i));
+        let cache = || self.caches[i].as_deref();
+        self.posed_as(i, &self.scene.objects[i], self.pose(i), cache, ray, tmin, f)
+    }
+
+    /// [`Snapshot::posed`] of object `i` whose record and pose the caller
+    /// has at hand, and whose cache `cache` gives (asked for a sweep only):
+    /// the loop walks the tables side by side instead of indexing each.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn posed_as<'s, R>(
+        &'s self,
+        i: usize,
+        obj: &'s ObjectRecord,
+        pose: &'s Pose,
+        cache: impl FnOnce() -> Option<&'s SweepCache>,
+        ray: &Ray,
+        tmin: f64,
+        f: impl FnOnce(&Posed) -> Option<R>,
+    ) -> Option<R> {
         let mut at_rest = Posed {
             obj,
             shape: &obj.shape,
@@ -253,9 +272,15 @@ impl Snapshot<'_> {
         }
         // Only a sweep has a cache: the others need not look.
         if matches!(obj.shape, Shape::Sweep(_)) {
-            at_rest.cache = self.caches[i].as_deref();
+            at_rest.cache = cache();
         }
-        match self.deforming_of[i] {
+        // A scene with nothing deforming need not look (most of them).
+        let deforms = if self.deforming.is_empty() {
+            None
+        } else {
+            self.deforming_of[i]
+        };
+        match deforms {
             None => f(&at_rest),
             Some(d) => {
                 let contour = self.deforming[d].contour();
@@ -359,10 +384,29 @@ pub fn closer(a: (f64, usize), b: (f64, usize)) -> bool {
 pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
     let Some(s) = snap.structure else {
         // The loop, kept apart from the structures' walks so that it stays
-        // as small as the original's where it is inlined.
+        // as small as the original's where it is inlined; with every pose
+        // at hand (the instant's, or at rest), the objects, their poses and
+        // caches walked side by side.
         let mut best: Option<(usize, LocalHit)> = None;
-        for i in 0..snap.scene.objects.len() {
-            consider(snap, i, ray, tmin, searched, &mut best);
+        let objects = &snap.scene.objects;
+        if snap.all.len() == objects.len() && snap.caches.len() == objects.len() {
+            let tables = objects.iter().zip(snap.all).zip(snap.caches);
+            for (i, ((obj, pose), cache)) in tables.enumerate() {
+                let hit = snap.posed_as(
+                    i,
+                    obj,
+                    pose,
+                    || cache.as_deref(),
+                    ray,
+                    tmin,
+                    |p| p.intersect(ray, tmin, snap.opts, searched),
+                );
+                keep(hit, i, &mut best);
+            }
+        } else {
+            for i in 0..objects.len() {
+                consider(snap, i, ray, tmin, searched, &mut best);
+            }
         }
         return best;
     };
@@ -393,9 +437,17 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
 
 /// Object `i`'s hit with `ray` beyond `tmin`, kept in `best` if it is
 /// nearer ([`closer`]): the loop's body, wherever the objects come from.
-#[inline]
+/// Inlined in each of its three callers: a call for every object of every
+/// ray was a tenth of the chapter-5 decks' instructions.
+#[inline(always)]
 fn consider(snap: &Snapshot, i: usize, ray: &Ray, tmin: f64, searched: &mut u64, best: &mut Option<(usize, LocalHit)>) {
     let hit = snap.posed(i, ray, tmin, |p| p.intersect(ray, tmin, snap.opts, searched));
+    keep(hit, i, best);
+}
+
+/// Object `i`'s `hit`, kept in `best` if it is nearer ([`closer`]).
+#[inline(always)]
+fn keep(hit: Option<LocalHit>, i: usize, best: &mut Option<(usize, LocalHit)>) {
     // The hit read where it was written, its t first, and copied only if
     // it is kept.
     if let Some(h) = &hit {

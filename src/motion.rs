@@ -45,9 +45,18 @@ impl Moving {
     /// Where the object stands at film time `time`, from `rest`, its record
     /// as the deck left it: `motionblur` of its path, or its chain's pose.
     pub fn pose(&self, rest: &ObjectRecord, time: f64, fidelity: Fidelity) -> Pose {
+        let mut pose = Pose::IDENTITY;
+        self.pose_into(rest, time, fidelity, &mut pose);
+        pose
+    }
+
+    /// [`Moving::pose`] written over `pose`, as `motionblur` writes the
+    /// object's record: made where it is kept, not copied there.
+    #[inline]
+    pub fn pose_into(&self, rest: &ObjectRecord, time: f64, fidelity: Fidelity, pose: &mut Pose) {
         match &self.motion {
-            Motion::Path(record) => motionblur(rest, record, time, fidelity),
-            Motion::Chain { chain, .. } => chain.pose(time),
+            Motion::Path(record) => motionblur(rest, record, time, fidelity, pose),
+            Motion::Chain { chain, .. } => *pose = chain.pose(time),
         }
     }
 

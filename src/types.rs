@@ -390,25 +390,40 @@ pub struct Pose {
 }
 
 impl Pose {
+    /// An object at the world's origin, unturned: what a pose is before it
+    /// is written.
+    pub const IDENTITY: Pose = Pose {
+        transfm: DMat4::IDENTITY,
+        inverse: DMat4::IDENTITY,
+        sphereo: DVec3::ZERO,
+    };
+
     /// This pose turned by `turn` (a rotation about axes through the
     /// object's origin) and moved to `sphereo`: T(sphereo) · turn · (the
     /// rotation and axis of this pose). The convention of every motion in
     /// the port (`drt::motionblur`, the key-frame pose; DEVIATIONS D8).
     pub fn turned(&self, turn: DMat3, sphereo: Points) -> Pose {
+        let mut pose = Pose::IDENTITY;
+        pose.turn_from(&self.transfm, turn, sphereo);
+        pose
+    }
+
+    /// This pose made [`Pose::turned`] of the pose whose `transfm` is
+    /// `transfm` (its inverse is not read), in place: `motionblur` writes
+    /// the object's record for every ray, and a copy of a pose (two 4×4
+    /// matrices) costs as much as making it.
+    #[inline]
+    pub fn turn_from(&mut self, transfm: &DMat4, turn: DMat3, sphereo: Points) {
         // Both matrices are rigid: transfm = T(s)·R and inverse = Rᵀ·T(−s),
         // so R is transfm without its translation, and the new pair is
         // T(sphereo)·R′ and R′ᵀ·T(−sphereo) with R′ = turn·R.
-        let r = turn * DMat3::from_mat4(self.transfm);
+        let r = turn * DMat3::from_mat4(*transfm);
         let rt = r.transpose();
-        let mut transfm = DMat4::from_mat3(r);
-        transfm.w_axis = sphereo.extend(1.0);
-        let mut inverse = DMat4::from_mat3(rt);
-        inverse.w_axis = (-(rt * sphereo)).extend(1.0);
-        Pose {
-            transfm,
-            inverse,
-            sphereo,
-        }
+        self.transfm = DMat4::from_mat3(r);
+        self.transfm.w_axis = sphereo.extend(1.0);
+        self.inverse = DMat4::from_mat3(rt);
+        self.inverse.w_axis = (-(rt * sphereo)).extend(1.0);
+        self.sphereo = sphereo;
     }
 }
 

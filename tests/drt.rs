@@ -140,17 +140,17 @@ fn mover() -> (ObjectRecord, MotionRecord) {
 #[test]
 fn motionblur_poses() {
     let (obj, mut motion) = mover();
-    let rest = motionblur(&obj, &motion, 0.0, Fidelity::Thesis);
+    let rest = motionblur_pose(&obj, &motion, 0.0, Fidelity::Thesis);
     assert!(rest.transfm.abs_diff_eq(obj.transfm, 1e-12));
-    let end = motionblur(&obj, &motion, 1.0, Fidelity::Thesis);
+    let end = motionblur_pose(&obj, &motion, 1.0, Fidelity::Thesis);
     assert!(close(end.sphereo, motion.to, 1e-12));
     // Turned 90° about z: local +x points along world +y.
     assert!(close(end.transfm.transform_vector3(DVec3::X), DVec3::Y, 1e-12));
     assert!(end.inverse.abs_diff_eq(end.transfm.inverse(), 1e-12));
-    let half = motionblur(&obj, &motion, 0.5, Fidelity::Thesis);
+    let half = motionblur_pose(&obj, &motion, 0.5, Fidelity::Thesis);
     assert!(close(half.sphereo, DVec3::new(3.0, 2.0, 3.0), 1e-12));
     motion.law = Law::Accelerate;
-    let half = motionblur(&obj, &motion, 0.5, Fidelity::Thesis);
+    let half = motionblur_pose(&obj, &motion, 0.5, Fidelity::Thesis);
     assert!(close(
         half.sphereo,
         DVec3::new(1.0 + 4.0 * 0.292_893_218_813_452_5, 2.0, 3.0),
@@ -159,10 +159,10 @@ fn motionblur_poses() {
     // A Bezier path passes its ends and, at ½, (P0 + 3P1 + 3P2 + P3)/8.
     motion.law = Law::Constant;
     motion.via = Some([DVec3::new(1.0, 6.0, 3.0), DVec3::new(5.0, 6.0, 3.0)]);
-    let mid = motionblur(&obj, &motion, 0.5, Fidelity::Thesis);
+    let mid = motionblur_pose(&obj, &motion, 0.5, Fidelity::Thesis);
     assert!(close(mid.sphereo, DVec3::new(3.0, 5.0, 3.0), 1e-12));
     // The listing ignores the record: x + 6t, and 270·50·t degrees about x.
-    let l = motionblur(&obj, &motion, 0.1, Fidelity::Listing);
+    let l = motionblur_pose(&obj, &motion, 0.1, Fidelity::Listing);
     assert!(close(l.sphereo, DVec3::new(1.6, 2.0, 3.0), 1e-12));
     let turned = l.transfm.transform_vector3(DVec3::Y);
     let a = (1350f64).to_radians();

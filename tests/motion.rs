@@ -6,7 +6,7 @@
 
 mod common;
 
-use raytrace::drt::{law_range, motion_bounds, motionblur, LAW};
+use raytrace::drt::{law_range, motion_bounds, LAW};
 use raytrace::hash::hashed_uniform;
 use raytrace::motion::{paths, Motion};
 use raytrace::options::*;
@@ -105,7 +105,9 @@ fn a_paths_bounds_hold_its_places_and_no_more() {
         for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
             let obj = &s.objects[0];
             let bounds = motion_bounds(obj, &record, t0, t1, fidelity);
-            let seen = sampled(t0, t1, 2000, |t| motionblur(obj, &record, t, fidelity).sphereo);
+            let seen = sampled(t0, t1, 2000, |t| {
+                common::motionblur_pose(obj, &record, t, fidelity).sphereo
+            });
             // The exact bounds, to rounding (the paths' coordinates are below 10).
             holds_tightly(
                 &bounds,

@@ -116,7 +116,7 @@ impl Camera {
     /// with a `lens` the lens's ray, whose lens point the sample's further
     /// dimensions give. Without a lens nothing is drawn.
     #[inline]
-    pub fn ray_of(&self, c: CameraSample, sampler: &mut dyn Sampler) -> Ray {
+    pub fn ray_of<S: Sampler>(&self, c: CameraSample, sampler: &mut S) -> Ray {
         match &self.lens {
             None => self.ray(c.scancol, c.scanline, c.jx, c.jz),
             Some(lens) => lens.ray(

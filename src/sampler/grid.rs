@@ -143,12 +143,14 @@ impl<'a> GridSampler<'a> {
 
     /// Starts the sample of subpixel (`scanline`, `scancol`), 1-based as in
     /// the listing; `scancol` 0 is erratum 13's extra column.
+    #[inline]
     pub fn start(&mut self, scanline: usize, scancol: usize) {
         (self.scanline, self.scancol, self.dim) = (scanline, scancol, 0);
     }
 
     /// k: the subpixel's place in the scan order, 0-based (the extra
     /// column shares column 1's): the listing's cursors at it.
+    #[inline]
     fn k(&self) -> usize {
         (self.scanline - 1) * self.virthighx + self.scancol.max(1) - 1
     }
@@ -167,6 +169,7 @@ impl Sampler for GridSampler<'_> {
     /// ([`TimeTable::time`], errata 1 and 2); `random`: an independent
     /// uniform; `stratified`: a place in the stratum the pixel's
     /// permutation deals the subpixel.
+    #[inline]
     fn time(&mut self) -> f64 {
         let k = self.k();
         match self.kind {
@@ -191,6 +194,7 @@ impl Sampler for GridSampler<'_> {
     /// `noise2[aindex]*aliasing`, in x and z alike; `thesis` fidelity
     /// (§2.1.3 (4), stochastic sampling) advances the cursor: subpixel k of
     /// the scan order takes entries 2k and 2k+1 (mod `maxindex`) for x and z.
+    #[inline]
     fn camera(&self) -> CameraSample {
         let noise2 = &self.tables.noise2;
         let (jx, jz) = match self.fidelity {

@@ -248,3 +248,16 @@ pub fn deck_sweep(deck: &str) -> (PrimitiveClass, SweepShape) {
         })
         .expect("the deck has a sweep")
 }
+
+/// `drt::motionblur`'s pose of `obj` at `time`, written over a pose of
+/// NaNs: a field it did not write would show.
+pub fn motionblur_pose(obj: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity) -> Pose {
+    let nan = DMat4::from_cols_array(&[f64::NAN; 16]);
+    let mut pose = Pose {
+        transfm: nan,
+        inverse: nan,
+        sphereo: DVec3::NAN,
+    };
+    raytrace::drt::motionblur(obj, motion, time, fidelity, &mut pose);
+    pose
+}
