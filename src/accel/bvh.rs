@@ -15,6 +15,7 @@
 use std::ops::ControlFlow;
 
 use super::{visit_each, Aabb, BoxRay, Step};
+use crate::types::DVec3;
 
 /// Buckets of the heuristic (pbrt-v4's).
 const BUCKETS: usize = 12;
@@ -29,14 +30,59 @@ const MAX_DEPTH: usize = 60;
 /// What a node's box test costs against an object's test (pbrt-v4's ½).
 const TRAVERSAL_COST: f64 = 0.5;
 
-/// A node: its box and, for a leaf (`count` > 0), its objects
-/// `items[offset..offset + count]`; for an inner node (`count` = 0), its
-/// second child at `offset` (the first is the next node).
+/// A node: for a leaf (`count` > 0), its objects `items[offset..offset +
+/// count]`; for an inner node (`count` = 0), its second child at `offset`
+/// (the first is the next node) and the boxes of the two, side by side
+/// (`children.lo[axis][c]` of child c): a step of the walk tests both at
+/// once, from one place in memory. A node's own box is in its parent, the
+/// root's in [`Bvh`].
 #[derive(Clone, Debug, PartialEq)]
 struct Node {
-    bounds: Aabb,
+    children: Pair,
     offset: u32,
     count: u32,
+}
+
+/// Two boxes, axis by axis: `lo[k][c]` and `hi[k][c]` bound box c on axis k.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Pair {
+    lo: [[f64; 2]; 3],
+    hi: [[f64; 2]; 3],
+}
+
+impl Pair {
+    /// Boxes `a` and `b`.
+    fn of(a: &Aabb, b: &Aabb) -> Pair {
+        let lane = |u: DVec3, v: DVec3| [[u.x, v.x], [u.y, v.y], [u.z, v.z]];
+        Pair {
+            lo: lane(a.lo, b.lo),
+            hi: lane(a.hi, b.hi),
+        }
+    }
+
+    /// The lower and upper corners, axis by axis, box by box.
+    pub(super) fn lanes(&self) -> super::Lanes<'_> {
+        (&self.lo, &self.hi)
+    }
+
+    /// Box `c` (0 or 1).
+    #[cfg(test)]
+    fn get(&self, c: usize) -> Aabb {
+        let at = |v: &[[f64; 2]; 3]| DVec3::new(v[0][c], v[1][c], v[2][c]);
+        Aabb {
+            lo: at(&self.lo),
+            hi: at(&self.hi),
+        }
+    }
+}
+
+/// See the module doc. Built by [`Bvh::build`], walked by [`Bvh::walk`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bvh {
+    /// The root's box.
+    bounds: Aabb,
+    nodes: Vec<Node>,
+    items: Vec<Item>,
 }
 
 /// An object of a leaf: its box and index.
@@ -44,13 +90,6 @@ struct Node {
 struct Item {
     bounds: Aabb,
     object: u32,
-}
-
-/// See the module doc. Built by [`Bvh::build`], walked by [`Bvh::walk`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct Bvh {
-    nodes: Vec<Node>,
-    items: Vec<Item>,
 }
 
 /// An object while building: its box, the box's centre (0 on an axis
@@ -96,21 +135,27 @@ impl Bvh {
             })
             .collect();
         let mut bvh = Bvh {
+            bounds: Aabb::EMPTY,
             nodes: Vec::with_capacity(2 * boxes.len()),
             items: Vec::with_capacity(boxes.len()),
         };
         if !prims.is_empty() {
-            bvh.node(&mut prims, 0);
+            bvh.bounds = bvh.node(&mut prims, 0).1;
         }
         bvh
     }
 
-    /// The node over `prims` and all below it; returns its index.
-    fn node(&mut self, prims: &mut [Prim], depth: usize) -> usize {
-        let bounds = prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds));
+    /// The node over `prims` and all below it; returns its index and box.
+    fn node(&mut self, prims: &mut [Prim], depth: usize) -> (usize, Aabb) {
+        // A leaf of one object has that object's box itself, so that the
+        // test of it in its parent is the object's own test.
+        let bounds = match prims {
+            [one] => one.bounds,
+            _ => prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds)),
+        };
         let index = self.nodes.len();
         self.nodes.push(Node {
-            bounds,
+            children: Pair::of(&Aabb::EMPTY, &Aabb::EMPTY),
             offset: 0,
             count: 0,
         });
@@ -126,12 +171,13 @@ impl Bvh {
             }
             Some(mid) => {
                 let (near, far) = prims.split_at_mut(mid);
-                self.node(near, depth + 1);
-                let second = self.node(far, depth + 1);
+                let (_, a) = self.node(near, depth + 1);
+                let (second, b) = self.node(far, depth + 1);
                 self.nodes[index].offset = second as u32;
+                self.nodes[index].children = Pair::of(&a, &b);
             }
         }
-        index
+        (index, bounds)
     }
 
     /// The walk of [`super::Structure::walk`]: a node's children in the
@@ -146,10 +192,10 @@ impl Bvh {
         stack: &mut Vec<(u32, f64)>,
         mut visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
-        let Some(root) = self.nodes.first() else {
+        if self.nodes.is_empty() {
             return ControlFlow::Continue(());
-        };
-        let Some((mut enter, _)) = ray.span(&root.bounds, tmin, limit) else {
+        }
+        let Some((mut enter, _)) = ray.span(&self.bounds, tmin, limit) else {
             return ControlFlow::Continue(());
         };
         stack.clear();
@@ -160,12 +206,17 @@ impl Bvh {
                 if node.count > 0 {
                     let start = node.offset as usize;
                     let items = &self.items[start..start + node.count as usize];
-                    let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
-                    visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
+                    if let [one] = items {
+                        // Its box is the leaf's, which the ray enters at
+                        // `enter`, within the limit: tested already.
+                        limit = visit(one.object as usize)?;
+                    } else {
+                        let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
+                        visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
+                    }
                 } else {
                     let (a, b) = (n + 1, node.offset);
-                    let ea = ray.span(&self.nodes[a as usize].bounds, tmin, limit);
-                    let eb = ray.span(&self.nodes[b as usize].bounds, tmin, limit);
+                    let [ea, eb] = ray.span_pair(node.children.lanes(), tmin, limit);
                     // The near child next, the far one kept for after.
                     (n, enter) = match (ea, eb) {
                         (Some((ta, _)), Some((tb, _))) if tb < ta => {
@@ -347,7 +398,7 @@ fn partition(prims: &mut [Prim], first: impl Fn(&Prim) -> bool) -> usize {
 mod tests {
     use super::*;
     use crate::accel::tests::cube;
-    use crate::types::{DVec3, Ray};
+    use crate::types::Ray;
 
     fn visited(bvh: &Bvh, ray: &Ray, limit: f64) -> Vec<usize> {
         let mut v = Vec::new();
@@ -391,6 +442,10 @@ mod tests {
         let (a, b) = (&bvh.nodes[1], &bvh.nodes[root.offset as usize]);
         let alone = |n: &Node| n.count == 1 && bvh.items[n.offset as usize].object == 0;
         assert!(alone(a) || alone(b));
+        // The root holds its children's boxes: the floor's own is one.
+        let floor = |c: usize| root.children.get(c) == boxes[0];
+        assert_eq!(floor(0), alone(a));
+        assert_eq!(floor(1), alone(b));
     }
 
     #[test]
