@@ -605,9 +605,10 @@ mod tests {
         // alone differs from it there.
         let tiny = DVec3::new(5e-324, 0.0, 0.0);
         assert_ne!(bits(rotation(Axis::X, tiny.x)), bits(product(tiny)));
-        // Two axes: the product.
-        let two = DVec3::new(30.0, 0.0, 45.0);
-        assert_eq!(bits(turn_xyz(two)), bits(product(two)));
+        // Two axes, three: the product.
+        for d in [DVec3::new(30.0, 0.0, 45.0), DVec3::new(30.0, 20.0, 45.0)] {
+            assert_eq!(bits(turn_xyz(d)), bits(product(d)), "{d}");
+        }
     }
 
     #[test]

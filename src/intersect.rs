@@ -563,6 +563,57 @@ pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
 mod tests {
     use super::*;
     use crate::options::Fidelity;
+    use crate::types::DVec3;
+
+    /// The loop over poses made when asked (a structure's, at an instant
+    /// outside the times it bounds) meets the objects where the poses made
+    /// all at once put them: the same nearest hit for rays at the moving
+    /// ball and at the floor.
+    #[test]
+    fn the_loop_meets_lazy_poses_as_eager_ones() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
+        let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
+        let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
+        let caches = crate::shapes::prepare_caches(&scene);
+        let rest = rest_poses(&scene);
+        let moving = crate::motion::paths(&scene);
+        let mut moving_of = vec![None; scene.objects.len()];
+        for (k, m) in moving.iter().enumerate() {
+            moving_of[m.object] = Some(k);
+        }
+        let (opts, aggregate) = (Options::default(), Aggregate::linear(&scene));
+        let nearest_with = |eager: bool, ray: &Ray| {
+            let mut poses = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, eager);
+            poses.at(0.3);
+            let snap = Snapshot {
+                scene: &scene,
+                opts: &opts,
+                poses: &poses,
+                all: poses.all(),
+                deforming: &[],
+                deforming_of: &vec![None; scene.objects.len()],
+                caches: &caches,
+                aggregate: &aggregate,
+                structure: None,
+                scratch: &Scratch::default(),
+            };
+            assert_eq!(snap.all.len(), if eager { scene.objects.len() } else { 0 });
+            nearest(&snap, ray, 1e-9, &mut 0).map(|(i, h)| (i, h.t))
+        };
+        let eye = scene.view.eyept;
+        let mut ball = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, true);
+        ball.at(0.3);
+        let centre = ball.get(moving[0].object).sphereo;
+        for target in [centre, DVec3::new(0.0, 0.0, -0.5)] {
+            let ray = Ray::new(eye, (target - eye).normalize());
+            let hit = nearest_with(true, &ray);
+            assert!(hit.is_some());
+            assert_eq!(nearest_with(false, &ray), hit);
+        }
+        // The ball is met where it stands at 0.3, not at rest.
+        let ray = Ray::new(eye, (centre - eye).normalize());
+        assert_eq!(nearest_with(false, &ray).map(|(i, _)| i), Some(moving[0].object));
+    }
 
     /// An object that deforms is met as its contour of the moment, without
     /// a cache (its caps solved, its bounds made per ray), though its key
