@@ -52,7 +52,7 @@ pub(super) struct Pair {
 
 impl Pair {
     /// Boxes `a` and `b`.
-    fn of(a: &Aabb, b: &Aabb) -> Pair {
+    pub(super) fn of(a: &Aabb, b: &Aabb) -> Pair {
         let lane = |u: DVec3, v: DVec3| [[u.x, v.x], [u.y, v.y], [u.z, v.z]];
         Pair {
             lo: lane(a.lo, b.lo),

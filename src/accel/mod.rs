@@ -281,6 +281,45 @@ pub(crate) mod tests {
         Aabb { lo: c - r, hi: c + r }
     }
 
+    /// `span_pair` answers for each of its two boxes what `span` answers
+    /// for it alone, entry and exit: random boxes (some flat, some not
+    /// finite) and rays (some along an axis, from a face), random limits.
+    #[test]
+    fn a_pair_spans_as_each_box_alone() {
+        // Park and Miller's minimal standard generator, kept here: the
+        // layer below `drt` may not call it.
+        let mut seed = 11u64;
+        let mut u = |a: f64, b: f64| {
+            seed = seed * 16807 % 2_147_483_647;
+            a + (b - a) * (seed as f64 / 2_147_483_647.0)
+        };
+        for case in 0..2000 {
+            let mut boxes = [0, 1].map(|_| {
+                let (c, r) = ([u(-3.0, 3.0), u(-3.0, 3.0), u(-3.0, 3.0)], u(0.0, 2.0));
+                cube(c, r)
+            });
+            if case % 7 == 0 {
+                boxes[0].hi.x = boxes[0].lo.x;
+            }
+            if case % 11 == 0 {
+                boxes[1].hi.y = f64::INFINITY;
+            }
+            let mut dir = DVec3::new(u(-1.0, 1.0), u(-1.0, 1.0), u(-1.0, 1.0));
+            let mut origin = DVec3::new(u(-6.0, 6.0), u(-6.0, 6.0), u(-6.0, 6.0));
+            if case % 5 == 0 {
+                dir.x = 0.0;
+                origin.x = boxes[case % 2].lo.x;
+            }
+            let ray = BoxRay::new(&Ray::new(origin, dir));
+            let (t0, t1) = (u(-1.0, 1.0), if case % 3 == 0 { f64::INFINITY } else { u(0.0, 10.0) });
+            let pair = bvh::Pair::of(&boxes[0], &boxes[1]);
+            let both = ray.span_pair(pair.lanes(), t0, t1);
+            for c in 0..2 {
+                assert_eq!(both[c], ray.span(&boxes[c], t0, t1), "case {case}, box {c}");
+            }
+        }
+    }
+
     /// Degenerate bounds: objects all at one point, of no size, many at
     /// one point with a size, and boxes that are not finite, build in
     /// each structure; each visits every object whose box a ray through
