@@ -286,12 +286,10 @@ pub(crate) mod tests {
     /// finite) and rays (some along an axis, from a face), random limits.
     #[test]
     fn a_pair_spans_as_each_box_alone() {
-        // Park and Miller's minimal standard generator, kept here: the
-        // layer below `drt` may not call it.
-        let mut seed = 11u64;
+        let mut key = 0u64;
         let mut u = |a: f64, b: f64| {
-            seed = seed * 16807 % 2_147_483_647;
-            a + (b - a) * (seed as f64 / 2_147_483_647.0)
+            key += 1;
+            a + (b - a) * crate::hash::hashed_uniform(key)
         };
         for case in 0..2000 {
             let mut boxes = [0, 1].map(|_| {
