@@ -3,19 +3,27 @@
 //! built as pbrt-v4 builds its BVH (`BVHAggregate::buildRecursive`,
 //! src/pbrt/cpu/aggregates.cpp: the surface area heuristic over twelve
 //! buckets of the boxes' centres on the widest axis, a node's test costing
-//! half an object's), kept flat (a node's first child follows it), and
-//! walked front to back. The port's; the thesis prints no code for it.
+//! half an object's), and walked front to back. The port's; the thesis
+//! prints no code for it.
 //!
 //! One choice beyond pbrt's: the object with the largest box may be made
 //! a child of its own, when the heuristic prices that lower than the
 //! buckets' best. A floor under a crowd of small objects has its centre
 //! among theirs and would fall into one bucket's box with them, making
 //! that box as large as the floor; alone, it costs one test.
+//!
+//! The walk does not step through the binary tree the heuristic builds:
+//! each of its nodes takes its children's children in their places (up
+//! to four; a leaf stays), as Embree's four-wide nodes do, and the four
+//! boxes are tested at once in single precision ([`super::quad`]), a
+//! test that may let in a box the ray passes very near but never keeps
+//! out one it meets. A ray then steps through half as many levels, each
+//! step one test of four boxes where it was two of two.
 
 use std::ops::ControlFlow;
 
+use super::quad::{Quad, QuadRay};
 use super::{visit_each, Aabb, BoxRay, Step};
-use crate::types::DVec3;
 
 /// Buckets of the heuristic (pbrt-v4's).
 const BUCKETS: usize = 12;
@@ -30,58 +38,35 @@ const MAX_DEPTH: usize = 60;
 /// What a node's box test costs against an object's test (pbrt-v4's ½).
 const TRAVERSAL_COST: f64 = 0.5;
 
-/// A node: for a leaf (`count` > 0), its objects `items[offset..offset +
-/// count]`; for an inner node (`count` = 0), its second child at `offset`
-/// (the first is the next node) and the boxes of the two, side by side
-/// (`children.lo[axis][c]` of child c): a step of the walk tests both at
-/// once, from one place in memory. A node's own box is in its parent, the
-/// root's in [`Bvh`].
+/// A node: the boxes of its two to four children side by side (one
+/// [`Quad`], tested at once) and what each child is: a node (its index), a
+/// leaf (`LEAF` and its index in `leaves`), or none ([`NO_CHILD`]). It is
+/// a node of the binary hierarchy the heuristic builds with its children
+/// raised to take their own children's places ([`Bvh::wide`]), so that a
+/// ray steps through half as many levels.
 #[derive(Clone, Debug, PartialEq)]
 struct Node {
-    children: Pair,
-    offset: u32,
-    count: u32,
+    boxes: Quad,
+    child: [u32; 4],
+    /// Bit c set for each lane c with a child.
+    lanes: u32,
 }
 
-/// Two boxes, axis by axis: `lo[k][c]` and `hi[k][c]` bound box c on axis k.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Pair {
-    lo: [[f64; 2]; 3],
-    hi: [[f64; 2]; 3],
-}
+/// A child that is a leaf: its index in `leaves`, with this bit.
+const LEAF: u32 = 1 << 31;
 
-impl Pair {
-    /// Boxes `a` and `b`.
-    pub(super) fn of(a: &Aabb, b: &Aabb) -> Pair {
-        let lane = |u: DVec3, v: DVec3| [[u.x, v.x], [u.y, v.y], [u.z, v.z]];
-        Pair {
-            lo: lane(a.lo, b.lo),
-            hi: lane(a.hi, b.hi),
-        }
-    }
-
-    /// The lower and upper corners, axis by axis, box by box.
-    pub(super) fn lanes(&self) -> super::Lanes<'_> {
-        (&self.lo, &self.hi)
-    }
-
-    /// Box `c` (0 or 1).
-    #[cfg(test)]
-    fn get(&self, c: usize) -> Aabb {
-        let at = |v: &[[f64; 2]; 3]| DVec3::new(v[0][c], v[1][c], v[2][c]);
-        Aabb {
-            lo: at(&self.lo),
-            hi: at(&self.hi),
-        }
-    }
-}
+/// A lane without a child.
+const NO_CHILD: u32 = u32::MAX;
 
 /// See the module doc. Built by [`Bvh::build`], walked by [`Bvh::walk`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bvh {
-    /// The root's box.
+    /// The root's box, and the root (a node, or a leaf).
     bounds: Aabb,
+    root: u32,
     nodes: Vec<Node>,
+    /// A leaf's objects: `items[offset..offset + count]`.
+    leaves: Vec<(u32, u32)>,
     items: Vec<Item>,
 }
 
@@ -99,6 +84,14 @@ struct Prim {
     bounds: Aabb,
     centre: [f64; 3],
     object: u32,
+}
+
+/// A node of the binary hierarchy while building: its box, and its two
+/// children or (a leaf) its objects' place in `items`.
+struct Binary {
+    bounds: Aabb,
+    kids: Option<[usize; 2]>,
+    items: (u32, u32),
 }
 
 /// The fraction of the rays through a box of half-area `total` that also
@@ -136,34 +129,39 @@ impl Bvh {
             .collect();
         let mut bvh = Bvh {
             bounds: Aabb::EMPTY,
-            nodes: Vec::with_capacity(2 * boxes.len()),
+            root: NO_CHILD,
+            nodes: Vec::with_capacity(boxes.len() / 2),
+            leaves: Vec::with_capacity(boxes.len()),
             items: Vec::with_capacity(boxes.len()),
         };
         if !prims.is_empty() {
-            bvh.bounds = bvh.node(&mut prims, 0).1;
+            let mut binary = Vec::with_capacity(2 * boxes.len());
+            let top = bvh.node(&mut binary, &mut prims, 0);
+            bvh.bounds = binary[top].bounds;
+            bvh.root = bvh.wide(&binary, top);
         }
         bvh
     }
 
-    /// The node over `prims` and all below it; returns its index and box.
-    fn node(&mut self, prims: &mut [Prim], depth: usize) -> (usize, Aabb) {
+    /// The binary node over `prims` and all below it, into `binary`;
+    /// returns its index.
+    fn node(&mut self, binary: &mut Vec<Binary>, prims: &mut [Prim], depth: usize) -> usize {
         // A leaf of one object has that object's box itself, so that the
         // test of it in its parent is the object's own test.
         let bounds = match prims {
             [one] => one.bounds,
             _ => prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds)),
         };
-        let index = self.nodes.len();
-        self.nodes.push(Node {
-            children: Pair::of(&Aabb::EMPTY, &Aabb::EMPTY),
-            offset: 0,
-            count: 0,
+        let index = binary.len();
+        binary.push(Binary {
+            bounds,
+            kids: None,
+            items: (0, 0),
         });
         match split(prims, &bounds, depth) {
             None => {
                 prims.sort_unstable_by_key(|p| p.object);
-                self.nodes[index].offset = self.items.len() as u32;
-                self.nodes[index].count = prims.len() as u32;
+                binary[index].items = (self.items.len() as u32, prims.len() as u32);
                 self.items.extend(prims.iter().map(|p| Item {
                     bounds: p.bounds,
                     object: p.object,
@@ -171,100 +169,183 @@ impl Bvh {
             }
             Some(mid) => {
                 let (near, far) = prims.split_at_mut(mid);
-                let (_, a) = self.node(near, depth + 1);
-                let (second, b) = self.node(far, depth + 1);
-                self.nodes[index].offset = second as u32;
-                self.nodes[index].children = Pair::of(&a, &b);
+                let a = self.node(binary, near, depth + 1);
+                let b = self.node(binary, far, depth + 1);
+                binary[index].kids = Some([a, b]);
             }
         }
-        (index, bounds)
+        index
+    }
+
+    /// The walked node of binary node `b` (a leaf stays a leaf): its
+    /// children, each child that is not a leaf replaced by its own two;
+    /// returns the child reference.
+    fn wide(&mut self, binary: &[Binary], b: usize) -> u32 {
+        let Some(two) = binary[b].kids else {
+            self.leaves.push(binary[b].items);
+            return LEAF | (self.leaves.len() - 1) as u32;
+        };
+        let (mut kids, mut n) = ([0usize; 4], 0);
+        for k in two {
+            match binary[k].kids {
+                Some(grand) => {
+                    kids[n..n + 2].copy_from_slice(&grand);
+                    n += 2;
+                }
+                None => {
+                    kids[n] = k;
+                    n += 1;
+                }
+            }
+        }
+        let index = self.nodes.len();
+        let boxes: Vec<Aabb> = kids[..n].iter().map(|&k| binary[k].bounds).collect();
+        self.nodes.push(Node {
+            boxes: Quad::of(&boxes),
+            child: [NO_CHILD; 4],
+            lanes: (1 << n) - 1,
+        });
+        for (c, &k) in kids[..n].iter().enumerate() {
+            let child = self.wide(binary, k);
+            self.nodes[index].child[c] = child;
+        }
+        index as u32
     }
 
     /// The walk of [`super::Structure::walk`]: a node's children in the
     /// order the ray enters them, each skipped when the ray enters it
     /// beyond the limit as it stands then; a leaf's objects each behind
-    /// its own box.
+    /// its own box (a leaf of one object behind its lane of the parent's
+    /// test, which is its box). The nodes' tests are [`QuadRay::span`]'s,
+    /// which may let in a box the ray only passes near, never keep out one
+    /// it meets.
     pub fn walk(
         &self,
         ray: &BoxRay,
         tmin: f64,
         mut limit: f64,
-        stack: &mut Vec<(u32, f64)>,
+        stack: &mut Vec<(u32, f32)>,
         mut visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
-        if self.nodes.is_empty() {
+        if self.root == NO_CHILD {
             return ControlFlow::Continue(());
         }
-        let Some((mut enter, _)) = ray.span(&self.bounds, tmin, limit) else {
+        if ray.span(&self.bounds, tmin, limit).is_none() {
             return ControlFlow::Continue(());
-        };
+        }
+        let quad = QuadRay::new(ray, tmin);
+        let mut t1 = quad.limit(limit);
         stack.clear();
-        let mut n = 0u32;
+        // The root is met (its entry is within the limit).
+        let (mut at, mut enter) = (self.root, quad.start());
         loop {
-            if enter <= limit {
-                let node = &self.nodes[n as usize];
-                if node.count > 0 {
-                    let start = node.offset as usize;
-                    let items = &self.items[start..start + node.count as usize];
+            if enter <= t1 {
+                if at & LEAF != 0 {
+                    let (start, count) = self.leaves[(at & !LEAF) as usize];
+                    let items = &self.items[start as usize..(start + count) as usize];
                     if let [one] = items {
-                        // Its box is the leaf's, which the ray enters at
-                        // `enter`, within the limit: tested already.
                         limit = visit(one.object as usize)?;
                     } else {
                         let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
                         visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
                     }
+                    t1 = quad.limit(limit);
                 } else {
-                    let (a, b) = (n + 1, node.offset);
-                    let [ea, eb] = ray.span_pair(node.children.lanes(), tmin, limit);
-                    // The near child next, the far one kept for after.
-                    (n, enter) = match (ea, eb) {
-                        (Some((ta, _)), Some((tb, _))) if tb < ta => {
-                            stack.push((a, ta));
-                            (b, tb)
+                    let node = &self.nodes[at as usize];
+                    let (enters, bits) = quad.span(&node.boxes, t1);
+                    let mut bits = bits & node.lanes;
+                    if bits != 0 {
+                        // The nearest child next; the others kept for
+                        // after, the next nearest on top.
+                        let a = bits.trailing_zeros() as usize;
+                        bits &= bits - 1;
+                        (at, enter) = (node.child[a], enters[a]);
+                        if bits != 0 {
+                            let b = bits.trailing_zeros() as usize;
+                            bits &= bits - 1;
+                            let other = (node.child[b], enters[b]);
+                            if bits == 0 {
+                                if other.1 < enter {
+                                    stack.push((at, enter));
+                                    (at, enter) = other;
+                                } else {
+                                    stack.push(other);
+                                }
+                            } else {
+                                (at, enter) = nearest_of(stack, node, &enters, (at, enter), other, bits);
+                            }
                         }
-                        (Some((ta, _)), Some((tb, _))) => {
-                            stack.push((b, tb));
-                            (a, ta)
-                        }
-                        (Some((ta, _)), None) => (a, ta),
-                        (None, Some((tb, _))) => (b, tb),
-                        (None, None) => (0, f64::INFINITY),
-                    };
-                    if enter < f64::INFINITY {
                         continue;
                     }
                 }
             }
             match stack.pop() {
-                Some(next) => (n, enter) = next,
+                Some(next) => (at, enter) = next,
                 None => return ControlFlow::Continue(()),
             }
         }
     }
 
-    /// The deepest leaf's depth (the root's is 0).
+    /// The deepest leaf's depth in the walked tree (the root's is 0).
     pub fn depth(&self) -> usize {
         let mut deepest = 0;
-        let mut stack = vec![(0usize, 0usize)];
+        let mut stack = vec![(self.root, 0usize)];
         while let Some((n, d)) = stack.pop() {
             deepest = deepest.max(d);
-            if self.nodes.get(n).is_some_and(|node| node.count == 0) {
-                stack.push((n + 1, d + 1));
-                stack.push((self.nodes[n].offset as usize, d + 1));
+            if n & LEAF == 0 && n != NO_CHILD {
+                for &c in &self.nodes[n as usize].child {
+                    if c != NO_CHILD {
+                        stack.push((c, d + 1));
+                    }
+                }
             }
         }
         deepest
     }
 
-    /// The number of nodes.
+    /// The number of nodes (leaves apart).
     pub fn len(&self) -> usize {
         self.nodes.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.root == NO_CHILD
     }
+}
+
+/// Of three or four children met (`first`, `second` and the lanes of
+/// `rest`), the nearest, the others pushed on `stack` the nearer last.
+#[inline(never)]
+fn nearest_of(
+    stack: &mut Vec<(u32, f32)>,
+    node: &Node,
+    enters: &[f32; 4],
+    first: (u32, f32),
+    second: (u32, f32),
+    mut rest: u32,
+) -> (u32, f32) {
+    // A lane without a child sorts farthest and is not pushed.
+    let none = (NO_CHILD, f32::INFINITY);
+    let mut met = [first, second, none, none];
+    for m in met.iter_mut().skip(2) {
+        let c = rest.trailing_zeros() as usize;
+        if c < 4 {
+            *m = (node.child[c], enters[c]);
+        }
+        rest &= rest.wrapping_sub(1);
+    }
+    // Farthest first: a sorting network of four.
+    for (i, j) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+        if met[i].1 < met[j].1 {
+            met.swap(i, j);
+        }
+    }
+    for &m in &met[..3] {
+        if m.0 != NO_CHILD {
+            stack.push(m);
+        }
+    }
+    met[3]
 }
 
 /// Where to split `prims` (those before the index go to the first child),
@@ -398,7 +479,7 @@ fn partition(prims: &mut [Prim], first: impl Fn(&Prim) -> bool) -> usize {
 mod tests {
     use super::*;
     use crate::accel::tests::cube;
-    use crate::types::Ray;
+    use crate::types::{DVec3, Ray};
 
     fn visited(bvh: &Bvh, ray: &Ray, limit: f64) -> Vec<usize> {
         let mut v = Vec::new();
@@ -438,14 +519,21 @@ mod tests {
         }];
         boxes.extend((0..64).map(|i| cube([(i % 8) as f64, (i / 8) as f64, 1.0], 0.2)));
         let bvh = Bvh::build(&boxes);
-        let root = &bvh.nodes[0];
-        let (a, b) = (&bvh.nodes[1], &bvh.nodes[root.offset as usize]);
-        let alone = |n: &Node| n.count == 1 && bvh.items[n.offset as usize].object == 0;
-        assert!(alone(a) || alone(b));
+        // The root's children, and whether each is a leaf of the floor.
+        let root = &bvh.nodes[bvh.root as usize];
+        let alone = |c: usize| {
+            let child = root.child[c];
+            child != NO_CHILD && child & LEAF != 0 && {
+                let (start, count) = bvh.leaves[(child & !LEAF) as usize];
+                count == 1 && bvh.items[start as usize].object == 0
+            }
+        };
+        assert_eq!((0..4).filter(|&c| alone(c)).count(), 1);
         // The root holds its children's boxes: the floor's own is one.
-        let floor = |c: usize| root.children.get(c) == boxes[0];
-        assert_eq!(floor(0), alone(a));
-        assert_eq!(floor(1), alone(b));
+        let floor = Quad::of(&[boxes[0]; 4]);
+        for c in 0..4 {
+            assert_eq!(root.boxes.lane(c) == floor.lane(c), alone(c), "{c}");
+        }
     }
 
     #[test]

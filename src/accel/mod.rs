@@ -16,6 +16,7 @@
 
 mod bvh;
 mod octree;
+mod quad;
 
 use std::ops::ControlFlow;
 
@@ -124,10 +125,6 @@ impl Aabb {
     }
 }
 
-/// Two boxes side by side: the lower corners' coordinates, axis by axis
-/// (`[k][c]` of box c on axis k), and the upper corners'.
-pub(super) type Lanes<'a> = (&'a [[f64; 2]; 3], &'a [[f64; 2]; 3]);
-
 /// A ray made ready for many box tests: its origin and the reciprocals of
 /// its direction.
 #[derive(Clone, Copy, Debug)]
@@ -168,24 +165,6 @@ impl BoxRay {
         }
         (enter <= exit).then_some((enter, exit))
     }
-
-    /// [`BoxRay::span`]'s entry t of each of the two boxes of `pair`,
-    /// computed side by side (the same operations, lane by lane, so that
-    /// the compiler can make them two-wide).
-    #[inline(always)]
-    pub(super) fn span_pair(&self, (lo, hi): Lanes, t0: f64, t1: f64) -> [Option<(f64, f64)>; 2] {
-        let (mut enter, mut exit) = ([t0; 2], [t1; 2]);
-        for k in 0..3 {
-            for c in 0..2 {
-                let ta = (lo[k][c] - self.origin[k]) * self.inv[k];
-                let tb = (hi[k][c] - self.origin[k]) * self.inv[k];
-                let (near, far) = if ta > tb { (tb, ta) } else { (ta, tb) };
-                enter[c] = if near > enter[c] { near } else { enter[c] };
-                exit[c] = if far < exit[c] { far } else { exit[c] };
-            }
-        }
-        [0, 1].map(|c| (enter[c] <= exit[c]).then_some((enter[c], exit[c])))
-    }
 }
 
 /// What a query does with an object the ray may meet, given to
@@ -216,7 +195,7 @@ fn visit_each<'b>(
 /// What a walk keeps of the nodes it has still to visit, kept by the
 /// walker from one walk to the next (a hierarchy's far children).
 #[derive(Clone, Debug, Default)]
-pub struct WalkStack(Vec<(u32, f64)>);
+pub struct WalkStack(Vec<(u32, f32)>);
 
 /// A structure over the objects' boxes.
 #[derive(Clone, Debug, PartialEq)]
@@ -279,43 +258,6 @@ pub(crate) mod tests {
     pub(crate) fn cube(c: [f64; 3], r: f64) -> Aabb {
         let c = DVec3::from_array(c);
         Aabb { lo: c - r, hi: c + r }
-    }
-
-    /// `span_pair` answers for each of its two boxes what `span` answers
-    /// for it alone, entry and exit: random boxes (some flat, some not
-    /// finite) and rays (some along an axis, from a face), random limits.
-    #[test]
-    fn a_pair_spans_as_each_box_alone() {
-        let mut key = 0u64;
-        let mut u = |a: f64, b: f64| {
-            key += 1;
-            a + (b - a) * crate::hash::hashed_uniform(key)
-        };
-        for case in 0..2000 {
-            let mut boxes = [0, 1].map(|_| {
-                let (c, r) = ([u(-3.0, 3.0), u(-3.0, 3.0), u(-3.0, 3.0)], u(0.0, 2.0));
-                cube(c, r)
-            });
-            if case % 7 == 0 {
-                boxes[0].hi.x = boxes[0].lo.x;
-            }
-            if case % 11 == 0 {
-                boxes[1].hi.y = f64::INFINITY;
-            }
-            let mut dir = DVec3::new(u(-1.0, 1.0), u(-1.0, 1.0), u(-1.0, 1.0));
-            let mut origin = DVec3::new(u(-6.0, 6.0), u(-6.0, 6.0), u(-6.0, 6.0));
-            if case % 5 == 0 {
-                dir.x = 0.0;
-                origin.x = boxes[case % 2].lo.x;
-            }
-            let ray = BoxRay::new(&Ray::new(origin, dir));
-            let (t0, t1) = (u(-1.0, 1.0), if case % 3 == 0 { f64::INFINITY } else { u(0.0, 10.0) });
-            let pair = bvh::Pair::of(&boxes[0], &boxes[1]);
-            let both = ray.span_pair(pair.lanes(), t0, t1);
-            for c in 0..2 {
-                assert_eq!(both[c], ray.span(&boxes[c], t0, t1), "case {case}, box {c}");
-            }
-        }
     }
 
     /// Degenerate bounds: objects all at one point, of no size, many at
