@@ -298,7 +298,7 @@ fn rotation(axis: Axis, degrees: f64) -> DMat3 {
 /// A turn by `degrees` about x, then y, then z (through the object's own
 /// origin): the convention of every turn in the port's motions (`turn` of
 /// a `motion` record, the key-frame angle; DEVIATIONS D8).
-#[inline]
+#[inline(always)]
 pub fn turn_xyz(degrees: DVec3) -> DMat3 {
     // A turn about one axis or none, as most motions make: the product
     // with the identities is that rotation (or the identity) to the bit.

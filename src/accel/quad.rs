@@ -132,6 +132,7 @@ pub(super) struct QuadRay {
 }
 
 impl QuadRay {
+    #[inline(always)]
     pub(super) fn new(ray: &BoxRay, tmin: f64) -> QuadRay {
         let inv = ray.inv.to_array().map(|r| {
             // A reciprocal that does not fit (overflows, or falls into the
