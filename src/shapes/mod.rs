@@ -323,13 +323,23 @@ pub fn block_blocks(lengths: DVec3, ray: &Ray, tmin: f64, tmax: f64) -> bool {
 /// The axes 0, 1, 2 in the order of the half-lengths `h`, smallest first
 /// (ties in axis order).
 fn thinnest_first(h: DVec3) -> [usize; 3] {
-    let (a, b) = if h.y < h.x { (1, 0) } else { (0, 1) };
-    if h.z < h[a] {
-        [2, a, b]
-    } else if h.z < h[b] {
-        [a, 2, b]
+    // Each order spelt out: an index by a variable axis compiled, in some
+    // builds, to a branch and a load per block test.
+    let (x, y, z) = (h.x, h.y, h.z);
+    if y < x {
+        if z < y {
+            [2, 1, 0]
+        } else if z < x {
+            [1, 2, 0]
+        } else {
+            [1, 0, 2]
+        }
+    } else if z < x {
+        [2, 0, 1]
+    } else if z < y {
+        [0, 2, 1]
     } else {
-        [a, b, 2]
+        [0, 1, 2]
     }
 }
 
@@ -708,6 +718,9 @@ mod tests {
             ([20.0, 20.0, 0.5], [2, 0, 1]),
             ([1.0, 1.0, 1.0], [0, 1, 2]),
             ([1.0, 3.0, 2.0], [0, 2, 1]),
+            ([3.0, 1.0, 2.0], [1, 2, 0]),
+            ([2.0, 1.0, 2.0], [1, 0, 2]),
+            ([2.0, 2.0, 1.0], [2, 0, 1]),
         ] {
             assert_eq!(thinnest_first(DVec3::from_array(h)), want, "{h:?}");
         }
