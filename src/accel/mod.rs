@@ -220,7 +220,9 @@ impl Structure {
     /// and the limit, near boxes before far ones as the structure can, the
     /// limit starting at `limit` and then the last `visit` returned
     /// ([`Step`]). An object may be visited more than once (an octree's
-    /// object straddles cells). Every object whose box the ray meets at
+    /// object straddles cells), and one whose box the ray passes within
+    /// about a millionth of its distance may be visited too (the
+    /// hierarchy's single-precision test, `quad`). Every object whose box the ray meets at
     /// some t in `[tmin, limit]`, the limit as it stands when the walk
     /// reaches that t, is visited.
     pub fn walk(
@@ -237,8 +239,9 @@ impl Structure {
         }
     }
 
-    /// Every object whose box `ray` meets beyond `tmin`, into `out`,
-    /// ascending, each once.
+    /// Every object whose box `ray` meets beyond `tmin` (and any
+    /// [`Structure::walk`] visits besides), into `out`, ascending, each
+    /// once.
     pub fn candidates(&self, ray: &Ray, tmin: f64, stack: &mut WalkStack, out: &mut Vec<usize>) {
         out.clear();
         let _ = self.walk(ray, tmin, f64::INFINITY, stack, |i| {

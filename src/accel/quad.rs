@@ -262,6 +262,14 @@ mod tests {
         assert_eq!(back.start(), 0.0);
     }
 
+    /// Uniform numbers in [a, b), one a call, from `key` on.
+    fn uniforms(mut key: u64) -> impl FnMut(f64, f64) -> f64 {
+        move |a, b| {
+            key += 1;
+            a + (b - a) * crate::hash::hashed_uniform(key)
+        }
+    }
+
     /// The exact test's answer for one box; whether the quad's, for it in
     /// lane `c` (the others empty), lets the walk in (its bit, and an
     /// entry within the limit); whether the quad's entry is within a limit
@@ -279,19 +287,14 @@ mod tests {
     }
 
     /// Every box the exact test meets, the quad meets, entering no later
-    /// (as the walk compares entries);
-    /// a box the exact test misses by more than the slack, the quad
-    /// misses. Random boxes and rays, and the hard ones: rays grazing a
+    /// (as the walk compares entries); a box the exact test misses by more
+    /// than the slack, the quad misses. Random boxes and rays, and the hard ones: rays grazing a
     /// face or an edge, along a face, from a corner, with a direction
     /// component of 0, of 1e-40 (its slab left out), far and tiny
     /// coordinates, limits at the entry.
     #[test]
     fn the_quad_meets_every_box_the_exact_test_meets() {
-        let mut key = 0u64;
-        let mut u = |a: f64, b: f64| {
-            key += 1;
-            a + (b - a) * crate::hash::hashed_uniform(key)
-        };
+        let mut u = uniforms(0u64);
         let (mut met, mut missed) = (0, 0);
         for case in 0..20_000 {
             let scale = [1.0, 1e-30, 1e30, 1e-3][case % 4];
@@ -381,11 +384,7 @@ mod tests {
     /// just there met (the exact test says so of about half of these).
     #[test]
     fn an_origin_moved_to_the_start_keeps_its_rounding() {
-        let mut key = 7u64;
-        let mut u = |a: f64, b: f64| {
-            key += 1;
-            a + (b - a) * crate::hash::hashed_uniform(key)
-        };
+        let mut u = uniforms(7u64);
         let mut met = 0;
         for i in 0..4000 {
             // Half of them mirrored in x: the lower face, the origin
