@@ -549,6 +549,20 @@ mod tests {
         }
     }
 
+    /// The walked tree's levels: a lone object is the root leaf; two or
+    /// four objects hang from one node; 64 in a row take three levels of
+    /// four-wide nodes at least, and no more than the binary tree's six
+    /// levels would halve to, give or take the heuristic's uneven splits.
+    #[test]
+    fn depth_counts_the_walked_levels() {
+        let row = |n: usize| -> Vec<Aabb> { (0..n).map(|i| cube([i as f64 * 3.0, 0.0, 0.0], 1.0)).collect() };
+        assert_eq!(Bvh::build(&row(1)).depth(), 0);
+        assert_eq!(Bvh::build(&row(2)).depth(), 1);
+        assert_eq!(Bvh::build(&row(4)).depth(), 1);
+        let d = Bvh::build(&row(64)).depth();
+        assert!((3..=5).contains(&d), "{d}");
+    }
+
     #[test]
     fn nested_boxes_stay_within_the_depth() {
         let boxes: Vec<Aabb> = (0..500).map(|i| cube([0.0; 3], 1.01f64.powi(i))).collect();
