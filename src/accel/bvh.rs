@@ -557,6 +557,7 @@ mod tests {
     fn depth_counts_the_walked_levels() {
         let row = |n: usize| -> Vec<Aabb> { (0..n).map(|i| cube([i as f64 * 3.0, 0.0, 0.0], 1.0)).collect() };
         assert_eq!(Bvh::build(&row(1)).depth(), 0);
+        assert!(!Bvh::build(&row(1)).is_empty() && Bvh::build(&[]).is_empty());
         assert_eq!(Bvh::build(&row(2)).depth(), 1);
         assert_eq!(Bvh::build(&row(4)).depth(), 1);
         let d = Bvh::build(&row(64)).depth();
