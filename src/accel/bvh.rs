@@ -203,9 +203,12 @@ impl Bvh {
             }
         }
         let index = self.nodes.len();
-        let boxes: Vec<Aabb> = kids[..n].iter().map(|&k| binary[k].bounds).collect();
+        let mut boxes = [Aabb::EMPTY; 4];
+        for (b, &k) in boxes.iter_mut().zip(&kids[..n]) {
+            *b = binary[k].bounds;
+        }
         self.nodes.push(Node {
-            boxes: Quad::of(&boxes),
+            boxes: Quad::of(&boxes[..n]),
             child: [NO_CHILD; 4],
             lanes: (1 << n) - 1,
         });
@@ -231,7 +234,7 @@ impl Bvh {
         stack: &mut Vec<(u32, f32)>,
         mut visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
-        if self.root == NO_CHILD {
+        if self.is_empty() {
             return ControlFlow::Continue(());
         }
         if ray.span(&self.bounds, tmin, limit).is_none() {
@@ -305,7 +308,9 @@ impl Bvh {
         let mut stack = vec![(self.root, 0usize)];
         while let Some((n, d)) = stack.pop() {
             deepest = deepest.max(d);
-            if n & LEAF == 0 && n != NO_CHILD {
+            // (A lane without a child, and the empty tree's root, carry
+            // the leaf bit too.)
+            if n & LEAF == 0 {
                 for &c in &self.nodes[n as usize].child {
                     if c != NO_CHILD {
                         stack.push((c, d + 1));

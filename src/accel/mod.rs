@@ -222,9 +222,9 @@ impl Structure {
     /// ([`Step`]). An object may be visited more than once (an octree's
     /// object straddles cells), and one whose box the ray passes within
     /// about a millionth of its distance may be visited too (the
-    /// hierarchy's single-precision test, `quad`). Every object whose box the ray meets at
-    /// some t in `[tmin, limit]`, the limit as it stands when the walk
-    /// reaches that t, is visited.
+    /// hierarchy's single-precision test, `quad`). Every object whose box
+    /// the ray meets at some t in `[tmin, limit]`, the limit as it stands
+    /// when the walk reaches that t, is visited.
     pub fn walk(
         &self,
         ray: &Ray,

@@ -56,16 +56,17 @@ const MAX_INV: f64 = f32::MAX as f64 / 2.0;
 /// Beyond this an `f32` t is near overflowing: a limit there is none.
 const FAR: f64 = 1e37;
 
-/// `x` in `f32`, moved past itself by `ULP` of itself and `TINY`, up or
+/// `x` in `f32`, moved past itself by `rel` of itself and `TINY`, up or
 /// (`sign` −1) down: a few instructions, where [`up`] and [`down`] branch.
+/// With `rel` = `ULP` it is past `x` itself.
 #[inline(always)]
-fn past(x: f64, sign: f32) -> f32 {
+fn past(x: f64, rel: f32, sign: f32) -> f32 {
     let y = x as f32;
-    y + sign * (y.abs() * ULP + TINY)
+    y + sign * (y.abs() * rel + TINY)
 }
 
 /// The greatest `f32` not above `x` (NaN stays NaN).
-pub(super) fn down(x: f64) -> f32 {
+fn down(x: f64) -> f32 {
     let y = x as f32;
     if f64::from(y) > x {
         y.next_down()
@@ -75,7 +76,7 @@ pub(super) fn down(x: f64) -> f32 {
 }
 
 /// The least `f32` not below `x` (NaN stays NaN).
-pub(super) fn up(x: f64) -> f32 {
+fn up(x: f64) -> f32 {
     let y = x as f32;
     if f64::from(y) < x {
         y.next_up()
@@ -156,15 +157,15 @@ impl QuadRay {
                 let step = base * ray.dir[k];
                 let err = (o.abs() + step.abs()) * f64::EPSILON;
                 o += step;
-                o_up[k] = past(o + err, 1.0);
-                o_down[k] = past(o - err, -1.0);
+                o_up[k] = past(o + err, ULP, 1.0);
+                o_down[k] = past(o - err, ULP, -1.0);
             } else {
-                o_up[k] = past(o, 1.0);
-                o_down[k] = past(o, -1.0);
+                o_up[k] = past(o, ULP, 1.0);
+                o_down[k] = past(o, ULP, -1.0);
             }
         }
         // The interval's start, down; 0 or more.
-        let t0 = past(tmin - base, -1.0).max(0.0);
+        let t0 = past(tmin - base, ULP, -1.0).max(0.0);
         QuadRay {
             o_up,
             o_down,
@@ -182,8 +183,7 @@ impl QuadRay {
         let t = limit - self.base;
         let t = t + (limit.abs() + self.base.abs()) * f64::EPSILON;
         if t < FAR {
-            let y = t as f32;
-            y + (y.abs() * (4.0 * SLACK) + TINY)
+            past(t, 4.0 * SLACK, 1.0)
         } else {
             f32::INFINITY
         }
@@ -196,9 +196,10 @@ impl QuadRay {
 
     /// For each box c of `q`: bit c set when the ray may meet it between
     /// `tmin` and the limit `t1` (from [`QuadRay::limit`]), and the t at
-    /// which it may enter it (counted from 0, or from `tmin` below 0). Conservative (the
-    /// module doc): every box the ray meets there has its bit, and an
-    /// entry of at most `t1` when the exact entry is at most the limit.
+    /// which it may enter it (counted from 0, or from `tmin` below 0).
+    /// Conservative (the module doc): every box the ray meets there has
+    /// its bit, and an entry of at most `t1` when the exact entry is at
+    /// most the limit.
     #[inline(always)]
     pub(super) fn span(&self, q: &Quad, t1: f32) -> ([f32; 4], u32) {
         let (mut enter, mut exit) = ([self.t0; 4], [t1; 4]);
@@ -240,7 +241,7 @@ mod tests {
         assert!(down(f64::NAN).is_nan() && up(f64::NAN).is_nan());
         assert_eq!((down(1.0), up(1.0)), (1.0, 1.0));
         for x in [10.0, 0.1, 1e-9, 0.0, -3.0, 1e-40, 9.99e36, -1e30] {
-            let (hi, lo) = (past(x, 1.0), past(x, -1.0));
+            let (hi, lo) = (past(x, ULP, 1.0), past(x, ULP, -1.0));
             assert!(
                 f64::from(hi) >= x && f64::from(hi) <= x + x.abs() * 1e-6 + 1e-37,
                 "{x} {hi}"
