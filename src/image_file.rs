@@ -15,7 +15,7 @@ use std::io::{BufRead, BufReader, Read};
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use crate::raster::{read_raster_file, Raster, RasterError, MAX_PIXELS, MAX_SIDE};
+use crate::raster::{read_raster, read_raster_bytes, PixelLimit, Raster, RasterError, MAX_PIXELS, MAX_SIDE};
 
 /// The kinds of picture file [`read_image_file`] reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,22 +40,37 @@ pub fn kind_of(head: &[u8]) -> Kind {
 }
 
 /// Reads a Sun raster, PNG or PPM file (P6, or P3 as text) into a 24-bit
-/// raster, up to [`MAX_PIXELS`] pixels. A PNG's alpha is dropped, 16-bit
-/// samples and a PPM's maxval are scaled to 0..255. The errors do not name
-/// the file; the caller does.
+/// raster, up to [`MAX_PIXELS`] pixels ([`read_image`]). The file is
+/// opened once and read front to back, so a pipe (`/dev/stdin`, a shell's
+/// `<(…)`) reads as a file does. The errors do not name the file; the
+/// caller does.
 pub fn read_image_file(path: &Path) -> Result<Raster, RasterError> {
+    read_image(File::open(path)?)
+}
+
+/// Reads a Sun raster, PNG or PPM picture from `reader`, read once from
+/// its start and no further than the header says the picture needs. A
+/// PNG's alpha is dropped, 16-bit samples and a PPM's maxval are scaled to
+/// 0..255. Memory: the raster's 3 bytes a pixel, and besides them the Sun
+/// raster's bytes, or a PNG's two rows and its inflater's window.
+pub fn read_image(reader: impl Read) -> Result<Raster, RasterError> {
+    let mut reader = reader;
     let mut head = Vec::with_capacity(PNG_SIGNATURE.len());
-    File::open(path)?
-        .take(PNG_SIGNATURE.len() as u64)
-        .read_to_end(&mut head)?;
-    match kind_of(&head) {
-        Kind::SunRaster => read_raster_file(path).map_err(|e| match e {
-            RasterError::BadMagic(m) => RasterError::UnknownKind(m),
-            e => e,
-        }),
-        Kind::Png => read_png(path),
-        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(File::open(path)?), false),
-        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(File::open(path)?), true),
+    (&mut reader).take(PNG_SIGNATURE.len() as u64).read_to_end(&mut head)?;
+    let kind = kind_of(&head);
+    // The bytes read to tell the kind, then the rest.
+    let mut whole = std::io::Cursor::new(head).chain(reader);
+    match kind {
+        Kind::SunRaster => {
+            let bytes = read_raster_bytes(&mut whole, PixelLimit::RASTER)?;
+            read_raster(&bytes).map_err(|e| match e {
+                RasterError::BadMagic(m) => RasterError::UnknownKind(m),
+                e => e,
+            })
+        }
+        Kind::Png => read_png(BufReader::new(whole)),
+        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(whole), false),
+        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(whole), true),
         Kind::Netpbm(n) => Err(RasterError::Ppm(format!(
             "a netpbm P{} file ({}); the PPM kinds P6 and P3 are read",
             char::from(n),
@@ -87,29 +102,80 @@ fn check_size(width: u32, height: u32) -> Result<(usize, usize), RasterError> {
     Ok((w, h))
 }
 
+/// A reader that cannot seek, for the PNG decoder, which asks for `Seek`
+/// and does not use it: so a PNG reads from a pipe.
 #[cfg(feature = "png")]
-fn read_png(path: &Path) -> Result<Raster, RasterError> {
-    use image::codecs::png::PngDecoder;
-    use image::ImageDecoder;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_SIDE as u32);
-    limits.max_image_height = Some(MAX_SIDE as u32);
-    // 16-bit RGBA, the widest PNG pixel, at the most pixels a raster has.
-    limits.max_alloc = Some(MAX_PIXELS as u64 * 8);
-    let decoder = PngDecoder::with_limits(BufReader::new(File::open(path)?), limits)?;
-    let (w, h) = decoder.dimensions();
-    let (width, height) = check_size(w, h)?;
-    let rgb = image::DynamicImage::from_decoder(decoder)?.into_rgb8();
-    Ok(Raster {
-        width,
-        height,
-        pixels: rgb.pixels().map(|p| p.0).collect(),
-    })
+struct Forward<R>(R);
+
+#[cfg(feature = "png")]
+impl<R: Read> Read for Forward<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        self.0.read(buf)
+    }
 }
 
-#[cfg(not(feature = "png"))]
-fn read_png(_path: &Path) -> Result<Raster, RasterError> {
-    Err(RasterError::PngNotBuilt)
+#[cfg(feature = "png")]
+impl<R: BufRead> BufRead for Forward<R> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        self.0.fill_buf()
+    }
+    fn consume(&mut self, amount: usize) {
+        self.0.consume(amount);
+    }
+}
+
+#[cfg(feature = "png")]
+impl<R> std::io::Seek for Forward<R> {
+    fn seek(&mut self, _: std::io::SeekFrom) -> std::io::Result<u64> {
+        Err(std::io::ErrorKind::Unsupported.into())
+    }
+}
+
+/// A PNG decoded a row at a time straight into 8-bit RGB pixels: 16-bit
+/// samples cut to their high byte (`STRIP_16`), fewer than 8 bits, a
+/// palette and transparency expanded (`EXPAND`), grey repeated into
+/// R, G and B, alpha dropped. Besides the raster's 3 bytes a pixel it
+/// holds a row or two of the file's widest pixels (8 bytes each) and the
+/// inflater's window, so the documented bound (the file's bytes plus 3
+/// bytes a pixel) holds for every PNG (`tests/png_memory.rs` measures it).
+/// An interlaced (Adam7) PNG's passes are placed pixel by pixel.
+#[cfg(feature = "png")]
+fn read_png(reader: impl BufRead) -> Result<Raster, RasterError> {
+    use png::{ColorType, Transformations};
+    let mut decoder = png::Decoder::new(Forward(reader));
+    decoder.set_transformations(Transformations::STRIP_16 | Transformations::EXPAND);
+    let mut png = decoder.read_info()?;
+    let (width, height) = check_size(png.info().width, png.info().height)?;
+    let channels = match png.output_color_type().0 {
+        ColorType::Grayscale => 1,
+        ColorType::GrayscaleAlpha => 2,
+        ColorType::Rgb => 3,
+        ColorType::Rgba => 4,
+        // EXPAND turns a palette into RGB.
+        ColorType::Indexed => return Err(RasterError::Inconsistent("a PNG palette not expanded".into())),
+    };
+    let mut pixels = vec![[0u8; 3]; width * height];
+    let mut rgb = Vec::with_capacity(width * 3);
+    let mut next = 0;
+    while let Some(row) = png.next_interlaced_row()? {
+        rgb.clear();
+        rgb.extend(row.data().chunks_exact(channels).flat_map(|p| match *p {
+            [v] | [v, _] => [v; 3],
+            [r, g, b, ..] => [r, g, b],
+            [] => [0; 3],
+        }));
+        let flat = pixels.as_flattened_mut();
+        match row.interlace() {
+            png::InterlaceInfo::Null(_) => {
+                if let Some(line) = flat.get_mut(next * width * 3..(next + 1) * width * 3) {
+                    line.iter_mut().zip(&rgb).for_each(|(to, &from)| *to = from);
+                }
+                next += 1;
+            }
+            png::InterlaceInfo::Adam7(pass) => png::expand_interlaced_row(flat, width * 3, &rgb, pass, 24),
+        }
+    }
+    Ok(Raster { width, height, pixels })
 }
 
 /// The next header field of a netpbm file: a run of bytes other than white

@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use raytrace::cli::{DeckInput, FarmArgs, RenderArgs};
 use raytrace::exit::{exit_code, Failure};
-use raytrace::film::{frame_path, frame_stem, Frame, FrameRange};
+use raytrace::film::{Frame, FrameFiles, FrameRange};
 use raytrace::options::{Options, TimeSampler};
 use raytrace::output::{is_stream, write_atomically, OutputError, PendingFile, STDOUT};
 use raytrace::raster::{read_raster_file, Format, FormatError, Raster};
@@ -32,7 +32,9 @@ RT_STANDARD, the format the thesis sent to the PS 390 through psout; look at it
 with `psout FILE`), .png a PNG, .ppm or .pnm a netpbm pixmap. `-o -` writes the
 Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`), and so
 does a device or FIFO named without an extension (-o /dev/null, -o /dev/stdout).
-A film's frames are Sun rasters: -o NAME or -o NAME.ras writes NAME.0001.ras ….
+A film writes a file a frame: -o NAME or -o NAME.ras writes NAME.0001.ras …,
+-o NAME.png (.ppm, .pnm, .exr) NAME.0001.png …. .exr is OpenEXR: the render's
+linear radiance as 32-bit floats, before the clamp and rounding of the raster.
 Only the default folder raster/ is created; every output is checked before
 rendering. --tile K/N writes band K of N as a Sun raster of its rows (default
 raster/<deck name>.K-of-N.ras); `tools join --tiles` stacks the bands into the
@@ -295,7 +297,8 @@ enum Job {
     Film {
         film: FilmRecord,
         range: FrameRange,
-        stem: PathBuf,
+        files: FrameFiles,
+        format: Format,
         apng: Option<PendingFile>,
         /// The frames, rendered or read back (`--resume`), in order, for the
         /// animated PNG.
@@ -307,7 +310,7 @@ enum Job {
 /// What the deck makes: a still in a format, or the frames of a film.
 enum Made {
     Still(Format),
-    Film(FilmRecord, FrameRange),
+    Film(FilmRecord, FrameRange, Format),
 }
 
 /// A file that cannot be written: exit 1, named.
@@ -337,7 +340,12 @@ impl Job {
                 .then(|| Path::new(DEFAULT_FOLDER).join("default.png"))
         });
         let what = match &scene.film {
-            Some(film) => Made::Film(film.clone(), check_film(cli, film, &deck.name, &output)?),
+            // A film's frames named without an extension are Sun rasters.
+            Some(film) => Made::Film(
+                film.clone(),
+                check_film(cli, film, &deck.name, &output)?,
+                format.unwrap_or(Format::SunRaster),
+            ),
             None => {
                 if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
                     .iter()
@@ -357,13 +365,14 @@ impl Job {
         let reserve = |path: &Path| PendingFile::create(path).map_err(|e| not_written(path, e));
         let output = reserve(&output)?;
         Ok(match what {
-            Made::Film(film, range) => Job::Film {
+            Made::Film(film, range, format) => Job::Film {
                 film,
                 range,
                 // The frames go beside `output`, whose folder reserving it
                 // has checked (it is not written itself); the APNG is
                 // reserved now, so a bad name fails before the first frame.
-                stem: frame_stem(output.path()),
+                files: FrameFiles::of(output.path()),
+                format,
                 apng: cli.apng.as_deref().map(reserve).transpose()?,
                 rasters: Vec::new(),
                 tile: cli.farm.tile,
@@ -391,7 +400,7 @@ impl Job {
     fn file_of(&self, frame: Frame) -> (PathBuf, Option<Tile>) {
         match self {
             Job::Still { path, tile, .. } => (path.clone(), *tile),
-            Job::Film { film, stem, tile, .. } => (frame_path(stem, frame.number, film.frames), *tile),
+            Job::Film { film, files, tile, .. } => (files.path(frame.number, film.frames), *tile),
         }
     }
 
@@ -453,10 +462,7 @@ impl Job {
                 ..
             } => {
                 let (format, height) = (*format, prepared.scene().image.height);
-                commit(output, |w| match tile {
-                    Some(t) => write_tile(&render.raster, *t, height, w),
-                    None => format.write(&render.raster, w),
-                })?;
+                commit(output, |w| write_frame(&render, format, *tile, height, w))?;
                 commit(png, |w| Format::Png.write(&render.raster, w))?;
                 if debug.is_some() {
                     let log = raytrace::raytrace::debug_log(prepared, &render);
@@ -465,19 +471,17 @@ impl Job {
             }
             Job::Film {
                 film,
-                stem,
+                files,
+                format,
                 apng,
                 rasters,
                 tile,
                 ..
             } => {
-                let path = frame_path(stem, frame.number, film.frames);
+                let path = files.path(frame.number, film.frames);
                 let height = prepared.scene().image.height;
-                match tile {
-                    Some(t) => write_atomically(&path, |w| write_tile(&render.raster, *t, height, w)),
-                    None => raytrace::raster::outputframe(&path, &render.raster),
-                }
-                .map_err(|e| not_written(&path, e))?;
+                write_atomically(&path, |w| write_frame(&render, *format, *tile, height, w))
+                    .map_err(|e| not_written(&path, e))?;
                 if apng.is_some() {
                     rasters.push(render.raster);
                 }
@@ -501,14 +505,14 @@ impl Job {
             Job::Film {
                 film,
                 range,
-                stem,
+                files,
                 apng,
                 ..
             } => (
                 format!(
                     "{} … {}{}",
-                    frame_path(stem, range.first, film.frames).display(),
-                    frame_path(stem, range.last, film.frames).display(),
+                    files.path(range.first, film.frames).display(),
+                    files.path(range.last, film.frames).display(),
                     and(apng)
                 ),
                 Some(format!("frames {}..{} of {}", range.first, range.last, film.frames)),
@@ -527,6 +531,22 @@ impl Job {
             } => write_apng(file, &rasters, film.rate),
             _ => Ok(()),
         }
+    }
+}
+
+/// Writes a frame's render (a still's, or a film's frame) in `format`, or
+/// with `tile` its band as `tools join --tiles` reads it: an image of
+/// `height` rows in all.
+fn write_frame(
+    render: &Render,
+    format: Format,
+    tile: Option<Tile>,
+    height: usize,
+    w: &mut dyn std::io::Write,
+) -> Result<(), raytrace::raster::RasterError> {
+    match tile {
+        Some(t) => write_tile(&render.raster, t, height, w),
+        None => format.write_render(&render.raster, &render.colours, w),
     }
 }
 
@@ -578,10 +598,11 @@ fn check_film(cli: &Cli, film: &FilmRecord, file_name: &str, output: &Path) -> R
         Some(text) => FrameRange::parse(text, film.frames).map_err(Failure::usage)?,
         None => film.all(),
     };
-    let ras = |e: &std::ffi::OsStr| e.eq_ignore_ascii_case("ras");
-    if output.as_os_str() == STDOUT || is_stream(output) || output.extension().is_some_and(|e| !ras(e)) {
+    let known = output.extension().is_none() || Format::of(output).is_ok();
+    if output.as_os_str() == STDOUT || is_stream(output) || !known {
         return Err(Failure::usage(format!(
-            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras",
+            "-o {}: a film writes one file per frame, STEM.0001.ras …; name them with -o STEM.ras \
+             (or STEM.png, .ppm, .pnm, .exr)",
             output.display()
         )));
     }

@@ -372,7 +372,7 @@ fn run(command: Command) -> Result<(), Failure> {
             strip,
             every,
             ..
-        } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
+        } => return tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
         Command::VsPovray {
             decks,
             size,
