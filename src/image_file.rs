@@ -10,12 +10,13 @@
 //! checked from the header before the pixels are allocated: the limits of
 //! any raster ([`MAX_SIDE`] a side, [`MAX_PIXELS`] in all).
 
-use std::fs::File;
 use std::io::{BufRead, BufReader, Read};
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use crate::raster::{read_raster, read_raster_bytes, PixelLimit, Raster, RasterError, MAX_PIXELS, MAX_SIDE};
+use crate::raster::{
+    open_sized, read_bounded, read_raster, read_raster_bytes, PixelLimit, Raster, RasterError, MAX_PIXELS, MAX_SIDE,
+};
 
 /// The kinds of picture file [`read_image_file`] reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,15 +46,18 @@ pub fn kind_of(head: &[u8]) -> Kind {
 /// `<(…)`) reads as a file does. The errors do not name the file; the
 /// caller does.
 pub fn read_image_file(path: &Path) -> Result<Raster, RasterError> {
-    read_image(File::open(path)?)
+    let (file, length) = open_sized(path)?;
+    read_image(file, length)
 }
 
 /// Reads a Sun raster, PNG or PPM picture from `reader`, read once from
 /// its start and no further than the header says the picture needs. A
 /// PNG's alpha is dropped, 16-bit samples and a PPM's maxval are scaled to
-/// 0..255. Memory: the raster's 3 bytes a pixel, and besides them the Sun
-/// raster's bytes, or a PNG's two rows and its inflater's window.
-pub fn read_image(reader: impl Read) -> Result<Raster, RasterError> {
+/// 0..255. `length` is the reader's bytes, when known (a regular file's
+/// length), so that a Sun raster's or a PPM's bytes are held once. Memory:
+/// the raster's 3 bytes a pixel, and besides them the Sun raster's or the
+/// PPM's bytes, or a PNG's rows in flight and its inflater's window.
+pub fn read_image(reader: impl Read, length: Option<u64>) -> Result<Raster, RasterError> {
     let mut reader = reader;
     let mut head = Vec::with_capacity(PNG_SIGNATURE.len());
     (&mut reader).take(PNG_SIGNATURE.len() as u64).read_to_end(&mut head)?;
@@ -62,15 +66,15 @@ pub fn read_image(reader: impl Read) -> Result<Raster, RasterError> {
     let mut whole = std::io::Cursor::new(head).chain(reader);
     match kind {
         Kind::SunRaster => {
-            let bytes = read_raster_bytes(&mut whole, PixelLimit::RASTER)?;
+            let bytes = read_raster_bytes(&mut whole, PixelLimit::RASTER, length)?;
             read_raster(&bytes).map_err(|e| match e {
                 RasterError::BadMagic(m) => RasterError::UnknownKind(m),
                 e => e,
             })
         }
         Kind::Png => read_png(BufReader::new(whole)),
-        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(whole), false),
-        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(whole), true),
+        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(whole), false, length),
+        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(whole), true, length),
         Kind::Netpbm(n) => Err(RasterError::Ppm(format!(
             "a netpbm P{} file ({}); the PPM kinds P6 and P3 are read",
             char::from(n),
@@ -227,7 +231,7 @@ fn number_in(token: Option<String>, what: impl Fn() -> String, range: RangeInclu
 /// A PPM after its magic number: `P6` (`plain` false: binary samples, one
 /// byte each below maxval 256, else two, most significant first) or `P3`
 /// (`plain`: decimal samples). Bytes after the first image are ignored.
-fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
+fn read_ppm(r: &mut impl BufRead, plain: bool, length: Option<u64>) -> Result<Raster, RasterError> {
     pnm_token(r)?;
     let side = 1..=MAX_SIDE as u64;
     let width = pnm_number(r, "width", side.clone())?;
@@ -244,13 +248,24 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
     };
     let samples = width * height * 3;
     // Grown as the samples come: a short file claiming a large picture
-    // costs what it holds.
-    let mut values = Vec::new();
+    // costs what it holds. Each sample goes straight into its pixel.
+    let mut pixels: Vec<[u8; 3]> = Vec::new();
+    let push = |pixels: &mut Vec<[u8; 3]>, k: usize, v: u64| -> Result<(), RasterError> {
+        let v = scale(v)?;
+        match k % 3 {
+            0 => pixels.push([v, 0, 0]),
+            c => {
+                if let Some(p) = pixels.last_mut() {
+                    p[c] = v;
+                }
+            }
+        }
+        Ok(())
+    };
     if plain {
-        while values.len() < samples {
-            let what = || format!("sample {}", values.len() + 1);
-            let v = number_in(pnm_token(r)?, what, 0..=u16::MAX.into())?;
-            values.push(scale(v)?);
+        for k in 0..samples {
+            let what = || format!("sample {}", k + 1);
+            push(&mut pixels, k, number_in(pnm_token(r)?, what, 0..=u16::MAX.into())?)?;
         }
     } else {
         // The one white-space byte that ends the header (pnm_token stopped
@@ -261,7 +276,7 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
         let wide = maxval > 255;
         let needed = samples * if wide { 2 } else { 1 };
         let mut data = Vec::new();
-        r.take(needed as u64).read_to_end(&mut data)?;
+        read_bounded(r, &mut data, needed, length)?;
         if data.len() < needed {
             return Err(RasterError::Truncated {
                 part: "PPM pixel data",
@@ -269,15 +284,13 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
                 found: data.len(),
             });
         }
-        for s in data.chunks_exact(if wide { 2 } else { 1 }) {
-            values.push(scale(s.iter().fold(0, |v, &b| v << 8 | u64::from(b)))?);
+        // All there: the pixels are allocated once, at their size.
+        pixels.reserve_exact(width * height);
+        for (k, s) in data.chunks_exact(if wide { 2 } else { 1 }).enumerate() {
+            push(&mut pixels, k, s.iter().fold(0, |v, &b| v << 8 | u64::from(b)))?;
         }
     }
-    Ok(Raster {
-        width,
-        height,
-        pixels: values.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
-    })
+    Ok(Raster { width, height, pixels })
 }
 
 #[cfg(test)]
@@ -367,6 +380,35 @@ mod tests {
         grey.save(dir.path().join("grey.png")).unwrap();
         let got = read_image_file(&dir.path().join("grey.png")).unwrap();
         assert_eq!(got.pixels, [0, 50, 100, 1, 51, 101].map(|v| [v; 3]));
+    }
+
+    /// An interlaced (Adam7) PNG, as netpbm's `pnmtopng -interlace` writes
+    /// it, reads as its pixels: each pass's pixels put in their places.
+    /// Without netpbm this is skipped, except under CI, which installs it.
+    #[cfg(feature = "png")]
+    #[test]
+    fn an_interlaced_png_reads_as_its_pixels() {
+        let dir = tempfile::tempdir().unwrap();
+        let raster = test_raster(13, 11, 7);
+        let ppm = dir.path().join("a.ppm");
+        let mut bytes = Vec::new();
+        write_ppm_to(&raster, &mut bytes).unwrap();
+        std::fs::write(&ppm, bytes).unwrap();
+        let out = std::process::Command::new("pnmtopng")
+            .arg("-interlace")
+            .arg(&ppm)
+            .stderr(std::process::Stdio::null())
+            .output();
+        let Some(out) = out.ok().filter(|o| o.status.success()) else {
+            assert!(std::env::var_os("CI").is_none(), "CI installs netpbm (pnmtopng)");
+            eprintln!("skipped: no pnmtopng (netpbm)");
+            return;
+        };
+        // Byte 28 of a PNG is IHDR's interlace method: 1 is Adam7.
+        assert_eq!(out.stdout[28], 1);
+        let png = dir.path().join("a.png");
+        std::fs::write(&png, &out.stdout).unwrap();
+        assert_eq!(read_image_file(&png).unwrap(), raster);
     }
 
     #[test]

@@ -31,12 +31,13 @@
 //! tile was written to its end.
 
 use std::fmt;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use crate::raster::{
-    check_complete, read_raster, read_raster_bytes, sun_raster_len, write_sun_raster, PixelLimit, Raster, RasterError,
+    check_complete, open_sized, read_bounded, read_raster, read_raster_bytes, sun_raster_len, write_sun_raster,
+    PixelLimit, Raster, RasterError,
 };
 
 /// The most tiles: the most rows an image may have (`--size`'s and the
@@ -173,11 +174,9 @@ const MAX_TRAILER: usize = 64;
 /// back (a pipe reads as a file does), no further than its header and its
 /// line need, so a file without end (`/dev/zero`) is refused, not read.
 pub fn read_tile(path: &Path) -> Result<Part, JoinError> {
-    let mut file = std::fs::File::open(path).map_err(|e| JoinError::new(path, e))?;
-    let mut bytes = read_raster_bytes(&mut file, PixelLimit::RASTER).map_err(|e| JoinError::new(path, e))?;
-    file.take(MAX_TRAILER as u64 + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| JoinError::new(path, e))?;
+    let (mut file, length) = open_sized(path).map_err(|e| JoinError::new(path, e))?;
+    let mut bytes = read_raster_bytes(&mut file, PixelLimit::RASTER, length).map_err(|e| JoinError::new(path, e))?;
+    read_bounded(&mut file, &mut bytes, MAX_TRAILER + 1, length).map_err(|e| JoinError::new(path, e))?;
     let raster = read_raster(&bytes).map_err(|e| JoinError::new(path, e))?;
     let end = sun_raster_len(raster.width, raster.height).min(bytes.len());
     let (tile, height) = Tile::of_trailer(&bytes[end..]).ok_or_else(|| {
