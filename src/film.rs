@@ -170,9 +170,7 @@ impl FrameFiles {
     /// (`NAME.0001.ras`). Another extension is kept in the stem (the
     /// caller refuses it first).
     pub fn of(output: &Path) -> FrameFiles {
-        let known = output
-            .extension()
-            .filter(|_| crate::raster::Format::of(output).is_ok());
+        let known = output.extension().filter(|_| crate::raster::Format::of(output).is_ok());
         match known {
             Some(e) => FrameFiles {
                 stem: output.with_extension(""),

@@ -25,8 +25,9 @@
 //! - No folder is created here; a missing folder, or a file where a folder
 //!   should be, is an error that names it.
 //! - [`remove_temp_files_on_signals`]: SIGINT or SIGTERM removes the
-//!   temporary files and exits with 130 or 143 (128 + the signal, as a
-//!   shell reports it). A SIGKILL cannot be caught: the next write of the
+//!   temporary files, does what the program set with [`on_signal`] (its
+//!   last word), and exits with 130 or 143 (128 + the signal, as a shell
+//!   reports it). A SIGKILL cannot be caught: the next write of the
 //!   same target removes the temporary files of processes that no longer
 //!   run (on Linux, where /proc tells which do), and only those this host
 //!   wrote: another host's PIDs are not in this host's /proc.
@@ -59,7 +60,9 @@ pub enum OutputError {
     #[error("it is a folder, not a file")]
     IsAFolder,
     /// The file exists and this user may not write it: it is not replaced.
-    #[error("it exists and this user may not write it ({0}): it was not replaced; remove it or make it writable first")]
+    #[error(
+        "it exists and this user may not write it ({0}): it was not replaced; remove it or make it writable first"
+    )]
     ReadOnly(String),
     /// The temporary file was removed by someone else before it could be
     /// renamed over the target; the target is as it was.
@@ -238,10 +241,11 @@ impl PendingFile {
 fn may_replace(target: &Path, meta: &fs::Metadata) -> Result<(), OutputError> {
     match File::options().write(true).open(target) {
         Ok(_) => Ok(()),
-        Err(e) if matches!(
-            e.kind(),
-            io::ErrorKind::PermissionDenied | io::ErrorKind::ReadOnlyFilesystem
-        ) =>
+        Err(e)
+            if matches!(
+                e.kind(),
+                io::ErrorKind::PermissionDenied | io::ErrorKind::ReadOnlyFilesystem
+            ) =>
         {
             Err(OutputError::ReadOnly(read_only_reason(meta)))
         }
@@ -464,6 +468,20 @@ fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
     stale
 }
 
+/// What the program does last when a signal stops it, after the temporary
+/// files are removed and before it exits: [`on_signal`].
+type LastWord = Box<dyn Fn(i32) + Send>;
+
+static LAST_WORD: Mutex<Option<LastWord>> = Mutex::new(None);
+
+/// Sets what the program does last when SIGINT or SIGTERM stops it (after
+/// [`remove_temp_files_on_signals`] has removed the temporary files, before
+/// the exit): `raytrace` says what was kept and the command that goes on.
+/// The call gets the signal. A later call replaces an earlier one.
+pub fn on_signal(last_word: impl Fn(i32) + Send + 'static) {
+    *LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(last_word));
+}
+
 /// Makes SIGINT and SIGTERM remove this process's temporary files and exit
 /// with 128 + the signal (130, 143). For the programs' `main`; a second call
 /// does nothing.
@@ -486,6 +504,9 @@ pub fn remove_temp_files_on_signals() -> io::Result<()> {
                         let registry = temp_files();
                         for temp in registry.iter() {
                             let _ = fs::remove_file(temp);
+                        }
+                        if let Some(last_word) = LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
+                            last_word(signal);
                         }
                         std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
                     }

@@ -590,7 +590,9 @@ pub fn read_bounded(
     most: usize,
     length: Option<u64>,
 ) -> std::io::Result<()> {
-    let there = length.map_or(0, |l| usize::try_from(l).unwrap_or(usize::MAX).saturating_sub(bytes.len()));
+    let there = length.map_or(0, |l| {
+        usize::try_from(l).unwrap_or(usize::MAX).saturating_sub(bytes.len())
+    });
     bytes.reserve_exact(most.min(there));
     reader.take(most as u64).read_to_end(bytes)?;
     Ok(())

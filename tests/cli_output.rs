@@ -569,7 +569,68 @@ fn exr_holds_the_radiance_before_quantisation() {
     for (i, (got, c)) in pixels.iter().zip(&r.colours).enumerate() {
         assert_eq!(*got, [c.x as f32, c.y as f32, c.z as f32], "pixel {i}");
         // A value no byte of the raster could give (k/255).
-        between += got.iter().filter(|v| ((**v * 255.0).round() - **v * 255.0).abs() > 1e-3).count();
+        between += got
+            .iter()
+            .filter(|v| ((**v * 255.0).round() - **v * 255.0).abs() > 1e-3)
+            .count();
     }
     assert!(between > 0, "{between} values between the bytes");
+}
+
+/// SIGINT says what was kept and the command that goes on: for a still,
+/// nothing (it is written whole when done) and the command again with
+/// `--resume`; for a film, the frames written whole so far and
+/// `--resume`, which renders only the rest.
+#[test]
+fn a_signal_says_what_is_kept_and_how_to_go_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.ras");
+    let (child, _temp) = start_big_render(dir.path(), &out);
+    let kill = |pid: u32| {
+        assert!(Command::new("kill")
+            .args(["-INT", &pid.to_string()])
+            .status()
+            .unwrap()
+            .success())
+    };
+    kill(child.id());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("raytrace: stopped by SIGINT (Ctrl-C): nothing is written: a still is written whole"),
+        "{e}"
+    );
+    assert!(e.contains(" -o ") && e.trim_end().ends_with("big.ras --resume"), "{e}");
+
+    // A film of 200 frames, each a moment: stopped once the first is there.
+    let deck = dir.path().join("film.deck");
+    std::fs::write(
+        &deck,
+        BIG.replace("image 4096 4096  mask 2", "image 300 300 mask 3") + "motion ball to 1 0 0\nfilm 200\n",
+    )
+    .unwrap();
+    let stem = dir.path().join("f");
+    let child = raytrace_command()
+        .args(["-q", "--threads", "1"])
+        .arg(&deck)
+        .arg("-o")
+        .arg(&stem)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let first = dir.path().join("f.0001.ras");
+    let started = Instant::now();
+    while !first.exists() {
+        assert!(started.elapsed() < Duration::from_secs(120), "no first frame");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    kill(child.id());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("raytrace: stopped by SIGINT (Ctrl-C): "), "{e}");
+    assert!(e.contains(" of frames 1..200 written whole and kept ("), "{e}");
+    assert!(e.contains(&format!("({} … ", first.display())), "{e}");
+    assert!(e.trim_end().ends_with(&format!("{} --resume", stem.display())), "{e}");
 }

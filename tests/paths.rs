@@ -383,7 +383,13 @@ fn an_include_cycle_is_refused() {
     );
     // A hard link is the file it links: the include of the link closes
     // the cycle, and the error stands there and names it.
-    write(d, &[("hard.deck", &format!("{SCENE}include lib.deck\n")), ("lib.deck", "\ninclude link.deck\n")]);
+    write(
+        d,
+        &[
+            ("hard.deck", &format!("{SCENE}include lib.deck\n")),
+            ("lib.deck", "\ninclude link.deck\n"),
+        ],
+    );
     std::fs::hard_link(d.join("lib.deck"), d.join("link.deck")).unwrap();
     assert_eq!(
         error(d, "hard.deck"),

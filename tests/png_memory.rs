@@ -77,7 +77,10 @@ fn the_largest_pngs_decode_within_3_bytes_a_pixel_and_their_rows() {
         row
     });
     for (path, first) in [
-        (&wide, &(|y: usize| [(y % 256) as u8, 0, 0]) as &dyn Fn(usize) -> [u8; 3]),
+        (
+            &wide,
+            &(|y: usize| [(y % 256) as u8, 0, 0]) as &dyn Fn(usize) -> [u8; 3],
+        ),
         (&bits, &|y: usize| [if y % 8 == 0 { 255 } else { 0 }; 3]),
     ] {
         let file = std::fs::metadata(path).unwrap().len() as usize;
@@ -105,7 +108,9 @@ fn a_sun_raster_and_a_ppm_decode_within_their_bytes_and_3_bytes_a_pixel() {
     let raster = raytrace::raster::Raster {
         width: side,
         height: side,
-        pixels: (0..side * side).map(|i| [i as u8, (i >> 8) as u8, (i >> 16) as u8]).collect(),
+        pixels: (0..side * side)
+            .map(|i| [i as u8, (i >> 8) as u8, (i >> 16) as u8])
+            .collect(),
     };
     let ras = dir.path().join("a.ras");
     let ppm = dir.path().join("a.ppm");
@@ -115,7 +120,11 @@ fn a_sun_raster_and_a_ppm_decode_within_their_bytes_and_3_bytes_a_pixel() {
         let file = std::fs::metadata(path).unwrap().len() as usize;
         let (peak, read) = peak_of(|| read_image_file(path).unwrap());
         eprintln!("{}: file {file} bytes; peak {peak} bytes", path.display());
-        assert!(peak <= file + 3 * side * side + (64 << 10), "{}: peak {peak}", path.display());
+        assert!(
+            peak <= file + 3 * side * side + (64 << 10),
+            "{}: peak {peak}",
+            path.display()
+        );
         assert_eq!(read, raster);
     }
 }

@@ -763,7 +763,9 @@ fn a_pipe_is_read_once_and_no_further_than_its_header() {
     };
     let ras = dir.path().join("in.ras");
     outputframe(&ras, &raster).unwrap();
-    let o = shot(ras.to_str().unwrap(), &file, Stdio::null()).wait_with_output().unwrap();
+    let o = shot(ras.to_str().unwrap(), &file, Stdio::null())
+        .wait_with_output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let bytes = encode_raster(&raster);
     // A Sun raster, a PNG and a PPM through the pipe.

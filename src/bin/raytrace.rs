@@ -48,7 +48,7 @@ anything else (e.g. an output file that cannot be written, or a missing
 folder); 130 or 143 when stopped by SIGINT or SIGTERM. Nothing is written when
 the deck has an error, and no temporary file is left behind.";
 
-#[derive(Parser, Debug)]
+#[derive(Parser, Clone, Debug)]
 #[command(
     name = "raytrace",
     version,
@@ -108,6 +108,8 @@ struct Cli {
 
 #[path = "raytrace/show.rs"]
 mod show;
+#[path = "raytrace/stopped.rs"]
+mod stopped;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -224,6 +226,12 @@ fn render_deck(
         .collect();
     let kept = plan.iter().filter(|&&(_, complete)| complete).count();
     let rendered = plan.len() - kept;
+    stopped::start(stopped::Kept {
+        args: std::env::args().collect(),
+        resumable: resumable(cli),
+        film: job.range().map(|r| (r.first, r.last)),
+        done: Vec::new(),
+    });
     let bar = progress_bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
     let started = Instant::now();
     let mut rays = 0;
@@ -231,6 +239,7 @@ fn render_deck(
     for &(frame, complete) in &plan {
         if complete {
             job.keep(frame)?;
+            job.done(frame);
             continue;
         }
         bar.set_message(job.tracing(&deck.name, frame));
@@ -249,6 +258,7 @@ fn render_deck(
             .map_err(|e| Failure::other(format!("{}: {e}", job.what(&deck.name, frame))))?;
         rays += render.stats.rays;
         job.write(frame, render, prepared)?;
+        job.done(frame);
     }
     let elapsed = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
@@ -386,6 +396,22 @@ impl Job {
                 tile: cli.farm.tile,
             },
         })
+    }
+
+    /// A film's frames to render.
+    fn range(&self) -> Option<FrameRange> {
+        match self {
+            Job::Still { .. } => None,
+            Job::Film { range, .. } => Some(*range),
+        }
+    }
+
+    /// Tells what a signal's stop would keep: a film's `frame` is written
+    /// whole.
+    fn done(&self, frame: Frame) {
+        if let Job::Film { .. } = self {
+            stopped::frame_done(frame.number, self.file_of(frame).0);
+        }
     }
 
     /// The frames to render, in order.
@@ -720,6 +746,14 @@ fn check_farm_names(cli: &Cli) -> Result<(), Failure> {
         )));
     }
     Ok(())
+}
+
+/// Whether `--resume` could go on from a run of these flags: its outputs
+/// are the Sun rasters it checks ([`check_farm_names`] with it).
+fn resumable(cli: &Cli) -> bool {
+    let mut with_resume = cli.clone();
+    with_resume.farm.resume = true;
+    check_farm_names(&with_resume).is_ok()
 }
 
 /// The summary line's words for the rays a pixel: M×M subpixels, or the

@@ -144,7 +144,9 @@ mod tests {
         let e = read(std::io::repeat(0), "<stdin>").unwrap_err();
         assert!(e.starts_with("<stdin>:1: the script is larger than 64 MiB"), "{e}");
         assert_eq!(read_within(&b"move 1 0 0\n"[..], "s", 11).unwrap(), "move 1 0 0\n");
-        assert!(read_within(&b"\xff"[..], "s", 11).unwrap_err().starts_with("s: the script is not UTF-8"));
+        assert!(read_within(&b"\xff"[..], "s", 11)
+            .unwrap_err()
+            .starts_with("s: the script is not UTF-8"));
     }
 
     #[test]

@@ -9,11 +9,12 @@ use std::io::Write;
 use std::path::Path;
 
 use super::{write_sun_raster, Raster, RasterError};
-use crate::types::Intensity;
 use crate::output::write_atomically;
+use crate::types::Intensity;
 
 /// The extensions an image output may have, as the errors list them.
-pub const EXTENSIONS: &str = ".ras (Sun raster), .png (PNG), .ppm or .pnm (netpbm), .exr (OpenEXR, a render's radiance)";
+pub const EXTENSIONS: &str =
+    ".ras (Sun raster), .png (PNG), .ppm or .pnm (netpbm), .exr (OpenEXR, a render's radiance)";
 
 /// A name that gives no format.
 #[derive(Debug, thiserror::Error)]
@@ -29,7 +30,9 @@ pub enum FormatError {
     IsAFolder,
     #[error("this build has no OpenEXR export (the `exr` feature is off)")]
     NoExr,
-    #[error("an OpenEXR file holds a render's radiance, and this is a raster of bytes: write .ras, .png, .ppm or .pnm")]
+    #[error(
+        "an OpenEXR file holds a render's radiance, and this is a raster of bytes: write .ras, .png, .ppm or .pnm"
+    )]
     NoRadiance,
 }
 
@@ -130,7 +133,12 @@ pub fn write_exr_to(width: usize, height: usize, colours: &[Intensity], w: &mut 
 }
 
 #[cfg(not(feature = "exr"))]
-pub fn write_exr_to(_width: usize, _height: usize, _colours: &[Intensity], _w: &mut dyn Write) -> Result<(), RasterError> {
+pub fn write_exr_to(
+    _width: usize,
+    _height: usize,
+    _colours: &[Intensity],
+    _w: &mut dyn Write,
+) -> Result<(), RasterError> {
     Err(FormatError::NoExr.into())
 }
 

@@ -148,7 +148,11 @@ fn parts_are_read_from_pipes() {
     let whole = d.join("whole.ras");
     assert!(join(&b.iter().collect::<Vec<_>>(), &whole).status.success());
     let pipes: Vec<PathBuf> = (1..=2).map(|k| d.join(format!("pipe{k}"))).collect();
-    let writers: Vec<_> = pipes.iter().zip(&b).map(|(f, part)| fifo(f, std::fs::read(part).unwrap())).collect();
+    let writers: Vec<_> = pipes
+        .iter()
+        .zip(&b)
+        .map(|(f, part)| fifo(f, std::fs::read(part).unwrap()))
+        .collect();
     let piped = d.join("piped.ras");
     let o = join(&pipes.iter().collect::<Vec<_>>(), &piped);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -183,9 +187,18 @@ fn join_exits_2_on_bad_input_and_bad_names() {
     std::fs::write(&garbage, b"this is no raster, PNG or PPM file").unwrap();
     let ok = band(&prepared(8, 4), 1, 1, d, "whole.ras");
     let cases: &[(&[&str], &str)] = &[
-        (&["garbage.bin", "-o", "f.png"], "garbage.bin: not a Sun raster, PNG or PPM file"),
-        (&["--tiles", "garbage.bin", "-o", "f.png"], "garbage.bin: not a Sun raster"),
-        (&["whole.ras", "-o", "f.gif"], "-o 'f.gif': an animated PNG or a strip is a PNG"),
+        (
+            &["garbage.bin", "-o", "f.png"],
+            "garbage.bin: not a Sun raster, PNG or PPM file",
+        ),
+        (
+            &["--tiles", "garbage.bin", "-o", "f.png"],
+            "garbage.bin: not a Sun raster",
+        ),
+        (
+            &["whole.ras", "-o", "f.gif"],
+            "-o 'f.gif': an animated PNG or a strip is a PNG",
+        ),
         (&["whole.ras", "-o", "f.png", "--strip", "s.jpg"], "--strip 's.jpg'"),
         (&["missing.ras", "-o", "f.png"], "missing.ras: No such file"),
     ];
