@@ -603,7 +603,7 @@ fn a_signal_says_what_is_kept_and_how_to_go_on() {
     );
     assert!(e.contains(" -o ") && e.trim_end().ends_with("big.ras --resume"), "{e}");
 
-    // A film of 200 frames, each a moment: stopped once the first is there.
+    // A film of 200 frames, each a moment: stopped once two are there.
     let deck = dir.path().join("film.deck");
     std::fs::write(
         &deck,
@@ -620,8 +620,11 @@ fn a_signal_says_what_is_kept_and_how_to_go_on() {
         .spawn()
         .unwrap();
     let first = dir.path().join("f.0001.ras");
+    // Once the second is there, the first is counted (it is counted as soon
+    // as it is renamed into place, before the second's render begins).
+    let second = dir.path().join("f.0002.ras");
     let started = Instant::now();
-    while !first.exists() {
+    while !second.exists() {
         assert!(started.elapsed() < Duration::from_secs(120), "no first frame");
         std::thread::sleep(Duration::from_millis(5));
     }
