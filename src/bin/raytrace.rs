@@ -6,7 +6,6 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use raytrace::cli::{DeckInput, FarmArgs, RenderArgs};
 use raytrace::exit::{exit_code, Failure};
@@ -106,6 +105,8 @@ struct Cli {
     watch: bool,
 }
 
+#[path = "raytrace/progress.rs"]
+mod progress;
 #[path = "raytrace/show.rs"]
 mod show;
 #[path = "raytrace/stopped.rs"]
@@ -232,7 +233,7 @@ fn render_deck(
         film: job.range().map(|r| (r.first, r.last)),
         done: Vec::new(),
     });
-    let bar = progress_bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
+    let bar = progress::bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
     let started = Instant::now();
     let mut rays = 0;
     // In frame order, so that the animated PNG has them in order.
@@ -601,20 +602,6 @@ fn write_apng(file: PendingFile, rasters: &[Raster], rate: u32) -> Result<(), Fa
 #[cfg(not(feature = "png"))]
 fn write_apng(_file: PendingFile, _rasters: &[Raster], _rate: u32) -> Result<(), Failure> {
     Ok(())
-}
-
-/// The progress bar over `rows` rows of pixels (hidden with `--quiet`).
-fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
-    if quiet {
-        return Ok(ProgressBar::hidden());
-    }
-    let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::stderr());
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-            .map_err(Failure::other)?
-            .progress_chars("=> "),
-    );
-    Ok(bar)
 }
 
 /// The flags of a film checked against its `film` record before any output
