@@ -174,8 +174,12 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         match again {
             Ok(Outcome::Quit) => return Ok(()),
             Ok(_) => {}
-            // The last picture stays; the next change is rendered again.
-            Err(e) => eprintln!("raytrace: {e}"),
+            // The last picture stays, the error over it and in the title;
+            // the next change is rendered again.
+            Err(e) => {
+                eprintln!("raytrace: {e}");
+                screen.failed(&e.to_string());
+            }
         }
     }
 }
