@@ -9,10 +9,10 @@
 # the jobs run over ssh on those hosts in this folder, which they must share
 # at the same path. raytrace and tools are PATH's, or else the checkout's
 # release build, built once if missing (farm/programs.sh); over ssh, PATH's
-# must be on each host's PATH, the checkout's in the shared folder. OUT (default farm-out) holds
-# the parts and the joined file; FLAGS adds raytrace flags to every job.
-# A job that fails stops the rest (--halt now,fail=1); run again, the parts
-# already written whole are kept (--resume).
+# must be on each host's PATH, the checkout's in the shared folder. OUT
+# (default raster/farm-out) holds the parts and the joined file; FLAGS adds
+# raytrace flags to every job. A job that fails stops the rest (--halt
+# now,fail=1); run again, the parts already written whole are kept (--resume).
 set -euo pipefail
 . "$(dirname "$0")/args.sh"
 . "$(dirname "$0")/programs.sh"

@@ -8,7 +8,7 @@
 #          the whole image (tools join --tiles).
 # The join starts once every task has succeeded (--dependency=afterok) and is
 # cancelled if one fails (--kill-on-invalid-dep=yes). Prints the join's job id.
-# OUT (default farm-out) holds the frames or bands, the joined file and the
+# OUT (default raster/farm-out) holds the frames or bands, the joined file and the
 # jobs' logs (OUT/logs); FLAGS adds raytrace flags to every task; TASKS, if
 # set, is the most tasks that run at once (--array=…%TASKS). Run it from the
 # checkout (the tasks cd to the folder it was run from). raytrace and tools
