@@ -163,11 +163,13 @@ enum Command {
         every: u64,
     },
     /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives
-    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe).
+    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe),
+    /// paints as POV-Ray patterns and textures as image maps.
     Pov {
         /// The deck (a path, or a shipped deck's name such as fig5_8).
         deck: String,
-        /// The SDL file to write.
+        /// The SDL file to write; each texture's picture goes beside it as
+        /// NAME.SURFACE.png (run povray in that folder).
         #[arg(short, long)]
         out: PathBuf,
         // The listing's window is taller: the fidelity matters to the export.
@@ -286,10 +288,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Pov { deck, out, fidelity } => {
             let fidelity = fidelity.fidelity;
             let scene = tools::decks::load(&deck, fidelity).map_err(Failure::input)?;
-            std::fs::write(&out, tools::pov::scene_sdl(&scene, fidelity))
-                .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
-            println!("wrote {}", out.display());
-            Ok(())
+            return tools::pov::write(&scene, fidelity, &out);
         }
         Command::Texture { dir } => tools::textures::write_textures(&dir),
         Command::Frames {

@@ -70,8 +70,16 @@ fn the_parallel_recipe_runs_from_a_checkout_building_once() {
     let bare = format!("{}:/usr/bin:/bin", fake.display());
     let o = run(&bare);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("not on PATH: building the checkout's once"), "{}", stderr(&o));
-    for f in ["nec_commercial.0001.ras", "nec_commercial.0002.ras", "nec_commercial.png"] {
+    assert!(
+        stderr(&o).contains("not on PATH: building the checkout's once"),
+        "{}",
+        stderr(&o)
+    );
+    for f in [
+        "nec_commercial.0001.ras",
+        "nec_commercial.0002.ras",
+        "nec_commercial.png",
+    ] {
         assert!(work.join("out").join(f).is_file(), "{f}");
     }
     let built_once = std::fs::read_to_string(&log).unwrap();
@@ -86,6 +94,10 @@ fn the_parallel_recipe_runs_from_a_checkout_building_once() {
     // Both on PATH: those are used.
     let o = run(&format!("{}:{bare}", built().display()));
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("using raytrace and tools from PATH"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("using raytrace and tools from PATH"),
+        "{}",
+        stderr(&o)
+    );
     assert!(work.join("out/nec_commercial.png").is_file());
 }
