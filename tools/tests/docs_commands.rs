@@ -60,7 +60,8 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 
 use doc_lines::{
-    anchors, blocks, code_of, flags, inline_spans, is_synopsis, links, named, names_a_program, words, DocLine, Named,
+    anchors, blocks, code_of, flags, inline_spans, is_synopsis, links, named, names_a_program, outside_raster, words,
+    DocLine, Named,
 };
 
 /// The checkout.
@@ -487,29 +488,6 @@ fn command_line(page: &str, l: &DocLine, helps: &mut Helps, report: &mut Report)
             Some(with_placeholders(&l.text))
         }
     }
-}
-
-/// The paths under `dir`, folders ending in `/`, except under raster/
-/// (which git ignores in a checkout).
-fn outside_raster(dir: &Path) -> std::collections::BTreeSet<String> {
-    let mut found = std::collections::BTreeSet::new();
-    let mut todo = vec![dir.to_path_buf()];
-    while let Some(d) = todo.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let path = e.unwrap().path();
-            let rel = path.strip_prefix(dir).unwrap().display().to_string();
-            if rel == "raster" {
-                continue;
-            }
-            if path.is_dir() && !path.is_symlink() {
-                found.insert(format!("{rel}/"));
-                todo.push(path);
-            } else {
-                found.insert(rel);
-            }
-        }
-    }
-    found
 }
 
 /// Runs and checks every command line of one page in its own folder; what
