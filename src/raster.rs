@@ -576,7 +576,7 @@ pub fn read_raster_file_within(path: &Path, limit: PixelLimit) -> Result<Raster,
 pub fn open_sized(path: &Path) -> std::io::Result<(File, Option<u64>)> {
     let file = File::open(path)?;
     let meta = file.metadata()?;
-    let length = meta.is_file().then(|| meta.len());
+    let length = meta.is_file().then_some(meta.len());
     Ok((file, length))
 }
 

@@ -73,7 +73,7 @@ fn the_largest_pngs_decode_within_3_bytes_a_pixel_and_their_rows() {
     let bits = dir.path().join("grey1.png");
     write_png(&bits, side, png::ColorType::Grayscale, png::BitDepth::One, |y| {
         let mut row = vec![0u8; side as usize / 8];
-        row[0] = if y % 8 == 0 { 0x80 } else { 0 };
+        row[0] = if y.is_multiple_of(8) { 0x80 } else { 0 };
         row
     });
     for (path, first) in [
@@ -81,7 +81,7 @@ fn the_largest_pngs_decode_within_3_bytes_a_pixel_and_their_rows() {
             &wide,
             &(|y: usize| [(y % 256) as u8, 0, 0]) as &dyn Fn(usize) -> [u8; 3],
         ),
-        (&bits, &|y: usize| [if y % 8 == 0 { 255 } else { 0 }; 3]),
+        (&bits, &|y: usize| [if y.is_multiple_of(8) { 255 } else { 0 }; 3]),
     ] {
         let file = std::fs::metadata(path).unwrap().len() as usize;
         let (peak, raster) = peak_of(|| read_image_file(path).unwrap());

@@ -73,11 +73,8 @@ impl Kept {
         let mut words = self.args.clone();
         let next = self.done.last().map(|(n, _)| n + 1);
         match self.film {
-            _ if self.resumable => {
-                if !words.iter().any(|w| w == "--resume") {
-                    words.push("--resume".into());
-                }
-            }
+            _ if self.resumable && words.iter().any(|w| w == "--resume") => {}
+            _ if self.resumable => words.push("--resume".into()),
             Some((first, last)) => {
                 drop_flag(&mut words, "--frames");
                 words.push("--frames".into());
