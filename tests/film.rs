@@ -371,7 +371,7 @@ fn a_film_named_without_an_extension_writes_name_0001_ras() {
     for (flags, words) in [
         (
             &["-o", "/dev/null"][..],
-            "-o /dev/null: a film writes one Sun raster per frame",
+            "-o /dev/null: a film writes one file per frame",
         ),
         (
             &["--apng", "film.gif"],
