@@ -511,8 +511,12 @@ impl Job {
             } => {
                 let path = files.path(frame.number, film.frames);
                 let height = prepared.scene().image.height;
-                write_atomically(&path, |w| write_frame(&render, *format, *tile, height, w))
-                    .map_err(|e| not_written(&path, e))?;
+                match (tile, format) {
+                    // The thesis's `outputframe`, a frame's raster file.
+                    (None, Format::SunRaster) => raytrace::raster::outputframe(&path, &render.raster),
+                    _ => write_atomically(&path, |w| write_frame(&render, *format, *tile, height, w)),
+                }
+                .map_err(|e| not_written(&path, e))?;
                 if apng.is_some() {
                     rasters.push(render.raster);
                 }
