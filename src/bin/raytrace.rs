@@ -511,7 +511,7 @@ impl Job {
             } => {
                 let path = files.path(frame.number, film.frames);
                 let height = prepared.scene().image.height;
-                match (tile, format) {
+                match (*tile, *format) {
                     // The thesis's `outputframe`, a frame's raster file.
                     (None, Format::SunRaster) => raytrace::raster::outputframe(&path, &render.raster),
                     _ => write_atomically(&path, |w| write_frame(&render, *format, *tile, height, w)),
