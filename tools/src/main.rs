@@ -280,6 +280,14 @@ fn bench(deck: &std::path::Path, runs: usize, render: &RenderArgs) -> Result<(),
     tools::bench::bench(&deck.name, &scene, runs.max(1), &pool).map_err(Failure::other)
 }
 
+/// A deck a tool reads (a path, or a shipped deck's name), read first so
+/// that a bad one is an input error (exit 2), as in every program, before
+/// the tool's own work.
+fn readable(deck: &std::path::Path, fidelity: raytrace::options::Fidelity) -> Result<(), Failure> {
+    let path = tools::decks::deck_path(&deck.to_string_lossy());
+    DeckInput::read(&path)?.initialize(fidelity).map(drop)
+}
+
 /// Runs a command: the render flags' and the decks' errors are the
 /// library's kinds; the tools' own are messages (exit 1).
 fn run(command: Command) -> Result<(), Failure> {
@@ -297,7 +305,10 @@ fn run(command: Command) -> Result<(), Failure> {
             times,
             size,
             fidelity,
-        } => tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity),
+        } => {
+            readable(&deck, fidelity.fidelity)?;
+            tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity)
+        }
         Command::Gallery { only, check, list } => {
             if list {
                 for p in tools::gallery::GALLERY {
@@ -310,6 +321,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
+            readable(&deck, Default::default())?;
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
         Command::Stability { out } => tools::stability::run(&out),
@@ -350,7 +362,10 @@ fn run(command: Command) -> Result<(), Failure> {
             point,
             runs,
             threads,
-        } => tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256)),
+        } => {
+            readable(&deck, Default::default())?;
+            tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256))
+        }
         Command::Fuzz {
             target,
             seed,

@@ -215,3 +215,27 @@ fn join_exits_2_on_bad_input_and_bad_names() {
     }
     assert!(ok.exists());
 }
+
+/// Bad input is exit 2 in every program: the tools that read a deck
+/// (`frames`, `heatmap`, `preview`, as `bench` and `pov` did) refuse a bad
+/// one as an input error, naming it, before their own work.
+#[test]
+fn the_tools_exit_2_on_a_bad_deck() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.deck"), "garbage\n").unwrap();
+    for args in [
+        &["frames", "bad.deck"][..],
+        &["heatmap", "bad.deck", "--out", "h.png"],
+        &["preview", "bad.deck", "goblet"],
+        &["pov", "bad.deck", "-o", "x.pov"],
+        &["bench", "bad.deck", "--runs", "1"],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_tools"))
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("bad.deck:1:1"), "{args:?}: {}", stderr(&o));
+    }
+}
