@@ -176,7 +176,8 @@ const MAX_TRAILER: usize = 64;
 pub fn read_tile(path: &Path) -> Result<Part, JoinError> {
     let (mut file, length) = open_sized(path).map_err(|e| JoinError::new(path, e))?;
     let mut bytes = read_raster_bytes(&mut file, PixelLimit::RASTER, length).map_err(|e| JoinError::new(path, e))?;
-    read_bounded(&mut file, &mut bytes, MAX_TRAILER + 1, length).map_err(|e| JoinError::new(path, e))?;
+    // A longer tail than any line is no tile's: `of_trailer` refuses it.
+    read_bounded(&mut file, &mut bytes, MAX_TRAILER, length).map_err(|e| JoinError::new(path, e))?;
     let raster = read_raster(&bytes).map_err(|e| JoinError::new(path, e))?;
     let end = sun_raster_len(raster.width, raster.height).min(bytes.len());
     let (tile, height) = Tile::of_trailer(&bytes[end..]).ok_or_else(|| {
