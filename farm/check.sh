@@ -54,10 +54,10 @@ done
 
 started=$SECONDS
 cd "$work/one"
-mkdir -p farm-out
-raytrace legacy_pascal/decks/nec_commercial.deck --frames 1..8 -o farm-out/nec_commercial.ras \
-  --apng farm-out/nec_commercial.png --quiet
-raytrace legacy_pascal/decks/fig5_8.deck --size 512x512 -o farm-out/fig5_8.ras --quiet
+mkdir -p raster/farm-out
+raytrace legacy_pascal/decks/nec_commercial.deck --frames 1..8 -o raster/farm-out/nec_commercial.ras \
+  --apng raster/farm-out/nec_commercial.png --quiet
+raytrace legacy_pascal/decks/fig5_8.deck --size 512x512 -o raster/farm-out/fig5_8.ras --quiet
 
 # Slurm: the cluster is stopped on any exit from here on.
 export FARM_SLURM_DIR=$work/slurm-cluster
@@ -79,7 +79,7 @@ wait_jobs() {
         PENDING | RUNNING | CONFIGURING | COMPLETING | '') ;;
         *)
           say "job $job ended $state; its logs:"
-          tail -n 20 farm-out/logs/* >&2 || true
+          tail -n 20 raster/farm-out/logs/* >&2 || true
           exit 1
           ;;
       esac
@@ -108,7 +108,7 @@ cd "$work"
 files=(nec_commercial.000{1..8}.ras nec_commercial.png fig5_8.ras)
 for way in slurm parallel; do
   for f in "${files[@]}"; do
-    if ! cmp "one/farm-out/$f" "$way/farm-out/$f"; then
+    if ! cmp "one/raster/farm-out/$f" "$way/raster/farm-out/$f"; then
       say "$way: $f differs from the one-process render"
       exit 1
     fi

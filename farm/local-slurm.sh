@@ -83,6 +83,9 @@ start() {
     say "already running in $dir (farm/local-slurm.sh stop first)"
     exit 1
   fi
+  # Whatever fails from here on (a daemon that does not start, a command
+  # that fails under set -e), what was started is stopped.
+  trap 'say "start failed: stopping what it started"; stop' EXIT
   # A fresh cluster: no jobs or node states of an earlier one.
   rm -rf "$dir/state" "$dir/spool"
   mkdir -p "$dir"/{munge,state,spool,cgroup}
@@ -143,13 +146,13 @@ CONF
   for i in $(seq 150); do
     if sinfo --noheader --states=idle --format=%N 2>/dev/null | grep -q .; then
       say "started: node $(sinfo --noheader --format='%N %c CPUs %T'); export SLURM_CONF=$SLURM_CONF"
+      trap - EXIT
       return 0
     fi
     sleep 0.2
   done
   say "the node did not come up in 30 s; its logs:"
   tail -n 20 "$dir/slurmctld.log" "$dir/slurmd.log" "$dir/munge/munged.log" >&2 || true
-  stop
   exit 1
 }
 

@@ -147,18 +147,49 @@ impl FrameRange {
 /// four digits (five for a film of 10000 frames), so the files sort in
 /// frame order by name.
 pub fn frame_path(stem: &Path, number: u32, frames: u32) -> PathBuf {
-    let digits = frames.to_string().len().max(4);
-    let mut name = stem.as_os_str().to_owned();
-    name.push(format!(".{number:0digits$}.ras"));
-    PathBuf::from(name)
+    FrameFiles {
+        stem: stem.to_path_buf(),
+        extension: "ras".into(),
+    }
+    .path(number, frames)
 }
 
-/// The stem of the frame files for an output path: `NAME.ras` gives
-/// `NAME` (any other extension is kept as part of the stem).
-pub fn frame_stem(output: &Path) -> PathBuf {
-    match output.extension() {
-        Some(e) if e.eq_ignore_ascii_case("ras") => output.with_extension(""),
-        _ => output.to_path_buf(),
+/// Where a film's frames are written: `STEM.0001.EXT` …, in the format of
+/// the extension (`crate::raster::Format`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FrameFiles {
+    pub stem: PathBuf,
+    /// As the output was named (`ras`, `png`, `PPM` …).
+    pub extension: String,
+}
+
+impl FrameFiles {
+    /// The frames of an output path: `NAME.ras`, `NAME.png`, `NAME.ppm`,
+    /// `NAME.pnm` or `NAME.exr` gives the stem `NAME` and that extension;
+    /// a name without an extension is the stem of Sun rasters
+    /// (`NAME.0001.ras`). Another extension is kept in the stem (the
+    /// caller refuses it first).
+    pub fn of(output: &Path) -> FrameFiles {
+        let known = output.extension().filter(|_| crate::raster::Format::of(output).is_ok());
+        match known {
+            Some(e) => FrameFiles {
+                stem: output.with_extension(""),
+                extension: e.to_string_lossy().into_owned(),
+            },
+            None => FrameFiles {
+                stem: output.to_path_buf(),
+                extension: "ras".into(),
+            },
+        }
+    }
+
+    /// Frame `number`'s file: the number with at least four digits (five
+    /// for a film of 10000 frames), so the files sort in frame order.
+    pub fn path(&self, number: u32, frames: u32) -> PathBuf {
+        let digits = frames.to_string().len().max(4);
+        let mut name = self.stem.as_os_str().to_owned();
+        name.push(format!(".{number:0digits$}.{}", self.extension));
+        PathBuf::from(name)
     }
 }
 
@@ -335,8 +366,13 @@ mod tests {
             PathBuf::from("raster/nec.0007.ras")
         );
         assert_eq!(frame_path(Path::new("x"), 12, 10000), PathBuf::from("x.00012.ras"));
-        assert_eq!(frame_stem(Path::new("out/film.ras")), PathBuf::from("out/film"));
-        assert_eq!(frame_stem(Path::new("out/film.RAS")), PathBuf::from("out/film"));
-        assert_eq!(frame_stem(Path::new("out/film")), PathBuf::from("out/film"));
+        let files = |out: &str| FrameFiles::of(Path::new(out));
+        assert_eq!(files("out/film.ras").path(3, 36), PathBuf::from("out/film.0003.ras"));
+        assert_eq!(files("out/film.RAS").path(3, 36), PathBuf::from("out/film.0003.RAS"));
+        assert_eq!(files("out/film").path(3, 36), PathBuf::from("out/film.0003.ras"));
+        assert_eq!(files("out/film.png").path(12, 36), PathBuf::from("out/film.0012.png"));
+        assert_eq!(files("film.ppm").path(1, 2), PathBuf::from("film.0001.ppm"));
+        assert_eq!(files("film.pnm").path(1, 2), PathBuf::from("film.0001.pnm"));
+        assert_eq!(files("a.b").path(1, 2), PathBuf::from("a.b.0001.ras"));
     }
 }

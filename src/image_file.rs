@@ -10,12 +10,13 @@
 //! checked from the header before the pixels are allocated: the limits of
 //! any raster ([`MAX_SIDE`] a side, [`MAX_PIXELS`] in all).
 
-use std::fs::File;
 use std::io::{BufRead, BufReader, Read};
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use crate::raster::{read_raster_file, Raster, RasterError, MAX_PIXELS, MAX_SIDE};
+use crate::raster::{
+    open_sized, read_bounded, read_raster, read_raster_bytes, PixelLimit, Raster, RasterError, MAX_PIXELS, MAX_SIDE,
+};
 
 /// The kinds of picture file [`read_image_file`] reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,22 +41,40 @@ pub fn kind_of(head: &[u8]) -> Kind {
 }
 
 /// Reads a Sun raster, PNG or PPM file (P6, or P3 as text) into a 24-bit
-/// raster, up to [`MAX_PIXELS`] pixels. A PNG's alpha is dropped, 16-bit
-/// samples and a PPM's maxval are scaled to 0..255. The errors do not name
-/// the file; the caller does.
+/// raster, up to [`MAX_PIXELS`] pixels ([`read_image`]). The file is
+/// opened once and read front to back, so a pipe (`/dev/stdin`, a shell's
+/// `<(…)`) reads as a file does. The errors do not name the file; the
+/// caller does.
 pub fn read_image_file(path: &Path) -> Result<Raster, RasterError> {
+    let (file, length) = open_sized(path)?;
+    read_image(file, length)
+}
+
+/// Reads a Sun raster, PNG or PPM picture from `reader`, read once from
+/// its start and no further than the header says the picture needs. A
+/// PNG's alpha is dropped, 16-bit samples and a PPM's maxval are scaled to
+/// 0..255. `length` is the reader's bytes, when known (a regular file's
+/// length), so that a Sun raster's or a PPM's bytes are held once. Memory:
+/// the raster's 3 bytes a pixel, and besides them the Sun raster's or the
+/// PPM's bytes, or a PNG's rows in flight and its inflater's window.
+pub fn read_image(reader: impl Read, length: Option<u64>) -> Result<Raster, RasterError> {
+    let mut reader = reader;
     let mut head = Vec::with_capacity(PNG_SIGNATURE.len());
-    File::open(path)?
-        .take(PNG_SIGNATURE.len() as u64)
-        .read_to_end(&mut head)?;
-    match kind_of(&head) {
-        Kind::SunRaster => read_raster_file(path).map_err(|e| match e {
-            RasterError::BadMagic(m) => RasterError::UnknownKind(m),
-            e => e,
-        }),
-        Kind::Png => read_png(path),
-        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(File::open(path)?), false),
-        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(File::open(path)?), true),
+    (&mut reader).take(PNG_SIGNATURE.len() as u64).read_to_end(&mut head)?;
+    let kind = kind_of(&head);
+    // The bytes read to tell the kind, then the rest.
+    let mut whole = std::io::Cursor::new(head).chain(reader);
+    match kind {
+        Kind::SunRaster => {
+            let bytes = read_raster_bytes(&mut whole, PixelLimit::RASTER, length)?;
+            read_raster(&bytes).map_err(|e| match e {
+                RasterError::BadMagic(m) => RasterError::UnknownKind(m),
+                e => e,
+            })
+        }
+        Kind::Png => read_png(BufReader::new(whole)),
+        Kind::Netpbm(b'6') => read_ppm(&mut BufReader::new(whole), false, length),
+        Kind::Netpbm(b'3') => read_ppm(&mut BufReader::new(whole), true, length),
         Kind::Netpbm(n) => Err(RasterError::Ppm(format!(
             "a netpbm P{} file ({}); the PPM kinds P6 and P3 are read",
             char::from(n),
@@ -87,29 +106,80 @@ fn check_size(width: u32, height: u32) -> Result<(usize, usize), RasterError> {
     Ok((w, h))
 }
 
+/// A reader that cannot seek, for the PNG decoder, which asks for `Seek`
+/// and does not use it: so a PNG reads from a pipe.
 #[cfg(feature = "png")]
-fn read_png(path: &Path) -> Result<Raster, RasterError> {
-    use image::codecs::png::PngDecoder;
-    use image::ImageDecoder;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_SIDE as u32);
-    limits.max_image_height = Some(MAX_SIDE as u32);
-    // 16-bit RGBA, the widest PNG pixel, at the most pixels a raster has.
-    limits.max_alloc = Some(MAX_PIXELS as u64 * 8);
-    let decoder = PngDecoder::with_limits(BufReader::new(File::open(path)?), limits)?;
-    let (w, h) = decoder.dimensions();
-    let (width, height) = check_size(w, h)?;
-    let rgb = image::DynamicImage::from_decoder(decoder)?.into_rgb8();
-    Ok(Raster {
-        width,
-        height,
-        pixels: rgb.pixels().map(|p| p.0).collect(),
-    })
+struct Forward<R>(R);
+
+#[cfg(feature = "png")]
+impl<R: Read> Read for Forward<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        self.0.read(buf)
+    }
 }
 
-#[cfg(not(feature = "png"))]
-fn read_png(_path: &Path) -> Result<Raster, RasterError> {
-    Err(RasterError::PngNotBuilt)
+#[cfg(feature = "png")]
+impl<R: BufRead> BufRead for Forward<R> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        self.0.fill_buf()
+    }
+    fn consume(&mut self, amount: usize) {
+        self.0.consume(amount);
+    }
+}
+
+#[cfg(feature = "png")]
+impl<R> std::io::Seek for Forward<R> {
+    fn seek(&mut self, _: std::io::SeekFrom) -> std::io::Result<u64> {
+        Err(std::io::ErrorKind::Unsupported.into())
+    }
+}
+
+/// A PNG decoded a row at a time straight into 8-bit RGB pixels: 16-bit
+/// samples cut to their high byte (`STRIP_16`), fewer than 8 bits, a
+/// palette and transparency expanded (`EXPAND`), grey repeated into
+/// R, G and B, alpha dropped. Besides the raster's 3 bytes a pixel it
+/// holds a row or two of the file's widest pixels (8 bytes each) and the
+/// inflater's window, so the documented bound (the file's bytes plus 3
+/// bytes a pixel) holds for every PNG (`tests/png_memory.rs` measures it).
+/// An interlaced (Adam7) PNG's passes are placed pixel by pixel.
+#[cfg(feature = "png")]
+fn read_png(reader: impl BufRead) -> Result<Raster, RasterError> {
+    use png::{ColorType, Transformations};
+    let mut decoder = png::Decoder::new(Forward(reader));
+    decoder.set_transformations(Transformations::STRIP_16 | Transformations::EXPAND);
+    let mut png = decoder.read_info()?;
+    let (width, height) = check_size(png.info().width, png.info().height)?;
+    let channels = match png.output_color_type().0 {
+        ColorType::Grayscale => 1,
+        ColorType::GrayscaleAlpha => 2,
+        ColorType::Rgb => 3,
+        ColorType::Rgba => 4,
+        // EXPAND turns a palette into RGB.
+        ColorType::Indexed => return Err(RasterError::Inconsistent("a PNG palette not expanded".into())),
+    };
+    let mut pixels = vec![[0u8; 3]; width * height];
+    let mut rgb = Vec::with_capacity(width * 3);
+    let mut next = 0;
+    while let Some(row) = png.next_interlaced_row()? {
+        rgb.clear();
+        rgb.extend(row.data().chunks_exact(channels).flat_map(|p| match *p {
+            [v] | [v, _] => [v; 3],
+            [r, g, b, ..] => [r, g, b],
+            [] => [0; 3],
+        }));
+        let flat = pixels.as_flattened_mut();
+        match row.interlace() {
+            png::InterlaceInfo::Null(_) => {
+                if let Some(line) = flat.get_mut(next * width * 3..(next + 1) * width * 3) {
+                    line.iter_mut().zip(&rgb).for_each(|(to, &from)| *to = from);
+                }
+                next += 1;
+            }
+            png::InterlaceInfo::Adam7(pass) => png::expand_interlaced_row(flat, width * 3, &rgb, pass, 24),
+        }
+    }
+    Ok(Raster { width, height, pixels })
 }
 
 /// The next header field of a netpbm file: a run of bytes other than white
@@ -161,7 +231,7 @@ fn number_in(token: Option<String>, what: impl Fn() -> String, range: RangeInclu
 /// A PPM after its magic number: `P6` (`plain` false: binary samples, one
 /// byte each below maxval 256, else two, most significant first) or `P3`
 /// (`plain`: decimal samples). Bytes after the first image are ignored.
-fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
+fn read_ppm(r: &mut impl BufRead, plain: bool, length: Option<u64>) -> Result<Raster, RasterError> {
     pnm_token(r)?;
     let side = 1..=MAX_SIDE as u64;
     let width = pnm_number(r, "width", side.clone())?;
@@ -178,13 +248,24 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
     };
     let samples = width * height * 3;
     // Grown as the samples come: a short file claiming a large picture
-    // costs what it holds.
-    let mut values = Vec::new();
+    // costs what it holds. Each sample goes straight into its pixel.
+    let mut pixels: Vec<[u8; 3]> = Vec::new();
+    let push = |pixels: &mut Vec<[u8; 3]>, k: usize, v: u64| -> Result<(), RasterError> {
+        let v = scale(v)?;
+        match k % 3 {
+            0 => pixels.push([v, 0, 0]),
+            c => {
+                if let Some(p) = pixels.last_mut() {
+                    p[c] = v;
+                }
+            }
+        }
+        Ok(())
+    };
     if plain {
-        while values.len() < samples {
-            let what = || format!("sample {}", values.len() + 1);
-            let v = number_in(pnm_token(r)?, what, 0..=u16::MAX.into())?;
-            values.push(scale(v)?);
+        for k in 0..samples {
+            let what = || format!("sample {}", k + 1);
+            push(&mut pixels, k, number_in(pnm_token(r)?, what, 0..=u16::MAX.into())?)?;
         }
     } else {
         // The one white-space byte that ends the header (pnm_token stopped
@@ -195,7 +276,7 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
         let wide = maxval > 255;
         let needed = samples * if wide { 2 } else { 1 };
         let mut data = Vec::new();
-        r.take(needed as u64).read_to_end(&mut data)?;
+        read_bounded(r, &mut data, needed, length)?;
         if data.len() < needed {
             return Err(RasterError::Truncated {
                 part: "PPM pixel data",
@@ -203,15 +284,13 @@ fn read_ppm(r: &mut impl BufRead, plain: bool) -> Result<Raster, RasterError> {
                 found: data.len(),
             });
         }
-        for s in data.chunks_exact(if wide { 2 } else { 1 }) {
-            values.push(scale(s.iter().fold(0, |v, &b| v << 8 | u64::from(b)))?);
+        // All there: the pixels are allocated once, at their size.
+        pixels.reserve_exact(width * height);
+        for (k, s) in data.chunks_exact(if wide { 2 } else { 1 }).enumerate() {
+            push(&mut pixels, k, s.iter().fold(0, |v, &b| v << 8 | u64::from(b)))?;
         }
     }
-    Ok(Raster {
-        width,
-        height,
-        pixels: values.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
-    })
+    Ok(Raster { width, height, pixels })
 }
 
 #[cfg(test)]
@@ -301,6 +380,35 @@ mod tests {
         grey.save(dir.path().join("grey.png")).unwrap();
         let got = read_image_file(&dir.path().join("grey.png")).unwrap();
         assert_eq!(got.pixels, [0, 50, 100, 1, 51, 101].map(|v| [v; 3]));
+    }
+
+    /// An interlaced (Adam7) PNG, as netpbm's `pnmtopng -interlace` writes
+    /// it, reads as its pixels: each pass's pixels put in their places.
+    /// Without netpbm this is skipped, except under CI, which installs it.
+    #[cfg(feature = "png")]
+    #[test]
+    fn an_interlaced_png_reads_as_its_pixels() {
+        let dir = tempfile::tempdir().unwrap();
+        let raster = test_raster(13, 11, 7);
+        let ppm = dir.path().join("a.ppm");
+        let mut bytes = Vec::new();
+        write_ppm_to(&raster, &mut bytes).unwrap();
+        std::fs::write(&ppm, bytes).unwrap();
+        let out = std::process::Command::new("pnmtopng")
+            .arg("-interlace")
+            .arg(&ppm)
+            .stderr(std::process::Stdio::null())
+            .output();
+        let Some(out) = out.ok().filter(|o| o.status.success()) else {
+            assert!(std::env::var_os("CI").is_none(), "CI installs netpbm (pnmtopng)");
+            eprintln!("skipped: no pnmtopng (netpbm)");
+            return;
+        };
+        // Byte 28 of a PNG is IHDR's interlace method: 1 is Adam7.
+        assert_eq!(out.stdout[28], 1);
+        let png = dir.path().join("a.png");
+        std::fs::write(&png, &out.stdout).unwrap();
+        assert_eq!(read_image_file(&png).unwrap(), raster);
     }
 
     #[test]

@@ -25,8 +25,9 @@
 //! - No folder is created here; a missing folder, or a file where a folder
 //!   should be, is an error that names it.
 //! - [`remove_temp_files_on_signals`]: SIGINT or SIGTERM removes the
-//!   temporary files and exits with 130 or 143 (128 + the signal, as a
-//!   shell reports it). A SIGKILL cannot be caught: the next write of the
+//!   temporary files, does what the program set with [`on_signal`] (its
+//!   last word), and exits with 130 or 143 (128 + the signal, as a shell
+//!   reports it). A SIGKILL cannot be caught: the next write of the
 //!   same target removes the temporary files of processes that no longer
 //!   run (on Linux, where /proc tells which do), and only those this host
 //!   wrote: another host's PIDs are not in this host's /proc.
@@ -58,6 +59,11 @@ pub enum OutputError {
     NotAFolder(PathBuf),
     #[error("it is a folder, not a file")]
     IsAFolder,
+    /// The file exists and this user may not write it: it is not replaced.
+    #[error(
+        "it exists and this user may not write it ({0}): it was not replaced; remove it or make it writable first"
+    )]
+    ReadOnly(String),
     /// The temporary file was removed by someone else before it could be
     /// renamed over the target; the target is as it was.
     #[error("its temporary file {} vanished before it could be renamed over it: another process removed it (a second writer of the same file, on another host of a shared folder or in another PID namespace, that took it for a dead writer's); the file was not written", .0.display())]
@@ -123,12 +129,12 @@ impl PendingFile {
         if path.as_os_str() == STDOUT {
             return Ok(pending(Sink::Stdout));
         }
-        let target = match fs::metadata(path) {
+        let (target, existing) = match fs::metadata(path) {
             Ok(m) if m.is_dir() => return Err(OutputError::IsAFolder),
             Ok(m) if !m.is_file() => return Ok(pending(Sink::Into)),
-            Ok(_) if fs::symlink_metadata(path)?.file_type().is_symlink() => fs::canonicalize(path)?,
-            Ok(_) => path.to_path_buf(),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => path.to_path_buf(),
+            Ok(m) if fs::symlink_metadata(path)?.file_type().is_symlink() => (fs::canonicalize(path)?, Some(m)),
+            Ok(m) => (path.to_path_buf(), Some(m)),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => (path.to_path_buf(), None),
             Err(e) if e.kind() == io::ErrorKind::NotADirectory => {
                 return Err(OutputError::NotAFolder(first_file_among_ancestors(path)))
             }
@@ -148,8 +154,19 @@ impl PendingFile {
             }
             Err(e) => return Err(e.into()),
         }
+        if let Some(m) = &existing {
+            may_replace(&target, m)?;
+        }
         remove_stale_temp_files(&dir, &name);
         let (temp, file) = create_temp_file(&dir, &name)?;
+        if let Some(m) = &existing {
+            // The new file keeps the old one's mode, as a file written in
+            // place would (the rename alone would give it the umask's).
+            if let Err(e) = file.set_permissions(m.permissions()) {
+                discard(&temp);
+                return Err(e.into());
+            }
+        }
         Ok(pending(Sink::Replace {
             temp,
             file,
@@ -211,6 +228,35 @@ impl PendingFile {
             }
         }
     }
+}
+
+/// Refuses to replace an existing file this user may not write, as `cp`
+/// does: the rename over it needs only the folder's write permission, so
+/// without this a read-only file of another user in a shared folder would
+/// be replaced. The test is the one `access(2)` with `W_OK` makes, by the
+/// effective user (whose rights the writing has): the file opened for
+/// writing, without truncating or changing it. (Root may write any file,
+/// so for root this refuses only what the kernel refuses root: a file on
+/// a read-only mount, an immutable one.)
+fn may_replace(target: &Path, meta: &fs::Metadata) -> Result<(), OutputError> {
+    match File::options().write(true).open(target) {
+        Ok(_) => Ok(()),
+        Err(e)
+            if matches!(
+                e.kind(),
+                io::ErrorKind::PermissionDenied | io::ErrorKind::ReadOnlyFilesystem
+            ) =>
+        {
+            Err(OutputError::ReadOnly(read_only_reason(meta)))
+        }
+        Err(e) => Err(e.into()),
+    }
+}
+
+/// Why a file may not be written, for the error: its mode and owner.
+fn read_only_reason(meta: &fs::Metadata) -> String {
+    use std::os::unix::fs::MetadataExt;
+    format!("mode {:04o}, owner uid {}", meta.mode() & 0o7777, meta.uid())
 }
 
 /// Runs `write` on a buffer over `file` and flushes it.
@@ -422,6 +468,20 @@ fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
     stale
 }
 
+/// What the program does last when a signal stops it, after the temporary
+/// files are removed and before it exits: [`on_signal`].
+type LastWord = Box<dyn Fn(i32) + Send>;
+
+static LAST_WORD: Mutex<Option<LastWord>> = Mutex::new(None);
+
+/// Sets what the program does last when SIGINT or SIGTERM stops it (after
+/// [`remove_temp_files_on_signals`] has removed the temporary files, before
+/// the exit): `raytrace` says what was kept and the command that goes on.
+/// The call gets the signal. A later call replaces an earlier one.
+pub fn on_signal(last_word: impl Fn(i32) + Send + 'static) {
+    *LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(last_word));
+}
+
 /// Makes SIGINT and SIGTERM remove this process's temporary files and exit
 /// with 128 + the signal (130, 143). For the programs' `main`; a second call
 /// does nothing.
@@ -444,6 +504,9 @@ pub fn remove_temp_files_on_signals() -> io::Result<()> {
                         let registry = temp_files();
                         for temp in registry.iter() {
                             let _ = fs::remove_file(temp);
+                        }
+                        if let Some(last_word) = LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
+                            last_word(signal);
                         }
                         std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
                     }

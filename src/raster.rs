@@ -41,7 +41,7 @@ use crate::types::Intensity;
 mod complete;
 mod format;
 pub use complete::{check_complete, sun_raster_len};
-pub use format::{write_image, write_png_to, write_ppm_to, Format, FormatError, EXTENSIONS};
+pub use format::{write_exr_to, write_image, write_png_to, write_ppm_to, Format, FormatError, EXTENSIONS};
 
 /// `RAS_MAGIC`: the first four bytes of every Sun raster file.
 pub const RAS_MAGIC: u32 = 0x59a6_6a95;
@@ -164,6 +164,9 @@ pub enum RasterError {
     #[cfg(feature = "png")]
     #[error("PNG: {0}")]
     Png(#[from] image::ImageError),
+    #[cfg(feature = "png")]
+    #[error("PNG: {0}")]
+    PngRead(#[from] png::DecodingError),
     #[cfg(not(feature = "png"))]
     #[error("a PNG file, and this build reads none (it is without the `png` feature)")]
     PngNotBuilt,
@@ -564,18 +567,61 @@ pub fn read_raster_file(path: &Path) -> Result<Raster, RasterError> {
 
 /// [`read_raster_file`] with another pixel limit ([`read_raster_within`]).
 pub fn read_raster_file_within(path: &Path, limit: PixelLimit) -> Result<Raster, RasterError> {
-    let mut file = File::open(path)?;
-    let mut head = Vec::with_capacity(HEADER_LEN);
-    (&mut file).take(HEADER_LEN as u64).read_to_end(&mut head)?;
-    let needed = match parse_header(&head) {
+    let (mut file, length) = open_sized(path)?;
+    read_raster_within(&read_raster_bytes(&mut file, limit, length)?, limit)
+}
+
+/// A file opened for reading, and its length when it is a regular file
+/// (not a pipe or a device, whose length says nothing).
+pub fn open_sized(path: &Path) -> std::io::Result<(File, Option<u64>)> {
+    let file = File::open(path)?;
+    let meta = file.metadata()?;
+    let length = meta.is_file().then_some(meta.len());
+    Ok((file, length))
+}
+
+/// Reads at most `most` more bytes of `reader` onto `bytes`, its room made
+/// once for what `length` (the reader's bytes from its start, when known)
+/// says is there: a buffer grown by doubling as it fills would hold up to
+/// twice the file while it is read.
+pub fn read_bounded(
+    reader: &mut impl Read,
+    bytes: &mut Vec<u8>,
+    most: usize,
+    length: Option<u64>,
+) -> std::io::Result<()> {
+    let there = length.map_or(0, |l| {
+        usize::try_from(l).unwrap_or(usize::MAX).saturating_sub(bytes.len())
+    });
+    bytes.reserve_exact(most.min(there));
+    reader.take(most as u64).read_to_end(bytes)?;
+    Ok(())
+}
+
+/// The bytes of the raster that starts at `reader`'s position: its header
+/// and then no more than the header says the raster needs (all there is,
+/// if less), so a writer that sends a valid header and then bytes without
+/// end (a pipe, `/dev/zero`) is read no further than the raster, and
+/// `reader` is left just past it (where a tile's line follows). The file
+/// is read once, front to back: a pipe reads as a file does. A header
+/// [`read_raster_within`] refuses is refused here before more is read.
+/// `length` is the reader's bytes from its start, when known (a regular
+/// file's length: [`open_sized`]), so that the bytes are held once.
+pub fn read_raster_bytes(
+    reader: &mut impl Read,
+    limit: PixelLimit,
+    length: Option<u64>,
+) -> Result<Vec<u8>, RasterError> {
+    let mut bytes = Vec::with_capacity(HEADER_LEN);
+    reader.take(HEADER_LEN as u64).read_to_end(&mut bytes)?;
+    let needed = match parse_header(&bytes) {
         Ok(h) => bytes_needed(&h, &layout(&h, limit)?),
         // Let read_raster report the short header.
         Err(_) => HEADER_LEN,
     };
-    let mut bytes = head;
-    file.take((needed - bytes.len().min(needed)) as u64)
-        .read_to_end(&mut bytes)?;
-    read_raster_within(&bytes, limit)
+    let rest = needed - bytes.len().min(needed);
+    read_bounded(reader, &mut bytes, rest, length)?;
+    Ok(bytes)
 }
 
 /// `rgbtochars(acolor, threechars)`: a colour of the renderer (each channel

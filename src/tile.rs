@@ -35,7 +35,10 @@ use std::io::Write;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use crate::raster::{check_complete, read_raster, sun_raster_len, write_sun_raster, Raster, RasterError};
+use crate::raster::{
+    check_complete, open_sized, read_bounded, read_raster, read_raster_bytes, sun_raster_len, write_sun_raster,
+    PixelLimit, Raster, RasterError,
+};
 
 /// The most tiles: the most rows an image may have (`--size`'s and the
 /// deck's limit of 8192 a side), since a band is at least one row.
@@ -162,9 +165,19 @@ impl JoinError {
     }
 }
 
-/// Reads a tile `raytrace --tile` wrote.
+/// The longest line a tile ends with: `raytrace tile 8192/8192: rows
+/// 8191..8192 of 8192` and its newline are 49 bytes; no line is longer
+/// than this.
+const MAX_TRAILER: usize = 64;
+
+/// Reads a tile `raytrace --tile` wrote: opened once and read front to
+/// back (a pipe reads as a file does), no further than its header and its
+/// line need, so a file without end (`/dev/zero`) is refused, not read.
 pub fn read_tile(path: &Path) -> Result<Part, JoinError> {
-    let bytes = std::fs::read(path).map_err(|e| JoinError::new(path, e))?;
+    let (mut file, length) = open_sized(path).map_err(|e| JoinError::new(path, e))?;
+    let mut bytes = read_raster_bytes(&mut file, PixelLimit::RASTER, length).map_err(|e| JoinError::new(path, e))?;
+    // A longer tail than any line is no tile's: `of_trailer` refuses it.
+    read_bounded(&mut file, &mut bytes, MAX_TRAILER, length).map_err(|e| JoinError::new(path, e))?;
     let raster = read_raster(&bytes).map_err(|e| JoinError::new(path, e))?;
     let end = sun_raster_len(raster.width, raster.height).min(bytes.len());
     let (tile, height) = Tile::of_trailer(&bytes[end..]).ok_or_else(|| {

@@ -127,13 +127,17 @@ fn bad_output_names_are_usage_errors_and_write_nothing() {
             "--apng 'film.gif': --apng writes an animated PNG, so the name must end in .png",
         ),
         (&["-o", "-", "--apng", "-"], "only one output can go to standard output"),
+        // An existing folder is named as one, not as a name without an extension.
+        (&["-o", "."], "-o '.': it is a folder: name a file in it"),
+        (&["-o", "sub/"], "-o 'sub/': it is a folder: name a file in it"),
     ];
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
     for (args, says) in cases {
         let o = run(raytrace_command().arg(&deck).args(*args).current_dir(dir.path()));
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
         assert!(o.stdout.is_empty(), "{args:?}");
-        assert_eq!(file_names(dir.path()), ["small.deck"], "{args:?}");
+        assert_eq!(file_names(dir.path()), ["small.deck", "sub"], "{args:?}");
     }
     // The help says what exit status 2 means.
     let help = String::from_utf8(run(raytrace_command().arg("--help")).stdout).unwrap();
@@ -471,4 +475,165 @@ fn a_temporary_file_removed_during_the_render_is_named() {
     assert!(e.contains(&temp.display().to_string()) && e.contains("vanished"), "{e}");
     assert_eq!(std::fs::read(&out).unwrap(), b"the last good raster");
     assert_eq!(file_names(dir.path()), ["big.deck", "big.ras"]);
+}
+
+/// An existing file keeps its mode when it is written again (the new
+/// file is a temporary one renamed over it, which would have the umask's
+/// mode); this holds for any user, root included.
+#[test]
+fn a_file_written_again_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let (dir, deck) = small_deck();
+    let out = dir.path().join("kept.ras");
+    for mode in [0o640, 0o600, 0o664] {
+        std::fs::write(&out, b"old").unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(mode)).unwrap();
+        let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&out));
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(read_raster_file(&out).is_ok());
+        let now = std::fs::metadata(&out).unwrap().permissions().mode() & 0o7777;
+        assert_eq!(now, mode, "{now:o} against {mode:o}");
+    }
+}
+
+/// An output over a file this user may not write, in a folder anyone may
+/// write (a shared folder): refused as `cp` refuses it, exit 1, the
+/// reason named, the file untouched. The rename would need only the
+/// folder's permission, so without the check the file would be replaced.
+///
+/// Root may write a mode-0444 file (`access(2)` W_OK succeeds for root),
+/// so as root the program runs as the user `nobody` (setpriv), for whom
+/// the file, root's, is read-only; as anyone else the file is theirs with
+/// mode 0444, which its owner may not write either. Either way the test
+/// fails without the refusal.
+#[test]
+fn a_read_only_file_of_another_user_is_not_replaced() {
+    use std::os::unix::fs::{MetadataExt, PermissionsExt};
+    let (dir, deck) = small_deck();
+    let open = std::fs::Permissions::from_mode;
+    std::fs::set_permissions(dir.path(), open(0o777)).unwrap();
+    std::fs::set_permissions(&deck, open(0o644)).unwrap();
+    let out = dir.path().join("theirs.ras");
+    std::fs::write(&out, b"another user's raster").unwrap();
+    std::fs::set_permissions(&out, open(0o444)).unwrap();
+    let root = std::fs::metadata(&out).unwrap().uid() == 0;
+    let mut cmd = if root {
+        let mut c = Command::new("setpriv");
+        c.args(["--reuid=nobody", "--regid=nogroup", "--clear-groups", "--"])
+            .arg(env!("CARGO_BIN_EXE_raytrace"));
+        c
+    } else {
+        raytrace_command()
+    };
+    let o = run(cmd.arg("-q").arg(&deck).arg("-o").arg(&out).current_dir(dir.path()));
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("theirs.ras: it exists and this user may not write it (mode 0444") && e.contains("not replaced"),
+        "{e}"
+    );
+    assert_eq!(std::fs::read(&out).unwrap(), b"another user's raster");
+    assert_eq!(std::fs::metadata(&out).unwrap().mode() & 0o7777, 0o444);
+    assert_eq!(file_names(dir.path()), ["small.deck", "theirs.ras"]);
+}
+
+/// `-o NAME.exr`: OpenEXR (its magic number first), R, G and B as 32-bit
+/// floats equal to the render's colours before the raster's clamp and
+/// rounding (the library's render of the same deck), not the bytes.
+#[test]
+fn exr_holds_the_radiance_before_quantisation() {
+    use exr::prelude::{read_first_rgba_layer_from_file, Vec2};
+    let (dir, deck) = small_deck();
+    let out = dir.path().join("small.exr");
+    let o = run(raytrace_command().arg("-q").arg(&deck).arg("-o").arg(&out));
+    assert!(o.status.success(), "{}", stderr(&o));
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(bytes[..4], [0x76, 0x2f, 0x31, 0x01], "the OpenEXR magic number");
+
+    let input = raytrace::cli::DeckInput::read(&deck).unwrap();
+    let opts = raytrace::options::Options::default();
+    let prepared = raytrace::raytrace::Prepared::new(input.initialize(opts.fidelity).unwrap(), opts).unwrap();
+    let r = raytrace::raytrace::render(&prepared, &raytrace::raytrace::Request::STILL).unwrap();
+    let (w, h) = (r.raster.width, r.raster.height);
+    let image = read_first_rgba_layer_from_file(
+        &out,
+        |size: Vec2<usize>, _| (size, vec![[0f32; 3]; size.0 * size.1]),
+        |(size, px): &mut (Vec2<usize>, Vec<[f32; 3]>), Vec2(x, y), (red, g, b, _): (f32, f32, f32, f32)| {
+            px[y * size.0 + x] = [red, g, b]
+        },
+    )
+    .unwrap();
+    let (size, pixels) = &image.layer_data.channel_data.pixels;
+    assert_eq!((size.0, size.1), (w, h));
+    let mut between = 0;
+    for (i, (got, c)) in pixels.iter().zip(&r.colours).enumerate() {
+        assert_eq!(*got, [c.x as f32, c.y as f32, c.z as f32], "pixel {i}");
+        // A value no byte of the raster could give (k/255).
+        between += got
+            .iter()
+            .filter(|v| ((**v * 255.0).round() - **v * 255.0).abs() > 1e-3)
+            .count();
+    }
+    assert!(between > 0, "{between} values between the bytes");
+}
+
+/// SIGINT says what was kept and the command that goes on: for a still,
+/// nothing (it is written whole when done) and the command again with
+/// `--resume`; for a film, the frames written whole so far and
+/// `--resume`, which renders only the rest.
+#[test]
+fn a_signal_says_what_is_kept_and_how_to_go_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.ras");
+    let (child, _temp) = start_big_render(dir.path(), &out);
+    let kill = |pid: u32| {
+        assert!(Command::new("kill")
+            .args(["-INT", &pid.to_string()])
+            .status()
+            .unwrap()
+            .success())
+    };
+    kill(child.id());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("raytrace: stopped by SIGINT (Ctrl-C): nothing is written: a still is written whole"),
+        "{e}"
+    );
+    assert!(e.contains(" -o ") && e.trim_end().ends_with("big.ras --resume"), "{e}");
+
+    // A film of 200 frames, each a moment: stopped once two are there.
+    let deck = dir.path().join("film.deck");
+    std::fs::write(
+        &deck,
+        BIG.replace("image 4096 4096  mask 2", "image 300 300 mask 3") + "motion ball to 1 0 0\nfilm 200\n",
+    )
+    .unwrap();
+    let stem = dir.path().join("f");
+    let child = raytrace_command()
+        .args(["-q", "--threads", "1"])
+        .arg(&deck)
+        .arg("-o")
+        .arg(&stem)
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let first = dir.path().join("f.0001.ras");
+    // Once the second is there, the first is counted (it is counted as soon
+    // as it is renamed into place, before the second's render begins).
+    let second = dir.path().join("f.0002.ras");
+    let started = Instant::now();
+    while !second.exists() {
+        assert!(started.elapsed() < Duration::from_secs(120), "no first frame");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    kill(child.id());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("raytrace: stopped by SIGINT (Ctrl-C): "), "{e}");
+    assert!(e.contains(" of frames 1..200 written whole and kept ("), "{e}");
+    assert!(e.contains(&format!("({} … ", first.display())), "{e}");
+    assert!(e.trim_end().ends_with(&format!("{} --resume", stem.display())), "{e}");
 }

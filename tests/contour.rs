@@ -284,3 +284,40 @@ fn a_rotation_made_a_translation_gets_a_length_and_back_loses_it() {
     let original = std::fs::read_to_string(decks().join("fig5_6.deck")).unwrap();
     assert_eq!(new.unwrap(), original, "there and back is no change");
 }
+
+/// A script without end (`--script /dev/zero`, or `yes | contour …
+/// --script -`) is read as a deck is, to 64 MiB and a byte: exit 2, the
+/// error at the line of the byte past the limit, nothing written.
+#[test]
+fn a_script_without_end_is_refused_at_its_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = decks().join("fig5_8.deck");
+    let deck = deck.to_str().unwrap();
+    let o = contour(&[deck, "goblet", "--script", "/dev/zero", "-o", "new.deck"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        stderr(&o),
+        "contour: /dev/zero:1: the script is larger than 64 MiB, the most the editor reads\n"
+    );
+    let mut yes = Command::new("yes")
+        .arg("# a comment")
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_contour"))
+        .args([deck, "goblet", "--script", "-", "-o", "new.deck"])
+        .current_dir(dir.path())
+        .stdin(yes.stdout.take().unwrap())
+        .output()
+        .unwrap();
+    let _ = yes.kill();
+    let _ = yes.wait();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // 64 MiB of "# a comment\n", 12 bytes a line: the byte past is on line 5592406.
+    assert!(
+        stderr(&o).starts_with("contour: <stdin>:5592406: the script is larger than 64 MiB"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("new.deck").exists());
+}

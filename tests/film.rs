@@ -371,7 +371,7 @@ fn a_film_named_without_an_extension_writes_name_0001_ras() {
     for (flags, words) in [
         (
             &["-o", "/dev/null"][..],
-            "-o /dev/null: a film writes one Sun raster per frame",
+            "-o /dev/null: a film writes one file per frame",
         ),
         (
             &["--apng", "film.gif"],
@@ -406,4 +406,31 @@ fn every_frame_of_a_film_is_numbered_in_range() {
     }
     assert_eq!(film.frame(1).time(0.0), 0.0);
     assert!(film.frame(36).time(1.0) <= 1.0);
+}
+
+/// `-o DIR/NAME.png` (or `.ppm`) on a film writes a file a frame in that
+/// format, `NAME.0001.png` …, each the frame's Sun raster's pixels.
+#[cfg(feature = "png")]
+#[test]
+fn a_film_named_png_or_ppm_writes_frames_in_that_format() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let deck = write_deck(dir, &format!("{MOVING}film 3 shutter 0.5\n"));
+    run_ok(raytrace().arg(&deck).arg("-o").arg(dir.join("ras")).arg("-q"));
+    for ext in ["png", "ppm"] {
+        std::fs::create_dir(dir.join(ext)).unwrap();
+        let out = dir.join(ext).join(format!("walk.{ext}"));
+        run_ok(raytrace().arg(&deck).arg("-o").arg(&out).arg("-q"));
+        let mut names: Vec<String> = std::fs::read_dir(dir.join(ext))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, [1, 2, 3].map(|k| format!("walk.000{k}.{ext}")));
+        for k in 1..=3 {
+            let frame = raytrace::image_file::read_image_file(&dir.join(ext).join(&names[k - 1])).unwrap();
+            let raster = read_raster_file(&frame_path(&dir.join("ras"), k as u32, 3)).unwrap();
+            assert_eq!(frame, raster, "{ext} frame {k}");
+        }
+    }
 }

@@ -51,8 +51,9 @@ fn the_extension_chooses_the_format_and_anything_else_is_an_error_naming_them() 
 }
 
 /// An output's format: standard output and a device or FIFO without an
-/// extension get the Sun raster; a file or a new name without one none; a
-/// device with an extension its extension's.
+/// extension get the Sun raster; a file or a new name without one none, a
+/// folder none either (it is named as one); a device with an extension its
+/// extension's.
 #[test]
 fn an_output_without_an_extension_that_is_a_stream_is_a_sun_raster() {
     for name in ["-", "/dev/null"] {
@@ -61,7 +62,9 @@ fn an_output_without_an_extension_that_is_a_stream_is_a_sun_raster() {
     let dir = tempfile::tempdir().unwrap();
     let plain = dir.path().join("plain");
     std::fs::write(&plain, b"x").unwrap();
-    for path in [plain, dir.path().join("new"), dir.path().to_path_buf()] {
+    let folder = Format::of_output(dir.path()).unwrap_err();
+    assert!(matches!(folder, FormatError::IsAFolder), "{folder:?}");
+    for path in [plain, dir.path().join("new")] {
         let e = Format::of_output(&path).unwrap_err();
         assert!(
             matches!(e, FormatError::UnknownFormat(None)),

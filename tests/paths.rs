@@ -381,6 +381,20 @@ fn an_include_cycle_is_refused() {
         error(d, "self.deck"),
         "self.deck:7:9: include: an include cycle: 'self.deck' includes 'self.deck' (a file may not include itself)"
     );
+    // A hard link is the file it links: the include of the link closes
+    // the cycle, and the error stands there and names it.
+    write(
+        d,
+        &[
+            ("hard.deck", &format!("{SCENE}include lib.deck\n")),
+            ("lib.deck", "\ninclude link.deck\n"),
+        ],
+    );
+    std::fs::hard_link(d.join("lib.deck"), d.join("link.deck")).unwrap();
+    assert_eq!(
+        error(d, "hard.deck"),
+        "lib.deck:2:9: include: an include cycle: 'lib.deck' includes 'link.deck', which is 'lib.deck' under another name (a hard link) (a file may not include itself)"
+    );
     // A file included twice, not inside itself, is no cycle (here its path
     // is then named twice).
     write(

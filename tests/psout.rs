@@ -734,3 +734,66 @@ fn bad_png_and_ppm_files_exit_with_code_2_and_say_what_is_wrong() {
     }
     assert!(!dir.path().join("never.png").exists());
 }
+
+/// psout reads a picture from a pipe (`raytrace DECK -o - | psout
+/// --screenshot p.png /dev/stdin`): the file is opened once and read
+/// front to back, so the bytes that tell its kind are not lost. A writer
+/// that sends a valid header and then zeros without end does not hold it:
+/// no more is read than the header declares.
+#[cfg(feature = "png")]
+#[test]
+fn a_pipe_is_read_once_and_no_further_than_its_header() {
+    use std::io::Write;
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let raster = pseudo_random_raster(9, 7, 5);
+    let file = dir.path().join("file.png");
+    let piped = dir.path().join("piped.png");
+    let shot = |input: &str, out: &Path, stdin: Stdio| {
+        psout()
+            .arg("--screenshot")
+            .arg(out)
+            .arg(input)
+            .env_remove("DISPLAY")
+            .stdin(stdin)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let ras = dir.path().join("in.ras");
+    outputframe(&ras, &raster).unwrap();
+    let o = shot(ras.to_str().unwrap(), &file, Stdio::null())
+        .wait_with_output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = encode_raster(&raster);
+    // A Sun raster, a PNG and a PPM through the pipe.
+    let (mut png, mut ppm) = (Vec::new(), Vec::new());
+    raytrace::raster::write_png_to(&raster, &mut png).unwrap();
+    raytrace::raster::write_ppm_to(&raster, &mut ppm).unwrap();
+    for (kind, sent) in [("ras", &bytes), ("png", &png), ("ppm", &ppm)] {
+        let mut child = shot("/dev/stdin", &piped, Stdio::piped());
+        child.stdin.take().unwrap().write_all(sent).unwrap();
+        let o = child.wait_with_output().unwrap();
+        assert!(o.status.success(), "{kind}: {}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(std::fs::read(&piped).unwrap(), std::fs::read(&file).unwrap(), "{kind}");
+    }
+    // The header of a 9×7 raster, then zeros for ever: read as a black picture.
+    let mut child = shot("/dev/stdin", &piped, Stdio::piped());
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        let _ = stdin.write_all(&bytes[..32]);
+        let zeros = [0u8; 65536];
+        while stdin.write_all(&zeros).is_ok() {}
+    });
+    // Stopped after a minute, when it would fail.
+    let started = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() && started.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let _ = child.kill();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    writer.join().unwrap();
+}

@@ -697,3 +697,24 @@ fn the_test_helpers_parse_what_they_encode() {
     let r = test_raster(3, 2, 5);
     assert_eq!(parse_ppm(&encode_ppm(&r)), r);
 }
+
+/// `read_raster_bytes` reads the header and no more than the raster the
+/// header declares: the reader is left just past it (a tile's line, or a
+/// pipe's next bytes, stay unread), with or without the length known.
+#[test]
+fn reading_a_raster_stops_at_its_end() {
+    use std::io::Read;
+    let raster = test_raster(5, 3, 9);
+    let bytes = encode_raster(&raster);
+    let mut sent = bytes.clone();
+    sent.extend_from_slice(b"the next bytes");
+    for length in [None, Some(sent.len() as u64)] {
+        let mut reader = std::io::Cursor::new(&sent);
+        let read =
+            raytrace::raster::read_raster_bytes(&mut reader, raytrace::raster::PixelLimit::RASTER, length).unwrap();
+        assert_eq!(read, bytes);
+        let mut rest = String::new();
+        reader.read_to_string(&mut rest).unwrap();
+        assert_eq!(rest, "the next bytes");
+    }
+}

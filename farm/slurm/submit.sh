@@ -8,24 +8,27 @@
 #          the whole image (tools join --tiles).
 # The join starts once every task has succeeded (--dependency=afterok) and is
 # cancelled if one fails (--kill-on-invalid-dep=yes). Prints the join's job id.
-# OUT (default farm-out) holds the frames or bands, the joined file and the
+# OUT (default raster/farm-out) holds the frames or bands, the joined file and the
 # jobs' logs (OUT/logs); FLAGS adds raytrace flags to every task; TASKS, if
 # set, is the most tasks that run at once (--array=…%TASKS). Run it from the
-# checkout (the tasks cd to the folder it was run from): raytrace and tools
-# must be on PATH on every node.
+# checkout (the tasks cd to the folder it was run from). raytrace and tools
+# are PATH's, which must then be on every node's PATH, or else the
+# checkout's release build, built once if missing (farm/programs.sh), which
+# the nodes run from the shared folder.
 set -euo pipefail
 . "$(dirname "$0")/../args.sh"
+. "$(dirname "$0")/../programs.sh"
 mkdir -p "$out/logs"
 logs=(--output="$out/logs/%x_%A_%a.out")
 limit=${TASKS:+%$TASKS}
 case $kind in
   film)
-    tasks=$(sbatch --parsable --array="$count$limit" "${logs[@]}" --export="ALL,DECK=$deck,OUT=$out" farm/slurm/film.sbatch)
-    join="tools join $out/$stem.[0-9]*.ras -o $out/$stem.png --rate ${RATE:-12}"
+    tasks=$(sbatch --parsable --array="$count$limit" "${logs[@]}" --export="ALL,DECK=$deck,OUT=$out,RAYTRACE=$raytrace" farm/slurm/film.sbatch)
+    printf -v join '%q join %q.[0-9]*.ras -o %q --rate %q' "$tools" "$out/$stem" "$out/$stem.png" "${RATE:-12}"
     ;;
   still)
-    tasks=$(sbatch --parsable --array="1-$count$limit" "${logs[@]}" --export="ALL,DECK=$deck,OUT=$out,TILES=$count" farm/slurm/still.sbatch)
-    join="tools join --tiles $(seq -f "$out/$stem.%g-of-$count.ras" "$count" | tr '\n' ' ')-o $out/$stem.ras"
+    tasks=$(sbatch --parsable --array="1-$count$limit" "${logs[@]}" --export="ALL,DECK=$deck,OUT=$out,TILES=$count,RAYTRACE=$raytrace" farm/slurm/still.sbatch)
+    join="$(printf '%q ' "$tools" join --tiles $(seq -f "$out/$stem.%g-of-$count.ras" "$count") -o "$out/$stem.ras")"
     ;;
 esac
 sbatch --parsable --job-name="join-$stem" --dependency="afterok:$tasks" --kill-on-invalid-dep=yes \

@@ -12,7 +12,6 @@
 //! that is no sweep, a script with an error or a contour refused by the
 //! save; 130 or 143 stopped by SIGINT or SIGTERM.
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -184,19 +183,20 @@ fn open(args: &Args) -> Result<Document, Failure> {
     Document::open(deck, args.name.as_deref().unwrap_or_default(), fidelity)
 }
 
-/// The script's text and the name its errors give.
+/// The script's text and the name its errors give, read to its limit
+/// (`raytrace::editor::script::read`); an error is an input error (exit 2).
 fn read_script(path: &Path) -> Result<(String, String), Failure> {
-    let mut text = String::new();
-    let file = if path.as_os_str() == "-" {
-        std::io::stdin()
-            .read_to_string(&mut text)
-            .map_err(|e| Failure::input(format!("<stdin>: {e}")))?;
-        "<stdin>".to_string()
-    } else {
-        text = std::fs::read_to_string(path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?;
-        path.display().to_string()
+    let read = |reader: &mut dyn std::io::Read, file: String| {
+        raytrace::editor::script::read(reader, &file)
+            .map(|text| (text, file))
+            .map_err(Failure::input)
     };
-    Ok((text, file))
+    if path.as_os_str() == "-" {
+        return read(&mut std::io::stdin().lock(), "<stdin>".to_string());
+    }
+    let file = path.display().to_string();
+    let mut f = std::fs::File::open(path).map_err(|e| Failure::input(format!("{file}: {e}")))?;
+    read(&mut f, file)
 }
 
 /// The error when no window can be opened.

@@ -6,11 +6,10 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use raytrace::cli::{DeckInput, FarmArgs, RenderArgs};
 use raytrace::exit::{exit_code, Failure};
-use raytrace::film::{frame_path, frame_stem, Frame, FrameRange};
+use raytrace::film::{Frame, FrameFiles, FrameRange};
 use raytrace::options::{Options, TimeSampler};
 use raytrace::output::{is_stream, write_atomically, OutputError, PendingFile, STDOUT};
 use raytrace::raster::{read_raster_file, Format, FormatError, Raster};
@@ -32,7 +31,9 @@ RT_STANDARD, the format the thesis sent to the PS 390 through psout; look at it
 with `psout FILE`), .png a PNG, .ppm or .pnm a netpbm pixmap. `-o -` writes the
 Sun raster to standard output (e.g. `raytrace DECK -o - | rasttopnm`), and so
 does a device or FIFO named without an extension (-o /dev/null, -o /dev/stdout).
-A film's frames are Sun rasters: -o NAME or -o NAME.ras writes NAME.0001.ras ….
+A film writes a file a frame: -o NAME or -o NAME.ras writes NAME.0001.ras …,
+-o NAME.png (.ppm, .pnm, .exr) NAME.0001.png …. .exr is OpenEXR: the render's
+linear radiance as 32-bit floats, before the clamp and rounding of the raster.
 Only the default folder raster/ is created; every output is checked before
 rendering. --tile K/N writes band K of N as a Sun raster of its rows (default
 raster/<deck name>.K-of-N.ras); `tools join --tiles` stacks the bands into the
@@ -46,7 +47,7 @@ anything else (e.g. an output file that cannot be written, or a missing
 folder); 130 or 143 when stopped by SIGINT or SIGTERM. Nothing is written when
 the deck has an error, and no temporary file is left behind.";
 
-#[derive(Parser, Debug)]
+#[derive(Parser, Clone, Debug)]
 #[command(
     name = "raytrace",
     version,
@@ -104,8 +105,12 @@ struct Cli {
     watch: bool,
 }
 
+#[path = "raytrace/progress.rs"]
+mod progress;
 #[path = "raytrace/show.rs"]
 mod show;
+#[path = "raytrace/stopped.rs"]
+mod stopped;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -169,8 +174,12 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         match again {
             Ok(Outcome::Quit) => return Ok(()),
             Ok(_) => {}
-            // The last picture stays; the next change is rendered again.
-            Err(e) => eprintln!("raytrace: {e}"),
+            // The last picture stays, the error over it and in the title;
+            // the next change is rendered again.
+            Err(e) => {
+                eprintln!("raytrace: {e}");
+                screen.failed(&e.to_string());
+            }
         }
     }
 }
@@ -222,13 +231,20 @@ fn render_deck(
         .collect();
     let kept = plan.iter().filter(|&&(_, complete)| complete).count();
     let rendered = plan.len() - kept;
-    let bar = progress_bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
+    stopped::start(stopped::Kept {
+        args: std::env::args().collect(),
+        resumable: resumable(cli),
+        film: job.range().map(|r| (r.first, r.last)),
+        done: Vec::new(),
+    });
+    let bar = progress::bar(cli.quiet, rows.len() as u64 * rendered as u64)?;
     let started = Instant::now();
     let mut rays = 0;
     // In frame order, so that the animated PNG has them in order.
     for &(frame, complete) in &plan {
         if complete {
             job.keep(frame)?;
+            job.done(frame);
             continue;
         }
         bar.set_message(job.tracing(&deck.name, frame));
@@ -247,6 +263,7 @@ fn render_deck(
             .map_err(|e| Failure::other(format!("{}: {e}", job.what(&deck.name, frame))))?;
         rays += render.stats.rays;
         job.write(frame, render, prepared)?;
+        job.done(frame);
     }
     let elapsed = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
@@ -295,7 +312,8 @@ enum Job {
     Film {
         film: FilmRecord,
         range: FrameRange,
-        stem: PathBuf,
+        files: FrameFiles,
+        format: Format,
         apng: Option<PendingFile>,
         /// The frames, rendered or read back (`--resume`), in order, for the
         /// animated PNG.
@@ -307,7 +325,7 @@ enum Job {
 /// What the deck makes: a still in a format, or the frames of a film.
 enum Made {
     Still(Format),
-    Film(FilmRecord, FrameRange),
+    Film(FilmRecord, FrameRange, Format),
 }
 
 /// A file that cannot be written: exit 1, named.
@@ -337,7 +355,12 @@ impl Job {
                 .then(|| Path::new(DEFAULT_FOLDER).join("default.png"))
         });
         let what = match &scene.film {
-            Some(film) => Made::Film(film.clone(), check_film(cli, film, &deck.name, &output)?),
+            // A film's frames named without an extension are Sun rasters.
+            Some(film) => Made::Film(
+                film.clone(),
+                check_film(cli, film, &deck.name, &output)?,
+                format.unwrap_or(Format::SunRaster),
+            ),
             None => {
                 if let Some(flag) = [(cli.frames.is_some(), "--frames"), (cli.apng.is_some(), "--apng")]
                     .iter()
@@ -357,13 +380,14 @@ impl Job {
         let reserve = |path: &Path| PendingFile::create(path).map_err(|e| not_written(path, e));
         let output = reserve(&output)?;
         Ok(match what {
-            Made::Film(film, range) => Job::Film {
+            Made::Film(film, range, format) => Job::Film {
                 film,
                 range,
                 // The frames go beside `output`, whose folder reserving it
                 // has checked (it is not written itself); the APNG is
                 // reserved now, so a bad name fails before the first frame.
-                stem: frame_stem(output.path()),
+                files: FrameFiles::of(output.path()),
+                format,
                 apng: cli.apng.as_deref().map(reserve).transpose()?,
                 rasters: Vec::new(),
                 tile: cli.farm.tile,
@@ -379,6 +403,22 @@ impl Job {
         })
     }
 
+    /// A film's frames to render.
+    fn range(&self) -> Option<FrameRange> {
+        match self {
+            Job::Still { .. } => None,
+            Job::Film { range, .. } => Some(*range),
+        }
+    }
+
+    /// Tells what a signal's stop would keep: a film's `frame` is written
+    /// whole.
+    fn done(&self, frame: Frame) {
+        if let Job::Film { .. } = self {
+            stopped::frame_done(frame.number, self.file_of(frame).0);
+        }
+    }
+
     /// The frames to render, in order.
     fn frames(&self) -> Vec<Frame> {
         match self {
@@ -391,7 +431,7 @@ impl Job {
     fn file_of(&self, frame: Frame) -> (PathBuf, Option<Tile>) {
         match self {
             Job::Still { path, tile, .. } => (path.clone(), *tile),
-            Job::Film { film, stem, tile, .. } => (frame_path(stem, frame.number, film.frames), *tile),
+            Job::Film { film, files, tile, .. } => (files.path(frame.number, film.frames), *tile),
         }
     }
 
@@ -453,10 +493,7 @@ impl Job {
                 ..
             } => {
                 let (format, height) = (*format, prepared.scene().image.height);
-                commit(output, |w| match tile {
-                    Some(t) => write_tile(&render.raster, *t, height, w),
-                    None => format.write(&render.raster, w),
-                })?;
+                commit(output, |w| write_frame(&render, format, *tile, height, w))?;
                 commit(png, |w| Format::Png.write(&render.raster, w))?;
                 if debug.is_some() {
                     let log = raytrace::raytrace::debug_log(prepared, &render);
@@ -465,17 +502,19 @@ impl Job {
             }
             Job::Film {
                 film,
-                stem,
+                files,
+                format,
                 apng,
                 rasters,
                 tile,
                 ..
             } => {
-                let path = frame_path(stem, frame.number, film.frames);
+                let path = files.path(frame.number, film.frames);
                 let height = prepared.scene().image.height;
-                match tile {
-                    Some(t) => write_atomically(&path, |w| write_tile(&render.raster, *t, height, w)),
-                    None => raytrace::raster::outputframe(&path, &render.raster),
+                match (*tile, *format) {
+                    // The thesis's `outputframe`, a frame's raster file.
+                    (None, Format::SunRaster) => raytrace::raster::outputframe(&path, &render.raster),
+                    _ => write_atomically(&path, |w| write_frame(&render, *format, *tile, height, w)),
                 }
                 .map_err(|e| not_written(&path, e))?;
                 if apng.is_some() {
@@ -501,14 +540,14 @@ impl Job {
             Job::Film {
                 film,
                 range,
-                stem,
+                files,
                 apng,
                 ..
             } => (
                 format!(
                     "{} … {}{}",
-                    frame_path(stem, range.first, film.frames).display(),
-                    frame_path(stem, range.last, film.frames).display(),
+                    files.path(range.first, film.frames).display(),
+                    files.path(range.last, film.frames).display(),
                     and(apng)
                 ),
                 Some(format!("frames {}..{} of {}", range.first, range.last, film.frames)),
@@ -527,6 +566,22 @@ impl Job {
             } => write_apng(file, &rasters, film.rate),
             _ => Ok(()),
         }
+    }
+}
+
+/// Writes a frame's render (a still's, or a film's frame) in `format`, or
+/// with `tile` its band as `tools join --tiles` reads it: an image of
+/// `height` rows in all.
+fn write_frame(
+    render: &Render,
+    format: Format,
+    tile: Option<Tile>,
+    height: usize,
+    w: &mut dyn std::io::Write,
+) -> Result<(), raytrace::raster::RasterError> {
+    match tile {
+        Some(t) => write_tile(&render.raster, t, height, w),
+        None => format.write_render(&render.raster, &render.colours, w),
     }
 }
 
@@ -557,20 +612,6 @@ fn write_apng(_file: PendingFile, _rasters: &[Raster], _rate: u32) -> Result<(),
     Ok(())
 }
 
-/// The progress bar over `rows` rows of pixels (hidden with `--quiet`).
-fn progress_bar(quiet: bool, rows: u64) -> Result<ProgressBar, Failure> {
-    if quiet {
-        return Ok(ProgressBar::hidden());
-    }
-    let bar = ProgressBar::with_draw_target(Some(rows), ProgressDrawTarget::stderr());
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows, {elapsed} (eta {eta})")
-            .map_err(Failure::other)?
-            .progress_chars("=> "),
-    );
-    Ok(bar)
-}
-
 /// The flags of a film checked against its `film` record before any output
 /// is reserved: the frames to render.
 fn check_film(cli: &Cli, film: &FilmRecord, file_name: &str, output: &Path) -> Result<FrameRange, Failure> {
@@ -578,10 +619,11 @@ fn check_film(cli: &Cli, film: &FilmRecord, file_name: &str, output: &Path) -> R
         Some(text) => FrameRange::parse(text, film.frames).map_err(Failure::usage)?,
         None => film.all(),
     };
-    let ras = |e: &std::ffi::OsStr| e.eq_ignore_ascii_case("ras");
-    if output.as_os_str() == STDOUT || is_stream(output) || output.extension().is_some_and(|e| !ras(e)) {
+    let known = output.extension().is_none() || Format::of(output).is_ok();
+    if output.as_os_str() == STDOUT || is_stream(output) || !known {
         return Err(Failure::usage(format!(
-            "-o {}: a film writes one Sun raster per frame, STEM.0001.ras …; name them with -o STEM.ras",
+            "-o {}: a film writes one file per frame, STEM.0001.ras …; name them with -o STEM.ras \
+             (or STEM.png, .ppm, .pnm, .exr)",
             output.display()
         )));
     }
@@ -699,6 +741,14 @@ fn check_farm_names(cli: &Cli) -> Result<(), Failure> {
         )));
     }
     Ok(())
+}
+
+/// Whether `--resume` could go on from a run of these flags: its outputs
+/// are the Sun rasters it checks ([`check_farm_names`] with it).
+fn resumable(cli: &Cli) -> bool {
+    let mut with_resume = cli.clone();
+    with_resume.farm.resume = true;
+    check_farm_names(&with_resume).is_ok()
 }
 
 /// The summary line's words for the rays a pixel: M×M subpixels, or the

@@ -84,9 +84,9 @@ pub(super) struct Library<'a> {
     unknown: Option<UnknownPath>,
     /// The files that include the one being read, the deck first.
     outer: Vec<Includer<'a>>,
-    /// The deck and the files being read, the deck first: each one's path
-    /// as the system resolves it (when it is a file) and its name.
-    open: Vec<(Option<PathBuf>, Arc<str>)>,
+    /// The deck and the files being read, the deck first: each one's
+    /// identity (when it is a file) and its name.
+    open: Vec<(Option<FileId>, Arc<str>)>,
     /// The bytes the included files may still take.
     bytes_left: usize,
     /// The `include` records read so far.
@@ -100,7 +100,7 @@ impl Library<'_> {
     pub fn new(deck_bytes: usize, file_name: &str, deck_dir: &std::path::Path) -> Self {
         let own = std::path::Path::new(file_name)
             .file_name()
-            .and_then(|n| std::fs::canonicalize(deck_dir.join(n)).ok());
+            .and_then(|n| FileId::of(&deck_dir.join(n)));
         Library {
             paths: HashMap::new(),
             unknown: None,
@@ -109,6 +109,35 @@ impl Library<'_> {
             bytes_left: MAX_DECK_BYTES.saturating_sub(deck_bytes),
             files_read: 0,
         }
+    }
+}
+
+/// A file as the system knows it: its device and inode, so that a hard
+/// link (another name of the same file) is the file it links, and its path
+/// resolved (symbolic links and `..` followed), which tells a hard link
+/// from a name of the same path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct FileId {
+    device: u64,
+    inode: u64,
+    resolved: PathBuf,
+}
+
+impl FileId {
+    /// The file at `path`, if there is one.
+    fn of(path: &std::path::Path) -> Option<FileId> {
+        use std::os::unix::fs::MetadataExt;
+        let m = std::fs::metadata(path).ok()?;
+        Some(FileId {
+            device: m.dev(),
+            inode: m.ino(),
+            resolved: std::fs::canonicalize(path).ok()?,
+        })
+    }
+
+    /// Whether both are one file, under one name or two.
+    fn same_file(&self, other: &FileId) -> bool {
+        (self.device, self.inode) == (other.device, other.inode)
     }
 }
 
@@ -248,23 +277,15 @@ impl Builder<'_> {
                 format!("a deck may include at most {MAX_INCLUDES} files in all, counting each include"),
             ));
         }
-        let resolved = std::fs::canonicalize(&path).ok();
-        if let Some(k) = resolved
-            .as_ref()
-            .and_then(|r| self.lib.open.iter().position(|(o, _)| o.as_ref() == Some(r)))
-        {
-            let chain: Vec<String> = self.lib.open[k..]
+        let resolved = FileId::of(&path);
+        if let Some((k, id)) = resolved.as_ref().and_then(|r| {
+            self.lib
+                .open
                 .iter()
-                .map(|(_, n)| shown(n))
-                .chain(std::iter::once(shown(&name)))
-                .collect();
-            return Err(self.p.error_at(
-                file_pos,
-                format!(
-                    "an include cycle: {} (a file may not include itself)",
-                    chain.join(" includes ")
-                ),
-            ));
+                .position(|(o, _)| o.as_ref().is_some_and(|o| o.same_file(r)))
+                .map(|k| (k, r))
+        }) {
+            return Err(self.p.error_at(file_pos, self.cycle(k, id, &name)));
         }
         let mut bytes = Vec::new();
         std::fs::File::open(&path)
@@ -291,6 +312,28 @@ impl Builder<'_> {
         self.lib.outer.push(Includer { p, dir });
         self.lib.open.push((resolved, name));
         Ok(())
+    }
+
+    /// The error of an include of `name` (the file `id`) that closes a
+    /// cycle: the files round it from `open[k]`, which `name` is; a hard
+    /// link, another path to the same file, is said to be one.
+    fn cycle(&self, k: usize, id: &FileId, name: &str) -> String {
+        let (first, first_name) = &self.lib.open[k];
+        let chain: Vec<String> = self.lib.open[k..]
+            .iter()
+            .map(|(_, n)| shown(n))
+            .chain(std::iter::once(shown(name)))
+            .collect();
+        let link = match first {
+            Some(f) if f.resolved != id.resolved => {
+                format!(", which is {} under another name (a hard link)", shown(first_name))
+            }
+            _ => String::new(),
+        };
+        format!(
+            "an include cycle: {}{link} (a file may not include itself)",
+            chain.join(" includes ")
+        )
     }
 
     /// At the end of an included file: back to the file that included it,

@@ -165,8 +165,9 @@
 //!   each time it is included; the error at the first byte past the limit,
 //!   in the file where it falls), at most [`MAX_INCLUDES`] includes are
 //!   read, files nest at most [`MAX_INCLUDE_DEPTH`] deep, and a file that
-//!   includes itself, directly or not (the same file as the system resolves
-//!   paths), is an error at the `include` that closes the cycle.
+//!   includes itself, directly or not (the same file by its device and
+//!   inode, so a hard link too), is an error at the `include` that closes
+//!   the cycle.
 //!
 //! # Film
 //! - `film FRAMES [shutter S] [rate FPS]` (the port's extension,

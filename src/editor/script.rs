@@ -13,6 +13,37 @@
 use super::model::Edit;
 use crate::types::{CurveKind, PrimitiveClass};
 
+/// The most bytes a script may have: a deck's limit
+/// ([`crate::deck::MAX_DECK_BYTES`], 64 MiB), far past any script of edits.
+pub const MAX_SCRIPT_BYTES: usize = crate::deck::MAX_DECK_BYTES;
+
+/// Reads a script's text from `reader`, named `file` in errors: no more
+/// than [`MAX_SCRIPT_BYTES`] and one byte, so a source without end
+/// (`--script /dev/zero`, `yes | contour … --script -`) ends with an error
+/// at the byte past the limit (`FILE:LINE: …`) rather than taking all
+/// memory.
+pub fn read(reader: impl std::io::Read, file: &str) -> Result<String, String> {
+    read_within(reader, file, MAX_SCRIPT_BYTES)
+}
+
+/// [`read`] with another limit.
+fn read_within(reader: impl std::io::Read, file: &str, limit: usize) -> Result<String, String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    reader
+        .take(limit as u64 + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("{file}: {e}"))?;
+    if bytes.len() > limit {
+        let line = 1 + bytes[..limit].iter().filter(|&&b| b == b'\n').count();
+        return Err(format!(
+            "{file}:{line}: the script is larger than {} MiB, the most the editor reads",
+            limit >> 20
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| format!("{file}: the script is not UTF-8 text ({e})"))
+}
+
 /// An edit of the script and the line it stands on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScriptLine {
@@ -102,6 +133,21 @@ fn edit(words: &[&str]) -> Result<Edit, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A source without end is read no further than the limit and one
+    /// byte; the error names the line of the byte past it.
+    #[test]
+    fn a_script_is_read_to_its_limit_and_no_further() {
+        let endless = std::io::repeat(b'\n');
+        let e = read_within(endless, "s", 10).unwrap_err();
+        assert_eq!(e, "s:11: the script is larger than 0 MiB, the most the editor reads");
+        let e = read(std::io::repeat(0), "<stdin>").unwrap_err();
+        assert!(e.starts_with("<stdin>:1: the script is larger than 64 MiB"), "{e}");
+        assert_eq!(read_within(&b"move 1 0 0\n"[..], "s", 11).unwrap(), "move 1 0 0\n");
+        assert!(read_within(&b"\xff"[..], "s", 11)
+            .unwrap_err()
+            .starts_with("s: the script is not UTF-8"));
+    }
 
     #[test]
     fn every_edit_reads_with_points_from_one() {

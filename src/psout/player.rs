@@ -220,8 +220,8 @@ impl Player {
     }
 
     /// `elapsed` has passed: a playing film moves on by whole frames at its
-    /// rate, from the last frame back to the first. True if the frame
-    /// changed.
+    /// rate, forward, and after the last from the first again. True if the
+    /// frame changed.
     pub fn tick(&mut self, elapsed: Duration) -> bool {
         if !self.is_film() || self.paused {
             return false;

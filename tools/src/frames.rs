@@ -70,6 +70,6 @@ mod tests {
             Path::new("raster/fig5_10_frames.png")
         );
         let ignore = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../.gitignore")).unwrap();
-        assert!(ignore.lines().any(|l| l == "/raster/*.png"));
+        assert!(ignore.lines().any(|l| l == "/raster/*"));
     }
 }

@@ -16,10 +16,22 @@ const STRIP_GAP: usize = 4;
 
 /// Reads `files` in order (all one size), writes them to `out` as an APNG
 /// at `rate` frames a second and, with `strip`, frames 1, 1+N, 1+2N, …
-/// side by side to a PNG.
-pub fn join(files: &[PathBuf], out: &Path, rate: u32, strip: Option<(&Path, usize)>) -> Result<(), String> {
-    let frames = read_sequence(files).map_err(|e| e.to_string())?;
-    write_apng(out, &frames, rate).map_err(|e| format!("{}: {e}", out.display()))?;
+/// side by side to a PNG. As in every program: a name that is not a PNG
+/// is a usage error, found before any frame is read, and a frame that
+/// cannot be read an input error (both exit 2); a file that cannot be
+/// written is exit 1.
+pub fn join(files: &[PathBuf], out: &Path, rate: u32, strip: Option<(&Path, usize)>) -> Result<(), Failure> {
+    for (flag, path) in std::iter::once(("-o", out)).chain(strip.map(|(p, _)| ("--strip", p))) {
+        if Format::of(path).ok() != Some(Format::Png) {
+            return Err(Failure::usage(format!(
+                "{flag} '{}': an animated PNG or a strip is a PNG, so the name must end in .png",
+                path.display()
+            )));
+        }
+    }
+    let frames = read_sequence(files).map_err(Failure::input)?;
+    let not_written = |path: &Path, e: &dyn std::fmt::Display| Failure::other(format!("{}: {e}", path.display()));
+    write_apng(out, &frames, rate).map_err(|e| not_written(out, &e))?;
     let size = std::fs::metadata(out).map(|m| m.len()).unwrap_or(0);
     println!(
         "wrote {} ({} frames, {} fps, {} bytes)",
@@ -31,7 +43,7 @@ pub fn join(files: &[PathBuf], out: &Path, rate: u32, strip: Option<(&Path, usiz
     if let Some((path, every)) = strip {
         let picked: Vec<&Raster> = frames.iter().step_by(every.max(1)).collect();
         let s = strip_of(&picked);
-        write_png(path, &s).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_png(path, &s).map_err(|e| not_written(path, &e))?;
         println!(
             "wrote {} ({} frames, every {})",
             path.display(),

@@ -163,11 +163,13 @@ enum Command {
         every: u64,
     },
     /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives
-    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe).
+    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe),
+    /// paints as POV-Ray patterns and textures as image maps.
     Pov {
         /// The deck (a path, or a shipped deck's name such as fig5_8).
         deck: String,
-        /// The SDL file to write.
+        /// The SDL file to write; each texture's picture goes beside it as
+        /// NAME.SURFACE.png (run povray in that folder).
         #[arg(short, long)]
         out: PathBuf,
         // The listing's window is taller: the fidelity matters to the export.
@@ -278,6 +280,14 @@ fn bench(deck: &std::path::Path, runs: usize, render: &RenderArgs) -> Result<(),
     tools::bench::bench(&deck.name, &scene, runs.max(1), &pool).map_err(Failure::other)
 }
 
+/// A deck a tool reads (a path, or a shipped deck's name), read first so
+/// that a bad one is an input error (exit 2), as in every program, before
+/// the tool's own work.
+fn readable(deck: &std::path::Path, fidelity: raytrace::options::Fidelity) -> Result<(), Failure> {
+    let path = tools::decks::deck_path(&deck.to_string_lossy());
+    DeckInput::read(&path)?.initialize(fidelity).map(drop)
+}
+
 /// Runs a command: the render flags' and the decks' errors are the
 /// library's kinds; the tools' own are messages (exit 1).
 fn run(command: Command) -> Result<(), Failure> {
@@ -286,10 +296,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Pov { deck, out, fidelity } => {
             let fidelity = fidelity.fidelity;
             let scene = tools::decks::load(&deck, fidelity).map_err(Failure::input)?;
-            std::fs::write(&out, tools::pov::scene_sdl(&scene, fidelity))
-                .map_err(|e| Failure::other(format!("{}: {e}", out.display())))?;
-            println!("wrote {}", out.display());
-            Ok(())
+            return tools::pov::write(&scene, fidelity, &out);
         }
         Command::Texture { dir } => tools::textures::write_textures(&dir),
         Command::Frames {
@@ -298,7 +305,10 @@ fn run(command: Command) -> Result<(), Failure> {
             times,
             size,
             fidelity,
-        } => tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity),
+        } => {
+            readable(&deck, fidelity.fidelity)?;
+            tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity)
+        }
         Command::Gallery { only, check, list } => {
             if list {
                 for p in tools::gallery::GALLERY {
@@ -311,6 +321,7 @@ fn run(command: Command) -> Result<(), Failure> {
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
+            readable(&deck, Default::default())?;
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
         Command::Stability { out } => tools::stability::run(&out),
@@ -351,7 +362,10 @@ fn run(command: Command) -> Result<(), Failure> {
             point,
             runs,
             threads,
-        } => tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256)),
+        } => {
+            readable(&deck, Default::default())?;
+            tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256))
+        }
         Command::Fuzz {
             target,
             seed,
@@ -372,7 +386,7 @@ fn run(command: Command) -> Result<(), Failure> {
             strip,
             every,
             ..
-        } => tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
+        } => return tools::join::join(&files, &out, rate, strip.as_deref().map(|s| (s, every as usize))),
         Command::VsPovray {
             decks,
             size,

@@ -22,8 +22,21 @@
 //! A uniform cubic B-spline contour is converted to Bezier segments
 //! exactly (each segment's four Bezier points from its four B-spline
 //! points). Not exported, and said so in the file: motion and key frames
-//! (the scene stands as at rest, a key-frame object as its first shape),
-//! paints and textures (the surface's plain colour).
+//! (the scene stands as at rest, a key-frame object as its first shape).
+//!
+//! Paints and textures ([`pigment`]) are painted where our renderer
+//! paints them (`shapes::face_coords`): `floor` is POV-Ray's `checker`,
+//! moved and scaled so that its squares are `floortest`'s; `star` and
+//! `floorstar` are `function` patterns of `startest`'s and `floorstar`'s
+//! inequalities (with the listing's whole odd tiles under
+//! `--fidelity listing`, erratum 6); a texture is an `image_map` of the
+//! texture raster, written beside the .pov as a PNG ([`Export::images`]):
+//! on each of a block's six faces (the block is written as six polygons,
+//! each with its picture placed as ours is), around a cylinder's side
+//! (`map_type 2`) with its caps and every other shape projected along
+//! local z. A paint on a block follows its top and bottom faces (the
+//! checker and stars of a floor); on the sides, and on a cylinder's side,
+//! it is the pattern through the solid, not ours.
 //!
 //! Cook's distributed ray tracing (the port's extension, docs/cook.md):
 //! a `lens` of aperture > 0 becomes the camera's focal blur
@@ -35,11 +48,13 @@
 use std::fmt::Write as _;
 
 use raytrace::options::Fidelity;
+use raytrace::raster::Raster;
 use raytrace::raytrace::{getangle, translookpt};
 use raytrace::scene::{LightRecord, Scene};
 use raytrace::shapes::sweep::segment_points;
 use raytrace::types::{
-    CurveKind, DMat4, DVec3, PrimitiveClass, Shape, SurfaceAttribute, SurfaceRecord, SweepShape, MAXSEGMENTS,
+    CurveKind, DMat4, DVec3, ObjectRecord, Paint, PaintKind, PrimitiveClass, Shape, SurfaceAttribute, SurfaceRecord,
+    SweepShape, MAXSEGMENTS,
 };
 
 /// A point or vector of our world as POV-Ray's: (x, y, z) → <x, z, y>.
@@ -125,21 +140,13 @@ fn pov_matrix(m: &DMat4) -> String {
     format!("matrix <{body}>")
 }
 
-/// The pigment, finish and interior of a surface.
-fn texture(s: &SurfaceRecord) -> String {
-    let c = s.color;
+/// The finish and interior of a surface, after `pigment` (its colour,
+/// paint or texture: [`pigment`]).
+fn texture(s: &SurfaceRecord, pigment: &str) -> String {
     let mut out = String::new();
-    let filter = match s.surface {
-        SurfaceAttribute::Transparent | SurfaceAttribute::Crystal => s.kt.clamp(0.0, 1.0),
-        _ => 0.0,
-    };
     let _ = write!(
         out,
-        "pigment {{ rgbf <{}, {}, {}, {}> }} finish {{ ambient rgb <{}, {}, {}> diffuse {}",
-        num(c.x),
-        num(c.y),
-        num(c.z),
-        num(filter),
+        "{pigment} finish {{ ambient rgb <{}, {}, {}> diffuse {}",
         num(s.ka * s.iobject.x),
         num(s.ka * s.iobject.y),
         num(s.ka * s.iobject.z),
@@ -149,16 +156,231 @@ fn texture(s: &SurfaceRecord) -> String {
         let _ = write!(out, " reflection {}", num(s.ks * s.prcntrfl));
     }
     out.push_str(" }");
-    if filter > 0.0 {
+    if filter(s) > 0.0 {
         let _ = write!(out, " interior {{ ior {} }}", num(s.index));
-    }
-    if s.paint.is_some() || s.texture.is_some() {
-        out.push_str(" /* the paint or texture is not exported */");
     }
     if s.gloss > 0.0 {
         out.push_str(" /* gloss is not exported */");
     }
     out
+}
+
+/// The share of light a surface lets through, as POV-Ray's `filter`.
+fn filter(s: &SurfaceRecord) -> f64 {
+    match s.surface {
+        SurfaceAttribute::Transparent | SurfaceAttribute::Crystal => s.kt.clamp(0.0, 1.0),
+        _ => 0.0,
+    }
+}
+
+/// A colour with the surface's filter, `rgbf <r, g, b, f>`.
+fn rgbf(c: DVec3, filter: f64) -> String {
+    format!("rgbf <{}, {}, {}, {}>", num(c.x), num(c.y), num(c.z), num(filter))
+}
+
+/// Where `face_coords` puts a paint's or a texture's coordinates (s, t) on
+/// an object, in its local frame (ours: x, y, z): from the corner
+/// (−`corner.x`, −`corner.y`) of the x–y plane, s along x and t along y,
+/// projected along z, which spans −`depth`..`depth`: a block's top face,
+/// and every shape's but a block's side faces and a cylinder's side.
+struct Plane {
+    corner: (f64, f64),
+    depth: f64,
+}
+
+impl Plane {
+    fn of(obj: &ObjectRecord) -> Plane {
+        match &obj.shape {
+            Shape::Block { lengths } => Plane {
+                corner: (lengths.x / 2.0, lengths.y / 2.0),
+                depth: lengths.z / 2.0,
+            },
+            _ => Plane {
+                corner: (obj.radius, obj.radius),
+                depth: obj.radius,
+            },
+        }
+    }
+
+    /// POV-Ray's expression of s·`ls` (x the POV local x, our x) and of
+    /// t·`lt` (POV z, our y).
+    fn scaled(&self, ls: f64, lt: f64) -> (String, String) {
+        (
+            format!("((x+{})*{})", num(self.corner.0), num(ls)),
+            format!("((z+{})*{})", num(self.corner.1), num(lt)),
+        )
+    }
+}
+
+/// 1/`l`, for a pattern scaled by `l` cells a unit; a huge scale for a
+/// pattern of no cells (`scale 0 0`, one colour everywhere, as
+/// `floortest` of 0 gives).
+fn inverse(l: f64) -> f64 {
+    if l.abs() > 1e-9 {
+        1.0 / l
+    } else {
+        1e9
+    }
+}
+
+/// The pigment of a surface on `obj`: its colour, its paint's pattern
+/// (`floortest`, `startest`, `floorstar` of unit `proc`, painted where our
+/// renderer paints them), or its texture's picture, `image` (the PNG
+/// written beside the .pov), projected along local z; a block's and a
+/// cylinder's textures are placed face by face by [`textured_sdl`].
+pub fn pigment(s: &SurfaceRecord, obj: &ObjectRecord, fidelity: Fidelity, image: Option<&str>) -> String {
+    let f = filter(s);
+    let plane = Plane::of(obj);
+    if let (Some(_), Some(file)) = (&s.texture, image) {
+        // The unit square of the picture, bottom left at its origin, made
+        // the face's (2·corner) and turned from the x–y plane into POV's
+        // x–z (ours x–y).
+        return format!(
+            "pigment {{ image_map {{ png \"{file}\" once filter all {} }} scale <{}, {}, 1> rotate x*90 translate <{}, 0, {}> }}",
+            num(f),
+            num(2.0 * plane.corner.0),
+            num(2.0 * plane.corner.1),
+            num(-plane.corner.0),
+            num(-plane.corner.1)
+        );
+    }
+    let Some(paint) = &s.paint else {
+        return format!("pigment {{ {} }}", rgbf(s.color, f));
+    };
+    let (painted, own) = (rgbf(paint.color, f), rgbf(s.color, f));
+    let function =
+        |body: String| format!("pigment {{ function {{ {body} }} color_map {{ [0 {own}] [1 {painted}] }} }}");
+    match paint.kind {
+        // round(s·lx) mod 2 + round(t·ly) mod 2 even is POV's first
+        // colour: floor(X) + floor(Y) + floor(Z) even with X = s·lx + ½,
+        // Z = t·ly + ½ and Y in [0, 1) across the object.
+        PaintKind::Floor => format!(
+            "pigment {{ checker {painted} {own} scale <{}, {}, {}> translate <{}, {}, {}> }}",
+            num(inverse(paint.lengthx)),
+            num(4.0 * plane.depth + 1.0),
+            num(inverse(paint.lengthy)),
+            num(-plane.corner.0 - 0.5 * inverse(paint.lengthx)),
+            num(-plane.depth),
+            num(-plane.corner.1 - 0.5 * inverse(paint.lengthy))
+        ),
+        PaintKind::Star => function(star_function(paint, obj.radius)),
+        PaintKind::Floorstar => function(floorstar_function(paint, &plane, fidelity)),
+    }
+}
+
+/// `startest(x·lx, y, z·ly, 1)` of the point scaled to the unit sphere:
+/// the two triangles of the hexagram in the x–z plane (ours; POV's x–y),
+/// 1 inside, 0 outside.
+fn star_function(paint: &Paint, radius: f64) -> String {
+    let r = if radius > 0.0 { radius } else { 1.0 };
+    let x = format!("(x*{})", num(paint.lengthx / r));
+    let w = format!("(y*{})", num(paint.lengthy / r));
+    let t = num(3f64.sqrt());
+    let t9 = num(3f64.sqrt() / 9.0);
+    format!(
+        "(({w}-{t9}<0)&({t}*{x}+{w}+2*{t9}>0)&({t}*{x}-{w}-2*{t9}<0))|(({w}+{t9}>0)&({t}*{x}+{w}-2*{t9}<0)&({t}*{x}-{w}+2*{t9}>0))"
+    )
+}
+
+/// `floorstar(s, t, lx, ly)`: the tiles of 3×3 of the scaled coordinates
+/// (`while tx > 3 do tx := tx − 3`: tile max(0, ⌈tx/3⌉ − 1)), and in the
+/// odd ones the two triangles of a star; under the listing the whole odd
+/// tile (erratum 6). 1 painted, 0 not.
+fn floorstar_function(paint: &Paint, plane: &Plane, fidelity: Fidelity) -> String {
+    let (tx, ty) = plane.scaled(paint.lengthx, paint.lengthy);
+    let tile = |t: &str| format!("max(0,ceil({t}/3)-1)");
+    let (xx, yy) = (tile(&tx), tile(&ty));
+    let (rx, ry) = (format!("({tx}-3*{xx})"), format!("({ty}-3*{yy})"));
+    let odd = format!("(mod({xx}+{yy},2)>0.5)");
+    let first = format!("(({rx}*15+{ry}*10-27.5>=0)&({ry}<=2)&({rx}*1.5-{ry}-1.75<=0))");
+    let second = format!("(({rx}*15+{ry}*10-47.5<=0)&({ry}>=1)&({rx}*1.5-{ry}+0.25>=0))");
+    match fidelity {
+        Fidelity::Listing => odd,
+        Fidelity::Thesis => format!("{odd}&({first}|{second})"),
+    }
+}
+
+/// A textured block or cylinder as its faces, each with its picture where
+/// `face_coords` puts it: a block's six faces as polygons (s along the
+/// face's first axis, t its second, from the corner ours measures from);
+/// a cylinder's side by POV-Ray's cylindrical map (the angle from local +x
+/// counter-clockwise, as ours unrolls it; the height from `bottom`) and
+/// its caps by the projection along z. `None` for other shapes, whose
+/// pictures [`pigment`] projects.
+pub fn textured_sdl(obj: &ObjectRecord, s: &SurfaceRecord, image: &str, matrix: &str) -> Option<String> {
+    let f = num(filter(s));
+    let finish = texture(s, "");
+    let faces: Vec<String> = match &obj.shape {
+        Shape::Block { lengths } => {
+            let h = *lengths * 0.5;
+            // Each face: the corner where s = t = 0, the s and t axes
+            // (as long as the face), and the outward normal.
+            let x = DVec3::X * lengths.x;
+            let y = DVec3::Y * lengths.y;
+            let z = DVec3::Z * lengths.z;
+            let faces = [
+                (DVec3::new(-h.x, -h.y, h.z), x, y, DVec3::Z),
+                (DVec3::new(-h.x, h.y, -h.z), x, -y, -DVec3::Z),
+                (DVec3::new(h.x, h.y, -h.z), -x, z, DVec3::Y),
+                (DVec3::new(-h.x, -h.y, -h.z), x, z, -DVec3::Y),
+                (DVec3::new(h.x, -h.y, -h.z), y, z, DVec3::X),
+                (DVec3::new(-h.x, h.y, -h.z), -y, z, -DVec3::X),
+            ];
+            faces
+                .iter()
+                .map(|&(o, es, et, n)| {
+                    let corners = [o, o + es, o + es + et, o + et, o];
+                    let points: Vec<String> = corners.iter().map(|&c| pov_vec(c)).collect();
+                    let frame = [es, et, n, o].map(|v| pov_vec(v).trim_matches(['<', '>']).to_string());
+                    format!(
+                        "polygon {{ 5, {} pigment {{ image_map {{ png \"{image}\" once filter all {f} }} matrix <{}> }} }}",
+                        points.join(", "),
+                        frame.join(", ")
+                    )
+                })
+                .collect()
+        }
+        Shape::Cylinder {
+            cylradius, top, bottom, ..
+        } => {
+            let r = num(*cylradius);
+            let planar = pigment(s, obj, Fidelity::Thesis, Some(image));
+            vec![
+                format!(
+                    "cylinder {{ <0, {}, 0>, <0, {}, 0>, {r} open pigment {{ image_map {{ png \"{image}\" map_type 2 filter all {f} }} scale <1, {}, 1> translate <0, {}, 0> }} }}",
+                    num(*bottom),
+                    num(*top),
+                    num(top - bottom),
+                    num(*bottom)
+                ),
+                format!("disc {{ <0, {}, 0>, <0, 1, 0>, {r} {planar} }}", num(*top)),
+                format!("disc {{ <0, {}, 0>, <0, -1, 0>, {r} {planar} }}", num(*bottom)),
+            ]
+        }
+        _ => return None,
+    };
+    Some(format!(
+        "union {{ {} {} {matrix} }}",
+        faces.join(" "),
+        finish.trim_start()
+    ))
+}
+
+/// The PNG of a surface's texture beside the .pov `stem`: `STEM.SURFACE.png`,
+/// the surface's name with any character but a letter, a digit, `-` or `_`
+/// made `_`.
+pub fn image_name(stem: &str, surface: &str) -> String {
+    let word: String = surface
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("{stem}.{word}.png")
 }
 
 /// A 2-D spline point list, four points a Bezier segment.
@@ -279,8 +501,66 @@ pub fn area_light(light: &LightRecord, samples: usize) -> String {
     format!(" area_light <{d}, 0, 0>, <0, 0, {d}>, {n}, {n} jitter circular orient")
 }
 
-/// The whole scene as POV-Ray 3.7 SDL (see the module doc).
+/// A scene exported: its SDL, and the texture pictures it names, to be
+/// written beside it under their names.
+pub struct Export {
+    pub sdl: String,
+    pub images: Vec<(String, Raster)>,
+}
+
+/// The whole scene as POV-Ray 3.7 SDL (see the module doc), its textures'
+/// pictures named `image_stem.SURFACE.png` ([`image_name`]).
+pub fn export(scene: &Scene, fidelity: Fidelity, image_stem: &str) -> Export {
+    let mut images = Vec::new();
+    for s in &scene.surfaces {
+        if let Some(t) = &s.texture {
+            let raster = Raster {
+                width: t.width,
+                height: t.height,
+                pixels: t.texels.clone(),
+            };
+            images.push((image_name(image_stem, &s.name), raster));
+        }
+    }
+    Export {
+        sdl: sdl(scene, fidelity, image_stem),
+        images,
+    }
+}
+
+/// `tools pov DECK -o SCENE.pov`: the SDL to `out`, and each texture's
+/// picture beside it as `SCENE.SURFACE.png`, which the SDL names (POV-Ray
+/// looks for it in the folder it runs in: run it in `out`'s folder).
+pub fn write(scene: &Scene, fidelity: Fidelity, out: &std::path::Path) -> Result<(), raytrace::exit::Failure> {
+    let failed = |path: &std::path::Path, e: &dyn std::fmt::Display| {
+        raytrace::exit::Failure::other(format!("{}: {e}", path.display()))
+    };
+    let stem = out
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let export = export(scene, fidelity, &stem);
+    let folder = out.parent().unwrap_or(std::path::Path::new(""));
+    for (name, raster) in &export.images {
+        let path = folder.join(name);
+        raytrace::raster::write_png(&path, raster).map_err(|e| failed(&path, &e))?;
+        println!("wrote {}", path.display());
+    }
+    raytrace::output::write_atomically(out, |w| {
+        w.write_all(export.sdl.as_bytes())
+            .map_err(raytrace::output::OutputError::from)
+    })
+    .map_err(|e| failed(out, &e))?;
+    println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// The whole scene as POV-Ray 3.7 SDL, its textures' pictures named
+/// `texture.SURFACE.png` ([`export`] names them and gives them).
 pub fn scene_sdl(scene: &Scene, fidelity: Fidelity) -> String {
+    sdl(scene, fidelity, "texture")
+}
+
+fn sdl(scene: &Scene, fidelity: Fidelity, image_stem: &str) -> String {
     let mut out = String::new();
     let [location, direction, right, up] = camera(scene, fidelity);
     let _ = writeln!(
@@ -334,8 +614,18 @@ pub fn scene_sdl(scene: &Scene, fidelity: Fidelity) -> String {
             let _ = writeln!(out, "// {}: no segment, not exported", obj.name);
             continue;
         };
-        let tex = scene.surfaces.get(obj.surface).map(texture).unwrap_or_default();
-        let _ = writeln!(out, "{shape} {tex} {} }} // {}", pov_matrix(&obj.transfm), obj.name);
+        let Some(surface) = scene.surfaces.get(obj.surface) else {
+            let _ = writeln!(out, "{shape} {} }} // {}", pov_matrix(&obj.transfm), obj.name);
+            continue;
+        };
+        let image = surface.texture.as_ref().map(|_| image_name(image_stem, &surface.name));
+        let matrix = pov_matrix(&obj.transfm);
+        if let Some(faces) = image.as_deref().and_then(|i| textured_sdl(obj, surface, i, &matrix)) {
+            let _ = writeln!(out, "{faces} // {}", obj.name);
+            continue;
+        }
+        let tex = texture(surface, &pigment(surface, obj, fidelity, image.as_deref()));
+        let _ = writeln!(out, "{shape} {tex} {matrix} }} // {}", obj.name);
     }
     out
 }

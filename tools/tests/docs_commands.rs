@@ -20,9 +20,9 @@
 //! - The programs are this build's, through shims first on PATH: `cargo run
 //!   [-p P] [--bin B] -- ARGS` runs B's binary with ARGS; `raytrace` renders
 //!   at `--size 32x32` unless the line sets a size; `psout` writes
-//!   `--screenshot psout-window.png` unless the line does (a window needs a
+//!   `--screenshot raster/psout-window.png` unless the line does (a window needs a
 //!   display and waits for a key), and so does `contour` (`--screenshot
-//!   contour-window.png`) unless it writes something else (`-o`, `--list`);
+//!   raster/contour-window.png`) unless it writes something else (`-o`, `--list`);
 //!   a `raytrace --show` or `--watch` line is not run (a window that waits
 //!   for a key) but must parse; `tools bench` renders at 32×32 and `tools
 //!   fuzz` tries 300 inputs unless the line says otherwise.
@@ -60,7 +60,8 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 
 use doc_lines::{
-    anchors, blocks, code_of, flags, inline_spans, is_synopsis, links, named, names_a_program, words, DocLine, Named,
+    anchors, blocks, code_of, flags, inline_spans, is_synopsis, links, named, names_a_program, outside_raster, words,
+    DocLine, Named,
 };
 
 /// The checkout.
@@ -135,14 +136,14 @@ exec REAL --size 32x32 "$@"
 /// display and waits for a key.
 const PSOUT_SHIM: &str = r#"#!/bin/sh
 for a in "$@"; do case $a in --screenshot|-h|--help|-V|--version) exec REAL "$@";; esac; done
-exec REAL --screenshot psout-window.png "$@"
+exec REAL --screenshot raster/psout-window.png "$@"
 "#;
 
 /// `contour`: writes its screen instead of opening a window, unless the
 /// line writes a deck or lists the points.
 const CONTOUR_SHIM: &str = r#"#!/bin/sh
 for a in "$@"; do case $a in --screenshot|-o|--output|--list|-h|--help|-V|--version) exec REAL "$@";; esac; done
-exec REAL --screenshot contour-window.png "$@"
+exec REAL --screenshot raster/contour-window.png "$@"
 "#;
 
 /// `tools`: `bench` at 32×32 and `fuzz` over 300 inputs unless the line
@@ -489,11 +490,14 @@ fn command_line(page: &str, l: &DocLine, helps: &mut Helps, report: &mut Report)
     }
 }
 
-/// Runs and checks every command line of one page in its own folder.
+/// Runs and checks every command line of one page in its own folder; what
+/// the commands write goes under raster/ (git ignores it), never beside
+/// the checkout's own files.
 fn check_page(page: &Path, shims: &Path, helps: &mut Helps) -> (Report, tempfile::TempDir) {
     let text = std::fs::read_to_string(repo().join(page)).unwrap();
     let name = page.display().to_string();
     let dir = sandbox();
+    let fresh = outside_raster(dir.path());
     let mut report = Report::default();
     for block in blocks(&text) {
         if !block.lines.iter().any(|l| names_a_program(&l.text)) {
@@ -538,6 +542,22 @@ fn check_page(page: &Path, shims: &Path, helps: &mut Helps) -> (Report, tempfile
                     .push(format!("{name}:{}: `{}` fails:\n{e}", span.line, span.text));
             }
         }
+    }
+    // The first name of each new path (a folder's files are its folder's);
+    // the test's own script, and GNU parallel's state in HOME (the page's
+    // folder here), aside.
+    let now = outside_raster(dir.path());
+    let written: std::collections::BTreeSet<&str> = now
+        .difference(&fresh)
+        .map(|p| p.split_inclusive('/').next().unwrap_or(p))
+        .filter(|p| ![".docs-script.sh", ".parallel/"].contains(p))
+        .collect();
+    let written: Vec<&str> = written.into_iter().collect();
+    if !written.is_empty() {
+        report.failed.push(format!(
+            "{name}: its commands write outside raster/ (into a checkout's own folder): {}",
+            written.join(", ")
+        ));
     }
     (report, dir)
 }

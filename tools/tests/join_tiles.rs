@@ -123,3 +123,119 @@ fn parts_that_do_not_fit_one_image_are_refused_naming_the_file() {
     let o = join(&[&b[0], &b[1], &b[2]], &d.join("whole.jpg"));
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+/// A FIFO at `path` that a thread fills with `bytes` once a reader opens
+/// it (the shell's `<(cat a.ras)`).
+fn fifo(path: &Path, bytes: Vec<u8>) -> std::thread::JoinHandle<()> {
+    assert!(Command::new("mkfifo").arg(path).status().unwrap().success());
+    let path = path.to_path_buf();
+    std::thread::spawn(move || {
+        use std::io::Write;
+        let mut f = std::fs::OpenOptions::new().write(true).open(path).unwrap();
+        // The reader may stop at the end of what it needs.
+        let _ = f.write_all(&bytes);
+    })
+}
+
+/// `tools join <(cat a.ras) <(cat b.ras) -o f.png` and `--tiles` through
+/// pipes: each part is opened once and read front to back.
+#[test]
+fn parts_are_read_from_pipes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let p = prepared(17, 10);
+    let b: Vec<PathBuf> = (1..=2).map(|k| band(&p, k, 2, d, &format!("b{k}.ras"))).collect();
+    let whole = d.join("whole.ras");
+    assert!(join(&b.iter().collect::<Vec<_>>(), &whole).status.success());
+    let pipes: Vec<PathBuf> = (1..=2).map(|k| d.join(format!("pipe{k}"))).collect();
+    let writers: Vec<_> = pipes
+        .iter()
+        .zip(&b)
+        .map(|(f, part)| fifo(f, std::fs::read(part).unwrap()))
+        .collect();
+    let piped = d.join("piped.ras");
+    let o = join(&pipes.iter().collect::<Vec<_>>(), &piped);
+    assert!(o.status.success(), "{}", stderr(&o));
+    writers.into_iter().for_each(|w| w.join().unwrap());
+    assert_eq!(std::fs::read(&piped).unwrap(), std::fs::read(&whole).unwrap());
+
+    // A film's frames: the whole image twice, as an animated PNG.
+    let frames: Vec<PathBuf> = (1..=2).map(|k| d.join(format!("frame{k}"))).collect();
+    let writers: Vec<_> = frames.iter().map(|f| fifo(f, std::fs::read(&whole).unwrap())).collect();
+    let apng = d.join("film.png");
+    let o = Command::new(env!("CARGO_BIN_EXE_tools"))
+        .arg("join")
+        .args(&frames)
+        .arg("-o")
+        .arg(&apng)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    writers.into_iter().for_each(|w| w.join().unwrap());
+    let first = raytrace::image_file::read_image_file(&apng).unwrap();
+    assert_eq!(first, raytrace::raster::read_raster_file(&whole).unwrap());
+}
+
+/// Bad input is exit 2 in every program: a file that is no picture, for
+/// `tools join` as for `tools join --tiles`; a name that is not a PNG is a
+/// usage error (2), found before any frame is read; nothing is written.
+#[test]
+fn join_exits_2_on_bad_input_and_bad_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let garbage = d.join("garbage.bin");
+    std::fs::write(&garbage, b"this is no raster, PNG or PPM file").unwrap();
+    let ok = band(&prepared(8, 4), 1, 1, d, "whole.ras");
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["garbage.bin", "-o", "f.png"],
+            "garbage.bin: not a Sun raster, PNG or PPM file",
+        ),
+        (
+            &["--tiles", "garbage.bin", "-o", "f.png"],
+            "garbage.bin: not a Sun raster",
+        ),
+        (
+            &["whole.ras", "-o", "f.gif"],
+            "-o 'f.gif': an animated PNG or a strip is a PNG",
+        ),
+        (&["whole.ras", "-o", "f.png", "--strip", "s.jpg"], "--strip 's.jpg'"),
+        (&["missing.ras", "-o", "f.png"], "missing.ras: No such file"),
+    ];
+    for (args, says) in cases {
+        let o = Command::new(env!("CARGO_BIN_EXE_tools"))
+            .arg("join")
+            .args(*args)
+            .current_dir(d)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+        assert!(!d.join("f.png").exists() && !d.join("s.jpg").exists(), "{args:?}");
+    }
+    assert!(ok.exists());
+}
+
+/// Bad input is exit 2 in every program: the tools that read a deck
+/// (`frames`, `heatmap`, `preview`, as `bench` and `pov` did) refuse a bad
+/// one as an input error, naming it, before their own work.
+#[test]
+fn the_tools_exit_2_on_a_bad_deck() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.deck"), "garbage\n").unwrap();
+    for args in [
+        &["frames", "bad.deck"][..],
+        &["heatmap", "bad.deck", "--out", "h.png"],
+        &["preview", "bad.deck", "goblet"],
+        &["pov", "bad.deck", "-o", "x.pov"],
+        &["bench", "bad.deck", "--runs", "1"],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_tools"))
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("bad.deck:1:1"), "{args:?}: {}", stderr(&o));
+    }
+}

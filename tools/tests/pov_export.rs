@@ -176,3 +176,288 @@ fn shipped_decks_export_as_before_but_for_the_new_records() {
     // cook.deck has a lens, a sphere of light and a glossy floor.
     assert!(with_records >= 2, "{with_records}");
 }
+
+/// The value of a POV-Ray function expression as `tools pov` writes them
+/// (numbers, x, y, z, + − * /, comparisons giving 1 or 0, & and |,
+/// max, ceil, mod), at the POV point (x, y, z): POV-Ray's function
+/// semantics, small enough to check the export against our patterns.
+fn eval(expr: &str, p: [f64; 3]) -> f64 {
+    struct P<'a> {
+        s: &'a [u8],
+        i: usize,
+        p: [f64; 3],
+    }
+    impl P<'_> {
+        fn peek(&self) -> u8 {
+            self.s.get(self.i).copied().unwrap_or(0)
+        }
+        fn eat(&mut self, c: u8) -> bool {
+            let yes = self.peek() == c;
+            self.i += usize::from(yes);
+            yes
+        }
+        fn or(&mut self) -> f64 {
+            let mut v = self.and();
+            while self.eat(b'|') {
+                let w = self.and();
+                v = f64::from(v != 0.0 || w != 0.0);
+            }
+            v
+        }
+        fn and(&mut self) -> f64 {
+            let mut v = self.cmp();
+            while self.eat(b'&') {
+                let w = self.cmp();
+                v = f64::from(v != 0.0 && w != 0.0);
+            }
+            v
+        }
+        fn cmp(&mut self) -> f64 {
+            let v = self.sum();
+            for (op, f) in [
+                ("<=", (|a, b| a <= b) as fn(f64, f64) -> bool),
+                (">=", |a, b| a >= b),
+                ("<", |a, b| a < b),
+                (">", |a, b| a > b),
+            ] {
+                if self.s[self.i..].starts_with(op.as_bytes()) {
+                    self.i += op.len();
+                    let w = self.sum();
+                    return f64::from(f(v, w));
+                }
+            }
+            v
+        }
+        fn sum(&mut self) -> f64 {
+            let mut v = self.product();
+            loop {
+                if self.eat(b'+') {
+                    v += self.product();
+                } else if self.eat(b'-') {
+                    v -= self.product();
+                } else {
+                    return v;
+                }
+            }
+        }
+        fn product(&mut self) -> f64 {
+            let mut v = self.atom();
+            loop {
+                if self.eat(b'*') {
+                    v *= self.atom();
+                } else if self.eat(b'/') {
+                    v /= self.atom();
+                } else {
+                    return v;
+                }
+            }
+        }
+        fn atom(&mut self) -> f64 {
+            if self.eat(b'(') {
+                let v = self.or();
+                assert!(self.eat(b')'), "no ) at {}", self.i);
+                return v;
+            }
+            if self.eat(b'-') {
+                return -self.atom();
+            }
+            let start = self.i;
+            while self.peek().is_ascii_alphanumeric() || self.peek() == b'.' {
+                self.i += 1;
+            }
+            let word = std::str::from_utf8(&self.s[start..self.i]).unwrap();
+            // An exponent's sign (1e-9) belongs to the number.
+            if word.ends_with('e') && word.as_bytes()[0].is_ascii_digit() && matches!(self.peek(), b'-' | b'+') {
+                self.i += 1;
+                while self.peek().is_ascii_digit() {
+                    self.i += 1;
+                }
+                return std::str::from_utf8(&self.s[start..self.i]).unwrap().parse().unwrap();
+            }
+            match word {
+                "x" => self.p[0],
+                "y" => self.p[1],
+                "z" => self.p[2],
+                "max" | "ceil" | "mod" => {
+                    assert!(self.eat(b'('));
+                    let a = self.or();
+                    let v = match word {
+                        "ceil" => a.ceil(),
+                        _ => {
+                            assert!(self.eat(b','));
+                            let b = self.or();
+                            if word == "max" {
+                                a.max(b)
+                            } else {
+                                a % b
+                            }
+                        }
+                    };
+                    assert!(self.eat(b')'));
+                    v
+                }
+                _ => word
+                    .parse()
+                    .unwrap_or_else(|_| panic!("'{word}' in {}", std::str::from_utf8(self.s).unwrap())),
+            }
+        }
+    }
+    let mut parser = P {
+        s: expr.as_bytes(),
+        i: 0,
+        p,
+    };
+    let v = parser.or();
+    assert_eq!(parser.i, expr.len(), "{expr}");
+    v
+}
+
+/// The text between `start` and the matching brace's `end` in `line`.
+fn between<'a>(line: &'a str, start: &str, end: &str) -> &'a str {
+    let from = line.find(start).unwrap_or_else(|| panic!("no {start} in {line}")) + start.len();
+    &line[from..from + line[from..].find(end).unwrap()]
+}
+
+/// The numbers of `<a, b, c>` after `key` in `line`.
+fn triple(line: &str, key: &str) -> [f64; 3] {
+    let v: Vec<f64> = between(line, key, ">")
+        .split(',')
+        .map(|s| s.trim().parse().unwrap())
+        .collect();
+    [v[0], v[1], v[2]]
+}
+
+/// A deck of one painted object: `paint` on `shape`.
+fn painted(shape: &str, paint: &str) -> String {
+    format!(
+        "view eye 0 -10 6 look 0 0 0 screen 4 distance 5
+image 40 40 mask 1
+light sun 3 -4 8  1 1 1
+surface own opaque color 0.9 0.1 0.1  ka 0.2 kd 0.8 ks 0 kt 0
+paint own {paint} color 0.1 0.2 0.8
+{shape}
+"
+    )
+}
+
+/// A pseudo-random number in [0, 1).
+fn hashed(k: u64) -> f64 {
+    raytrace::hash::hashed_uniform(k)
+}
+
+/// `floor` is POV-Ray's `checker` placed so that its first colour (the
+/// paint's: floor(X) + floor(Y) + floor(Z) even at the pattern's point) is
+/// `floortest`'s painted squares, at points across a block's top face.
+#[test]
+fn a_floor_paint_is_a_checker_of_floortest_squares() {
+    let text = scene_sdl(
+        &scene(
+            &painted("block slab own at 0 0 0 size 7 5 1", "floor scale 1.5 0.75"),
+            Fidelity::Thesis,
+        ),
+        Fidelity::Thesis,
+    );
+    let line = line(&text, "box {");
+    let colours = between(line, "checker ", " scale");
+    assert!(
+        colours.starts_with("rgbf <0.1, 0.2, 0.8, 0.0> rgbf <0.9, 0.1, 0.1, 0.0>"),
+        "{line}"
+    );
+    let scale = triple(line, "scale <");
+    let translate = triple(line, "translate <");
+    let (h, depth) = ([3.5, 2.5], 0.5);
+    let mut painted_points = 0;
+    for k in 0..4000 {
+        let (x, y) = (
+            (hashed(2 * k) * 2.0 - 1.0) * h[0],
+            (hashed(2 * k + 1) * 2.0 - 1.0) * h[1],
+        );
+        // POV's point <x, z, y> (ours x, y, z) on the top face.
+        let p = [x, depth, y];
+        let q: Vec<f64> = (0..3).map(|i| ((p[i] - translate[i]) / scale[i]).floor()).collect();
+        let pov_first = (q[0] + q[1] + q[2]).rem_euclid(2.0) == 0.0;
+        let ours = raytrace::proc::floortest(x + h[0], y + h[1], 1.5, 0.75).is_some();
+        assert_eq!(pov_first, ours, "at ({x}, {y})");
+        painted_points += usize::from(ours);
+    }
+    assert!(painted_points > 1000 && painted_points < 3000, "{painted_points}");
+}
+
+/// `star` and `floorstar` are `function` patterns, 1 where our procedure
+/// paints, 0 where it does not (the listing's whole odd tiles too), at
+/// points across a sphere and a block's top face.
+#[test]
+fn star_and_floorstar_paint_where_startest_and_floorstar_do() {
+    for fidelity in FIDELITIES {
+        let sphere = scene_sdl(
+            &scene(
+                &painted("sphere ball own at 0 0 0 radius 2", "star scale 1.2 0.8"),
+                fidelity,
+            ),
+            fidelity,
+        );
+        let star = between(line(&sphere, "sphere {"), "function { ", " } color_map");
+        let block = scene_sdl(
+            &scene(
+                &painted("block slab own at 0 0 0 size 9 7 1", "floorstar scale 1.1 0.9"),
+                fidelity,
+            ),
+            fidelity,
+        );
+        let floorstar = between(line(&block, "box {"), "function { ", " } color_map");
+        let (mut stars, mut tiles) = (0, 0);
+        for k in 0..4000 {
+            let (u, v) = (hashed(3 * k) * 2.0 - 1.0, hashed(3 * k + 1) * 2.0 - 1.0);
+            // On the sphere of radius 2: our local (x, y, z), POV <x, z, y>.
+            let (x, z) = (2.0 * u * 0.7, 2.0 * v * 0.7);
+            let y = -(4.0 - x * x - z * z).sqrt();
+            let ours = raytrace::proc::startest(x / 2.0 * 1.2, y / 2.0, z / 2.0 * 0.8, 1).is_some();
+            assert_eq!(
+                eval(star, [x, z, y]) == 1.0,
+                ours,
+                "{fidelity:?} star at ({x}, {y}, {z})"
+            );
+            stars += usize::from(ours);
+            let (x, y) = (u * 4.5, v * 3.5);
+            let ours = raytrace::proc::floorstar(x + 4.5, y + 3.5, 1.1, 0.9, fidelity).is_some();
+            assert_eq!(
+                eval(floorstar, [x, 0.5, y]) == 1.0,
+                ours,
+                "{fidelity:?} floorstar at ({x}, {y})"
+            );
+            tiles += usize::from(ours);
+        }
+        assert!(stars > 100 && tiles > 100, "{stars} {tiles}");
+    }
+}
+
+/// `tools pov` writes a texture's picture beside the .pov as a PNG, the
+/// raster's pixels, and names it in the SDL: a block's six faces each
+/// with the picture, a cylinder's side by the cylindrical map and its
+/// caps; nothing is said to be left out any more.
+#[test]
+fn a_texture_is_an_image_map_of_its_picture_written_beside() {
+    let dir = tempfile::tempdir().unwrap();
+    let decks = Path::new(env!("CARGO_MANIFEST_DIR")).join("../legacy_pascal/decks");
+    for (deck, shape, faces) in [("fig5_3", "polygon {", 6), ("fig5_4", "map_type 2", 1)] {
+        let out = dir.path().join(format!("{deck}.pov"));
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_tools"))
+            .args(["pov", decks.join(format!("{deck}.deck")).to_str().unwrap(), "-o"])
+            .arg(&out)
+            .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(".."))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let sdl = std::fs::read_to_string(&out).unwrap();
+        let png = dir.path().join(format!("{deck}.picture.png"));
+        let picture = raytrace::image_file::read_image_file(&png).unwrap();
+        let card =
+            raytrace::raster::read_raster_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../raster/card.tex.ras"))
+                .unwrap();
+        assert_eq!(picture, card, "{deck}");
+        let named = format!("png \"{deck}.picture.png\"");
+        assert_eq!(sdl.matches(shape).count(), faces, "{sdl}");
+        assert!(sdl.matches(&named).count() >= faces, "{sdl}");
+        assert!(!sdl.contains("not exported */"), "{sdl}");
+    }
+}

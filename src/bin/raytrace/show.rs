@@ -33,6 +33,41 @@ pub fn quick(render: &RenderArgs, deck: &DeckInput, opts: &Options) -> Result<Pr
     Prepared::new(scene, opts).map_err(Failure::input)
 }
 
+/// The window's title while `--watch` waits for the deck to change: with
+/// the last error, until a good deck clears it.
+pub fn watching_title(deck: &str, error: Option<&str>) -> String {
+    match error {
+        None => format!("raytrace — {deck}: watching for changes, q quits"),
+        Some(e) => format!("raytrace — {deck}: ERROR {e} — fix the deck; watching for changes, q quits"),
+    }
+}
+
+/// Lines of the error on the screen, at most: the rest is cut.
+const ERROR_LINES: usize = 4;
+
+/// The error of a deck that failed under `--watch`, over the bottom of the
+/// screen: white on dark red, wrapped to the screen's width, the last
+/// picture left above it.
+pub fn overlay_error(fb: &mut psout::Framebuffer, error: &str) {
+    use raytrace::editor::draw::{fill, text, wrap, Rect, CHAR};
+    let margin = CHAR;
+    let width = (fb.width as i64 - 2 * margin) / CHAR;
+    let mut lines = wrap(&format!("raytrace: {error}"), width.max(1) as usize);
+    lines.truncate(ERROR_LINES);
+    let high = (lines.len() as i64 + 1) * (CHAR + 4);
+    let band = Rect {
+        x: 0,
+        y: fb.height as i64 - high,
+        w: fb.width as i64,
+        h: high,
+    };
+    fill(fb, band, psout::pack_rgb([110, 0, 0]));
+    for (i, line) in lines.iter().enumerate() {
+        let y = band.y + (CHAR + 4) / 2 + i as i64 * (CHAR + 4);
+        text(fb, band, (margin, y), line, psout::pack_rgb([255, 255, 255]));
+    }
+}
+
 /// How a render in the window ended.
 #[cfg_attr(
     not(feature = "window"),
@@ -65,6 +100,7 @@ impl Screen {
         Shown::Quit
     }
     pub fn quick(&mut self, _p: &Prepared, _size: (usize, usize)) {}
+    pub fn failed(&mut self, _error: &str) {}
     pub fn hold(&mut self) {}
     pub fn wait_for_change(&mut self) -> bool {
         false
@@ -91,7 +127,7 @@ mod window {
     use raytrace::raytrace::{Prepared, Request};
     use raytrace::show::{render_in_bands, stamp, Progressive};
 
-    use super::{no_display, Shown};
+    use super::{no_display, overlay_error, watching_title, Shown};
 
     /// The window, the picture so far, and the deck it watches.
     pub struct Screen {
@@ -105,6 +141,8 @@ mod window {
         /// The keys pressed since the last look (a press and release
         /// between two frames is still a press).
         keys: Rc<RefCell<KeyQueue<Key>>>,
+        /// The last deck's error under --watch, shown until a deck is good.
+        error: Option<String>,
     }
 
     /// Key events from minifb into the queue.
@@ -148,6 +186,7 @@ mod window {
                     (p, s)
                 }),
                 closed: false,
+                error: None,
             })
         }
 
@@ -161,7 +200,11 @@ mod window {
                 return Look::Quit;
             }
             if redraw {
-                self.screen = psout::compose(&self.picture.raster, None, (0, 0)).pixels;
+                let mut fb = psout::compose(&self.picture.raster, None, (0, 0));
+                if let Some(e) = &self.error {
+                    overlay_error(&mut fb, e);
+                }
+                self.screen = fb.pixels;
             }
             if self
                 .window
@@ -198,6 +241,8 @@ mod window {
         /// The quick pass, shown enlarged to `size` (the render's) until
         /// the bands replace it.
         pub fn quick(&mut self, prepared: &Prepared, (w, h): (usize, usize)) {
+            // The deck is good again: its error goes.
+            self.error = None;
             if let Ok(r) = raytrace::raytrace::render(prepared, &Request::STILL) {
                 if (self.picture.raster.width, self.picture.raster.height) != (w, h) {
                     self.picture = Progressive::new(w, h);
@@ -272,11 +317,18 @@ mod window {
             while !matches!(self.look(false), Look::Quit | Look::AnyKey) && !self.closed {}
         }
 
+        /// Shows a deck's error (under --watch: the last picture stays)
+        /// in the title and over the bottom of the screen.
+        pub fn failed(&mut self, error: &str) {
+            self.error = Some(error.to_string());
+            self.look(true);
+        }
+
         /// Waits until the watched deck changes (`true`) or q, Esc or the
         /// window's closing ends the watch (`false`).
         pub fn wait_for_change(&mut self) -> bool {
             self.window
-                .set_title(&format!("raytrace — {}: watching for changes, q quits", self.deck));
+                .set_title(&watching_title(&self.deck, self.error.as_deref()));
             loop {
                 if matches!(self.look(false), Look::Quit) || self.closed {
                     return false;
@@ -286,5 +338,55 @@ mod window {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The error is in the title and over the screen's bottom rows, and a
+    /// good deck's title has none.
+    #[test]
+    fn a_deck_error_shows_in_the_title_and_over_the_picture() {
+        let e = "w.deck:3:1: unknown record 'sphre' — did you mean 'sphere'?";
+        assert_eq!(
+            watching_title("w.deck", Some(e)),
+            format!("raytrace — w.deck: ERROR {e} — fix the deck; watching for changes, q quits")
+        );
+        assert_eq!(
+            watching_title("w.deck", None),
+            "raytrace — w.deck: watching for changes, q quits"
+        );
+        let picture = raytrace::raster::Raster {
+            width: 4,
+            height: 4,
+            pixels: vec![[0, 200, 0]; 16],
+        };
+        let clean = psout::compose(&picture, None, (0, 0));
+        let mut fb = clean.clone();
+        overlay_error(&mut fb, e);
+        let w = fb.width;
+        let changed: Vec<usize> = (0..fb.pixels.len())
+            .filter(|&i| fb.pixels[i] != clean.pixels[i])
+            .collect();
+        // Only the bottom band changes: one line of text and its margins.
+        assert!(
+            changed.iter().all(|&i| i / w >= fb.height - 24),
+            "{:?}",
+            changed.first()
+        );
+        let red = psout::pack_rgb([110, 0, 0]);
+        let white = psout::pack_rgb([255, 255, 255]);
+        assert_eq!(fb.pixels[(fb.height - 1) * w], red);
+        assert!(fb.pixels[(fb.height - 24) * w..].contains(&white));
+        // A long error wraps, at most four lines.
+        let mut long = clean.clone();
+        overlay_error(&mut long, &"word ".repeat(2000));
+        let top = (0..long.pixels.len())
+            .find(|&i| long.pixels[i] != clean.pixels[i])
+            .unwrap()
+            / w;
+        assert_eq!(top, long.height - 5 * 12);
     }
 }

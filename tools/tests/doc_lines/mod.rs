@@ -270,6 +270,29 @@ pub fn flags(args: &[String]) -> Vec<String> {
         .collect()
 }
 
+/// The paths under `dir`, folders ending in `/`, except under raster/
+/// (which git ignores in a checkout).
+pub fn outside_raster(dir: &std::path::Path) -> std::collections::BTreeSet<String> {
+    let mut found = std::collections::BTreeSet::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let path = e.unwrap().path();
+            let rel = path.strip_prefix(dir).unwrap().display().to_string();
+            if rel == "raster" {
+                continue;
+            }
+            if path.is_dir() && !path.is_symlink() {
+                found.insert(format!("{rel}/"));
+                todo.push(path);
+            } else {
+                found.insert(rel);
+            }
+        }
+    }
+    found
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
