@@ -336,25 +336,36 @@ pub fn path_point(from: DVec3, motion: &MotionRecord, f: f64) -> DVec3 {
 /// 2036–2186), for an object that moves but does not deform: from the
 /// rest pose (the listing restores `transfm`, `inverse` and `sphereo` from
 /// `temp1`, `temp2`), the pose at `time`, written into `pose` as the
-/// listing writes it into the object's record. The time itself comes from
-/// [`TimeTable::time`]; the key-frame branch (`paper = 1`) comes with the
-/// `paper` unit. Erratum 3.
+/// listing writes it into the object's record: its `rotate` and
+/// `translate` ([`motion_place`]) made one rigid pose. The time itself
+/// comes from [`TimeTable::time`]; the key-frame branch (`paper = 1`)
+/// comes with the `paper` unit. Erratum 3.
+#[inline(always)]
 pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity, pose: &mut Pose) {
+    let (sphereo, turn) = motion_place(object, motion, time, fidelity);
+    pose.turn_from(&object.transfm, turn, sphereo);
+}
+
+/// Where [`motionblur`] puts the object at `time`: its origin `sphereo`
+/// and the turn about it. Apart so that the origin alone can be asked
+/// (inlined, what goes unused is not computed): a structure tests the
+/// bounding sphere before it poses the object. Erratum 3.
+#[inline(always)]
+pub fn motion_place(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity) -> (DVec3, DMat3) {
     match fidelity {
         // Erratum 3, listing: `sphereo.x := sphereo.x+time*6;
         // rotate(name,xaxis,0,0,0,270*time*50); translate(name,sphereo…)`:
         // every moving object slides 6 along x while it spins about x,
         // whatever its motion record says.
-        Fidelity::Listing => {
-            let sphereo = object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0);
-            pose.turn_from(&object.transfm, rotation(Axis::X, 270.0 * time * 50.0), sphereo);
-        }
+        Fidelity::Listing => (
+            object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0),
+            rotation(Axis::X, 270.0 * time * 50.0),
+        ),
         // Thesis (§3.2.2): the user's path, the turn interpolated linearly,
         // both at LAW(law, 1, time); turns about x, then y, then z.
         Fidelity::Thesis => {
             let f = LAW(motion.law, 1.0, time);
-            let sphereo = path_point(object.sphereo, motion, f);
-            pose.turn_from(&object.transfm, turn_xyz(motion.turn * f), sphereo);
+            (path_point(object.sphereo, motion, f), turn_xyz(motion.turn * f))
         }
     }
 }

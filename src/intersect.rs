@@ -12,7 +12,7 @@
 //! object on it, taken in the table's order (the product of their
 //! transmittances is then the same to the bit).
 
-use std::cell::{Cell, OnceCell, Ref, RefCell};
+use std::cell::{Cell, Ref, RefCell};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
@@ -22,7 +22,7 @@ use crate::options::Options;
 use crate::paper::PaperChain;
 use crate::scene::Scene;
 use crate::shapes::{Posed, SweepCache};
-use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
+use crate::types::{DVec3, LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
 
 /// The scene at one instant of the shutter: the read-only scene and what
 /// was prepared for it, where each of its objects stands then
@@ -42,9 +42,11 @@ pub struct Snapshot<'a> {
     /// What `shapes` prepared for each object's own shape.
     pub caches: &'a [Option<Arc<SweepCache>>],
     pub aggregate: &'a Aggregate,
-    /// The structure to search, or `None` for the loop (also when the
-    /// instant lies outside the times the structure bounds).
+    /// The structure to search, or `None` for the loop.
     pub structure: Option<&'a Structure>,
+    /// The instant's time segment in the structure
+    /// ([`Structure::segment`]; 0 for the loop).
+    pub segment: usize,
     /// The queries' scratch.
     pub scratch: &'a Scratch,
 }
@@ -54,7 +56,8 @@ pub struct Snapshot<'a> {
 /// loop, which meets every object, every moving object is posed when the
 /// instant begins, as `motionblur` did for every ray; with a structure
 /// over the objects, a moving object is posed the first time a ray of the
-/// instant reaches it, and those no ray comes near cost nothing.
+/// instant reaches its bounding sphere (its origin alone found before,
+/// [`Poses::centre`]), and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
     objects: &'a [ObjectRecord],
@@ -74,13 +77,39 @@ pub struct Poses<'a> {
 enum Now {
     /// For the loop: every object's.
     All(Vec<Pose>),
-    /// For a structure: the moving objects', as they are made, and which
-    /// were made this instant, to be cleared at the next (not all of
-    /// them: a structure's rays reach few).
+    /// For a structure: the poses of the moving objects asked at the
+    /// instant, in the order they were asked, each written where it is
+    /// kept (the list is kept from one instant to the next and written
+    /// over: it grows only while more are asked than ever before); how
+    /// many are the instant's; and for each moving object the instant it
+    /// was last posed at and its place in the list (instants counted from
+    /// 1: nothing to clear at the next).
     Lazy {
-        posed: Vec<OnceCell<Pose>>,
-        made: RefCell<Vec<usize>>,
+        posed: RefCell<Vec<Pose>>,
+        made: Cell<usize>,
+        slot: Vec<Cell<(u64, u32)>>,
+        instant: u64,
     },
+}
+
+/// A pose as [`Poses::get`] gives it: one kept for the instant, or a
+/// moving object's written at it.
+#[derive(Debug)]
+pub enum PoseRef<'p> {
+    Kept(&'p Pose),
+    Written(Ref<'p, Pose>),
+}
+
+impl std::ops::Deref for PoseRef<'_> {
+    type Target = Pose;
+
+    #[inline(always)]
+    fn deref(&self) -> &Pose {
+        match self {
+            PoseRef::Kept(p) => p,
+            PoseRef::Written(p) => p,
+        }
+    }
 }
 
 impl<'a> Poses<'a> {
@@ -100,8 +129,10 @@ impl<'a> Poses<'a> {
             Now::All(rest.to_vec())
         } else {
             Now::Lazy {
-                posed: vec![OnceCell::new(); moving.len()],
-                made: RefCell::new(Vec::new()),
+                posed: RefCell::new(Vec::new()),
+                made: Cell::new(0),
+                slot: vec![Cell::new((0, 0)); moving.len()],
+                instant: 0,
             }
         };
         Poses {
@@ -125,10 +156,9 @@ impl<'a> Poses<'a> {
                     m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
                 }
             }
-            Now::Lazy { posed, made } => {
-                for m in made.get_mut().drain(..) {
-                    posed[m].take();
-                }
+            Now::Lazy { instant, made, .. } => {
+                *instant += 1;
+                made.set(0);
             }
         }
     }
@@ -136,10 +166,11 @@ impl<'a> Poses<'a> {
     /// Where object `i` stands at the instant (its rest pose until the
     /// first [`Poses::at`]).
     #[inline(always)]
-    pub fn get(&self, i: usize) -> &Pose {
-        match &self.now {
-            Now::All(all) => &all[i],
-            Now::Lazy { posed, made } => self.lazy(i, posed, made),
+    pub fn get(&self, i: usize) -> PoseRef<'_> {
+        match (&self.now, self.moving_of[i], self.time) {
+            (Now::All(all), ..) => PoseRef::Kept(&all[i]),
+            (Now::Lazy { .. }, Some(m), Some(time)) => PoseRef::Written(self.posed(m, time)),
+            _ => PoseRef::Kept(&self.rest[i]),
         }
     }
 
@@ -152,17 +183,58 @@ impl<'a> Poses<'a> {
         }
     }
 
-    /// [`Poses::get`] for a structure: a moving object posed on first use.
-    #[inline(never)]
-    fn lazy<'p>(&'p self, i: usize, posed: &'p [OnceCell<Pose>], made: &RefCell<Vec<usize>>) -> &'p Pose {
-        match (self.moving_of[i], self.time) {
-            (Some(m), Some(time)) => posed[m].get_or_init(|| {
-                made.borrow_mut().push(m);
-                let moving = &self.moving[m];
-                moving.pose(&self.objects[moving.object], time, self.fidelity)
-            }),
-            _ => &self.rest[i],
+    /// For object `i`, when it is posed when asked ([`Poses::all`] empty):
+    /// its index among the moving objects if it moves, once the instant is
+    /// set.
+    #[inline(always)]
+    fn asked(&self, i: usize) -> Option<(usize, f64)> {
+        Some((self.moving_of[i]?, self.time?))
+    }
+
+    /// Where moving object `m`'s origin (`sphereo`) stands at `time`, the
+    /// instant, as [`Poses::get`] puts it, to the bit: without posing it
+    /// when it is not posed yet.
+    #[inline(always)]
+    fn centre(&self, m: usize, time: f64) -> DVec3 {
+        if let Now::Lazy { posed, slot, instant, .. } = &self.now {
+            let (when, k) = slot[m].get();
+            if when == *instant {
+                return posed.borrow()[k as usize].sphereo;
+            }
         }
+        let moving = &self.moving[m];
+        moving.centre(&self.objects[moving.object], time, self.fidelity)
+    }
+
+    /// Moving object `m`'s pose at `time`, the instant, posed on first use
+    /// at the instant and written where it is kept (the poses are made
+    /// when asked).
+    #[inline(never)]
+    fn posed(&self, m: usize, time: f64) -> Ref<'_, Pose> {
+        let Now::Lazy {
+            posed,
+            made,
+            slot,
+            instant,
+        } = &self.now
+        else {
+            unreachable!("the loop's poses are all made at once");
+        };
+        let (when, mut k) = slot[m].get();
+        if when != *instant {
+            // A pose is lent only while one object is tested or shaded,
+            // never while another is posed: the list is free to write.
+            let mut list = posed.borrow_mut();
+            k = made.get() as u32;
+            made.set(k as usize + 1);
+            if k as usize == list.len() {
+                list.push(Pose::IDENTITY);
+            }
+            let moving = &self.moving[m];
+            moving.pose_into(&self.objects[moving.object], time, self.fidelity, &mut list[k as usize]);
+            slot[m].set((*instant, k));
+        }
+        Ref::map(posed.borrow(), |list| &list[k as usize])
     }
 }
 
@@ -229,9 +301,9 @@ impl<'a> Deforming<'a> {
 impl Snapshot<'_> {
     /// Where object `i` stands at this instant ([`Poses::get`]).
     #[inline(always)]
-    pub fn pose(&self, i: usize) -> &Pose {
+    pub fn pose(&self, i: usize) -> PoseRef<'_> {
         match self.all.get(i) {
-            Some(p) => p,
+            Some(p) => PoseRef::Kept(p),
             None => self.poses.get(i),
         }
     }
@@ -239,11 +311,22 @@ impl Snapshot<'_> {
     /// `f` of object `i` as it stands at this instant (its own shape and
     /// what was prepared for it, or its contour of the moment when it
     /// deforms), for a ray that reaches its bounding sphere beyond `tmin`;
-    /// `None` for one that does not.
+    /// `None` for one that does not. A moving object is posed only then.
     #[inline(always)]
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
         let cache = || self.caches[i].as_deref();
-        self.posed_as(i, &self.scene.objects[i], self.pose(i), cache, ray, tmin, f)
+        let obj = &self.scene.objects[i];
+        if let Some(pose) = self.all.get(i) {
+            return self.posed_as(i, obj, pose, cache, ray, tmin, f);
+        }
+        let Some((m, time)) = self.poses.asked(i) else {
+            return self.posed_as(i, obj, &self.poses.rest[i], cache, ray, tmin, f);
+        };
+        if !crate::shapes::bounding_sphere_hit(self.poses.centre(m, time), obj.radius, ray, tmin) {
+            return None;
+        }
+        let pose = self.poses.posed(m, time);
+        self.shaped(i, obj, &pose, cache, f)
     }
 
     /// [`Snapshot::posed`] of object `i` whose record and pose the caller
@@ -261,15 +344,29 @@ impl Snapshot<'_> {
         tmin: f64,
         f: impl FnOnce(&Posed) -> Option<R>,
     ) -> Option<R> {
+        if !crate::shapes::bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
+            return None;
+        }
+        self.shaped(i, obj, pose, cache, f)
+    }
+
+    /// `f` of object `i` at `pose`, a ray having met its bounding sphere
+    /// ([`Snapshot::posed_as`]).
+    #[inline(always)]
+    fn shaped<'s, R>(
+        &'s self,
+        i: usize,
+        obj: &'s ObjectRecord,
+        pose: &'s Pose,
+        cache: impl FnOnce() -> Option<&'s SweepCache>,
+        f: impl FnOnce(&Posed) -> Option<R>,
+    ) -> Option<R> {
         let mut at_rest = Posed {
             obj,
             shape: &obj.shape,
             cache: None,
             pose,
         };
-        if !at_rest.meets_bounding_sphere(ray, tmin) {
-            return None;
-        }
         // Only a sweep has a cache: the others need not look.
         if matches!(obj.shape, Shape::Sweep(_)) {
             at_rest.cache = cache();
@@ -419,7 +516,7 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
     let mut best: Option<(usize, LocalHit)> = None;
     if snap.aggregate.counted {
         let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        s.candidates(ray, tmin, snap.segment, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
         for &i in candidates.iter() {
             consider(snap, i, ray, tmin, searched, &mut best);
         }
@@ -428,7 +525,7 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
     // Front to back; an object whose box the ray enters beyond the nearest
     // hit so far cannot be nearer (nor, entered at its t, tie it: such a
     // box is still visited).
-    let _ = s.walk(ray, tmin, f64::INFINITY, &mut snap.scratch.stack.borrow_mut(), |i| {
+    let _ = s.walk(ray, tmin, f64::INFINITY, snap.segment, &mut snap.scratch.stack.borrow_mut(), |i| {
         consider(snap, i, ray, tmin, searched, &mut best);
         ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
     });
@@ -509,7 +606,7 @@ fn blockers_in(
     let mut blocks = |i: usize| blocks(snap, i, ray, tmin, tmax, searched);
     if agg.counted {
         let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        s.candidates(ray, tmin, snap.segment, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
         for &i in candidates.iter() {
             match agg.shadow[i] {
                 Shadow::None => {}
@@ -529,7 +626,7 @@ fn blockers_in(
     }
     let mut crystals = snap.scratch.crystals.borrow_mut();
     crystals.clear();
-    s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
+    s.walk(ray, tmin, tmax, snap.segment, &mut snap.scratch.stack.borrow_mut(), |i| {
         match agg.shadow[i] {
             Shadow::None => ControlFlow::Continue(tmax),
             Shadow::Crystal => {
@@ -595,6 +692,7 @@ mod tests {
                 caches: &caches,
                 aggregate: &aggregate,
                 structure: None,
+                segment: 0,
                 scratch: &Scratch::default(),
             };
             assert_eq!(snap.all.len(), if eager { scene.objects.len() } else { 0 });
@@ -648,6 +746,7 @@ mod tests {
             caches: &caches,
             aggregate: &aggregate,
             structure: None,
+            segment: 0,
             scratch: &Scratch::default(),
         };
         let eye = scene.view.eyept;

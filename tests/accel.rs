@@ -25,6 +25,8 @@ struct Probe<'p> {
     poses: Poses<'p>,
     deforming: Vec<Deforming<'p>>,
     scratch: Scratch,
+    /// The instant's time segment in the structure.
+    segment: usize,
 }
 
 impl<'p> Probe<'p> {
@@ -34,6 +36,7 @@ impl<'p> Probe<'p> {
             poses: prepared.poses(),
             deforming: prepared.deforming(),
             scratch: Scratch::default(),
+            segment: 0,
         }
     }
 
@@ -43,6 +46,7 @@ impl<'p> Probe<'p> {
         for d in &self.deforming {
             d.at(time);
         }
+        self.segment = self.prepared.aggregate().structure().map_or(0, |s| s.segment(time));
     }
 
     fn snap(&self) -> Snapshot<'_> {
@@ -57,6 +61,7 @@ impl<'p> Probe<'p> {
             caches: p.caches(),
             aggregate: p.aggregate(),
             structure: p.aggregate().structure(),
+            segment: self.segment,
             scratch: &self.scratch,
         }
     }
@@ -408,4 +413,45 @@ fn copies_of_one_contour_share_their_cache() {
     assert!(same(0, 1) && same(0, 2), "placed and turned copies share");
     assert!(!same(0, 3), "another contour has its own");
     assert_eq!(c[3], raytrace::shapes::prepare_caches(p.scene())[3]);
+}
+
+/// Erratum 2 pinned through the structures: in `listing` fidelity the
+/// table's times reach 1.5 (`pattern[row,col]*0.1` of Fig. 2.33) and every
+/// moving object slides 6·t along x (erratum 3), so past the shutter's end
+/// it goes on from x + 6 to x + 9. The structures bound the objects over
+/// every time the table gives (`TimeTable::span`), not the shutter alone:
+/// the image is the loop's, byte for byte, with each. Bounded over (0, 1)
+/// only, the rays of the last third of the times would pass the objects
+/// where they are then.
+#[test]
+fn listing_times_past_the_shutter_render_as_the_loop() {
+    let mut deck = String::from(
+        "view eye 0 -20 0 look 0 0 0 screen 10 distance 10\nimage 48 16 mask 4\nbackground 0.1 0.1 0.2\n\
+         light sun 5 -10 10 1 1 1\nsurface op opaque color 0.8 0.2 0.1 ka 0.2 kd 0.8 ks 0 kt 0\n",
+    );
+    for i in 0..12 {
+        let (x, z) = (-8.0 + (i % 4) as f64, -1.5 + (i / 4) as f64 * 1.5);
+        deck.push_str(&format!("sphere s{i} op at {x} 0 {z} radius 0.4\nmotion s{i} to {x} 0 {z}\n"));
+    }
+    let scene = scene_of(&deck, Fidelity::Listing);
+    let opts = Options {
+        fidelity: Fidelity::Listing,
+        ..Options::default()
+    };
+    let prepared = each_accel(&scene, opts);
+    let images: Vec<Vec<[u8; 3]>> = prepared
+        .iter()
+        .map(|p| {
+            let r = raytrace::raytrace::render(p, &raytrace::raytrace::Request::STILL).unwrap();
+            r.raster.pixels
+        })
+        .collect();
+    // The spheres are seen where the times past 1 put them (x from 1 to
+    // 4.4, right of the middle), not only where the shutter does.
+    let background = images[0][0];
+    let right = (0..16 * 48).filter(|i| (29..40).contains(&(i % 48)));
+    assert!(right.clone().any(|i| images[0][i] != background), "the spheres past t = 1");
+    assert_eq!(images[1], images[0], "bvh");
+    assert_eq!(images[2], images[0], "octree");
+    assert_eq!(prepared[1].time_span(), (0.0, 1.5), "the table's times");
 }
