@@ -196,7 +196,10 @@ impl<'a> Poses<'a> {
     /// when it is not posed yet.
     #[inline(always)]
     fn centre(&self, m: usize, time: f64) -> DVec3 {
-        if let Now::Lazy { posed, slot, instant, .. } = &self.now {
+        if let Now::Lazy {
+            posed, slot, instant, ..
+        } = &self.now
+        {
             let (when, k) = slot[m].get();
             if when == *instant {
                 return posed.borrow()[k as usize].sphereo;
@@ -516,7 +519,13 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
     let mut best: Option<(usize, LocalHit)> = None;
     if snap.aggregate.counted {
         let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, snap.segment, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        s.candidates(
+            ray,
+            tmin,
+            snap.segment,
+            &mut snap.scratch.stack.borrow_mut(),
+            &mut candidates,
+        );
         for &i in candidates.iter() {
             consider(snap, i, ray, tmin, searched, &mut best);
         }
@@ -525,10 +534,17 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
     // Front to back; an object whose box the ray enters beyond the nearest
     // hit so far cannot be nearer (nor, entered at its t, tie it: such a
     // box is still visited).
-    let _ = s.walk(ray, tmin, f64::INFINITY, snap.segment, &mut snap.scratch.stack.borrow_mut(), |i| {
-        consider(snap, i, ray, tmin, searched, &mut best);
-        ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
-    });
+    let _ = s.walk(
+        ray,
+        tmin,
+        f64::INFINITY,
+        snap.segment,
+        &mut snap.scratch.stack.borrow_mut(),
+        |i| {
+            consider(snap, i, ray, tmin, searched, &mut best);
+            ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
+        },
+    );
     best
 }
 
@@ -606,7 +622,13 @@ fn blockers_in(
     let mut blocks = |i: usize| blocks(snap, i, ray, tmin, tmax, searched);
     if agg.counted {
         let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, snap.segment, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        s.candidates(
+            ray,
+            tmin,
+            snap.segment,
+            &mut snap.scratch.stack.borrow_mut(),
+            &mut candidates,
+        );
         for &i in candidates.iter() {
             match agg.shadow[i] {
                 Shadow::None => {}
@@ -626,8 +648,13 @@ fn blockers_in(
     }
     let mut crystals = snap.scratch.crystals.borrow_mut();
     crystals.clear();
-    s.walk(ray, tmin, tmax, snap.segment, &mut snap.scratch.stack.borrow_mut(), |i| {
-        match agg.shadow[i] {
+    s.walk(
+        ray,
+        tmin,
+        tmax,
+        snap.segment,
+        &mut snap.scratch.stack.borrow_mut(),
+        |i| match agg.shadow[i] {
             Shadow::None => ControlFlow::Continue(tmax),
             Shadow::Crystal => {
                 if blocks(i) {
@@ -640,8 +667,8 @@ fn blockers_in(
                 ControlFlow::Break(())
             }
             Shadow::Opaque => ControlFlow::Continue(tmax),
-        }
-    })?;
+        },
+    )?;
     crystals.sort_unstable();
     crystals.dedup();
     for &i in crystals.iter() {

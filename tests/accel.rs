@@ -431,7 +431,9 @@ fn listing_times_past_the_shutter_render_as_the_loop() {
     );
     for i in 0..12 {
         let (x, z) = (-8.0 + (i % 4) as f64, -1.5 + (i / 4) as f64 * 1.5);
-        deck.push_str(&format!("sphere s{i} op at {x} 0 {z} radius 0.4\nmotion s{i} to {x} 0 {z}\n"));
+        deck.push_str(&format!(
+            "sphere s{i} op at {x} 0 {z} radius 0.4\nmotion s{i} to {x} 0 {z}\n"
+        ));
     }
     let scene = scene_of(&deck, Fidelity::Listing);
     let opts = Options {
@@ -450,7 +452,10 @@ fn listing_times_past_the_shutter_render_as_the_loop() {
     // 4.4, right of the middle), not only where the shutter does.
     let background = images[0][0];
     let right = (0..16 * 48).filter(|i| (29..40).contains(&(i % 48)));
-    assert!(right.clone().any(|i| images[0][i] != background), "the spheres past t = 1");
+    assert!(
+        right.clone().any(|i| images[0][i] != background),
+        "the spheres past t = 1"
+    );
     assert_eq!(images[1], images[0], "bvh");
     assert_eq!(images[2], images[0], "octree");
     assert_eq!(prepared[1].time_span(), (0.0, 1.5), "the table's times");

@@ -24,8 +24,8 @@ mod time;
 use std::ops::ControlFlow;
 
 pub use bvh::Bvh;
-pub use time::{Bounds, Hierarchy, Segments, Timed};
 pub use octree::{findnode_digit, Found, Octree, MAX_DEPTH};
+pub use time::{Bounds, Hierarchy, Segments, Timed};
 
 use crate::types::{BoundingBox, DVec3, Ray};
 

@@ -179,7 +179,6 @@ impl Timed {
     }
 }
 
-
 /// The bounding volume hierarchy over the objects' boxes in time: where
 /// objects move far against their size, a split in time at the root (as
 /// Embree's spatio-temporal hierarchy splits in time, Woop et al. 2017):

@@ -64,7 +64,14 @@ impl<'p> Tracer<'p> {
     /// of `sampler`'s sample, with the scene as the last [`Tracer::at`]
     /// left it.
     pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment, self.bounded);
+        let snap = snapshot(
+            self.prepared,
+            &self.poses,
+            &self.deforming,
+            &self.scratch,
+            self.segment,
+            self.bounded,
+        );
         self.stats.primary += 1;
         let mut ctx = Context {
             stats: &mut self.stats,
@@ -76,7 +83,14 @@ impl<'p> Tracer<'p> {
     /// The object `ray` meets first with the scene as the last
     /// [`Tracer::at`] left it, and the hit.
     pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment, self.bounded);
+        let snap = snapshot(
+            self.prepared,
+            &self.poses,
+            &self.deforming,
+            &self.scratch,
+            self.segment,
+            self.bounded,
+        );
         intersect(&snap, ray, &mut self.stats)
     }
 }
