@@ -235,6 +235,15 @@ impl TimeTable {
         }
     }
 
+    /// Does a subpixel's time come back at every subpixel of the same place
+    /// in the table (no jitter by the subpixel's index: `blur 0`, or the
+    /// listing, which never reads `mindex`)? Asked of the times
+    /// themselves, one place's over the CLT table's length.
+    pub fn repeats(&self) -> bool {
+        let first = self.time(1, 1, 0);
+        (1..MAXINDEX).all(|k| self.time(1, 1, k).to_bits() == first.to_bits())
+    }
+
     /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
     /// subpixel of the scan order (0-based): the first lines of
     /// `motionblur`. Errata 1 and 2.
@@ -340,7 +349,6 @@ pub fn path_point(from: DVec3, motion: &MotionRecord, f: f64) -> DVec3 {
 /// `translate` ([`motion_place`]) made one rigid pose. The time itself
 /// comes from [`TimeTable::time`]; the key-frame branch (`paper = 1`)
 /// comes with the `paper` unit. Erratum 3.
-#[inline(always)]
 pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity, pose: &mut Pose) {
     let (sphereo, turn) = motion_place(object, motion, time, fidelity);
     pose.turn_from(&object.transfm, turn, sphereo);

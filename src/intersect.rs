@@ -75,8 +75,16 @@ pub struct Poses<'a> {
 /// The poses of the instant, as [`Poses`] keeps them.
 #[derive(Debug)]
 enum Now {
-    /// For the loop: every object's.
-    All(Vec<Pose>),
+    /// For the loop: every object's, in [`SLOTS`] places (one where that
+    /// many copies of the table would be large), each holding the poses
+    /// of one instant and its time (its bits), an instant's place found
+    /// from its time: an instant whose time comes back (the table's times
+    /// without jitter, fig5_1's) is posed once, and another in its place
+    /// is posed over it. `current` is the instant's place.
+    All {
+        slots: Vec<(Option<u64>, Vec<Pose>)>,
+        current: usize,
+    },
     /// For a structure: the poses of the moving objects asked at the
     /// instant, in the order they were asked, each written where it is
     /// kept (the list is kept from one instant to the next and written
@@ -91,6 +99,14 @@ enum Now {
         instant: u64,
     },
 }
+
+/// How many instants' poses the loop keeps ([`Now::All`]): a power of two,
+/// as many as a 4×4 table has times.
+const SLOTS: usize = 16;
+
+/// The most poses the loop keeps in its places for instants: beyond, one
+/// place.
+const SLOT_POSES: usize = 1024;
 
 /// A pose as [`Poses::get`] gives it: one kept for the instant, or a
 /// moving object's written at it.
@@ -116,7 +132,8 @@ impl<'a> Poses<'a> {
     /// Every object at rest: `rest[i]` for `objects[i]`, which `moving`
     /// (`moving_of[i]` its index there) moves from [`Poses::at`] on, all
     /// of them at once if `eager` (for the loop), else each when first
-    /// asked.
+    /// asked. Eager poses of instants whose times come back (`repeats`)
+    /// are kept for them ([`Now::All`]).
     pub fn new(
         objects: &'a [ObjectRecord],
         rest: &'a [Pose],
@@ -124,9 +141,18 @@ impl<'a> Poses<'a> {
         moving_of: &'a [Option<usize>],
         fidelity: crate::options::Fidelity,
         eager: bool,
+        repeats: bool,
     ) -> Poses<'a> {
         let now = if eager {
-            Now::All(rest.to_vec())
+            let count = if repeats && rest.len() * SLOTS <= SLOT_POSES {
+                SLOTS
+            } else {
+                1
+            };
+            Now::All {
+                slots: vec![(None, rest.to_vec()); count],
+                current: 0,
+            }
         } else {
             Now::Lazy {
                 posed: RefCell::new(Vec::new()),
@@ -151,9 +177,21 @@ impl<'a> Poses<'a> {
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
         match &mut self.now {
-            Now::All(all) => {
-                for m in self.moving {
-                    m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
+            Now::All { slots, current } => {
+                let bits = time.to_bits();
+                // A multiplicative hash's top bits: the times of a table
+                // land in different places.
+                let k = match slots.len() {
+                    1 => 0,
+                    n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
+                };
+                *current = k;
+                let (at, all) = &mut slots[k];
+                if *at != Some(bits) {
+                    for m in self.moving {
+                        m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
+                    }
+                    *at = Some(bits);
                 }
             }
             Now::Lazy { instant, made, .. } => {
@@ -168,7 +206,7 @@ impl<'a> Poses<'a> {
     #[inline(always)]
     pub fn get(&self, i: usize) -> PoseRef<'_> {
         match (&self.now, self.moving_of[i], self.time) {
-            (Now::All(all), ..) => PoseRef::Kept(&all[i]),
+            (Now::All { slots, current }, ..) => PoseRef::Kept(&slots[*current].1[i]),
             (Now::Lazy { .. }, Some(m), Some(time)) => PoseRef::Written(self.posed(m, time)),
             _ => PoseRef::Kept(&self.rest[i]),
         }
@@ -178,7 +216,7 @@ impl<'a> Poses<'a> {
     /// the loop); empty when each is posed when asked.
     pub fn all(&self) -> &[Pose] {
         match &self.now {
-            Now::All(all) => all,
+            Now::All { slots, current } => &slots[*current].1,
             Now::Lazy { .. } => &[],
         }
     }
@@ -707,7 +745,15 @@ mod tests {
         }
         let (opts, aggregate) = (Options::default(), Aggregate::linear(&scene));
         let nearest_with = |eager: bool, ray: &Ray| {
-            let mut poses = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, eager);
+            let mut poses = Poses::new(
+                &scene.objects,
+                &rest,
+                &moving,
+                &moving_of,
+                Fidelity::Thesis,
+                eager,
+                false,
+            );
             poses.at(0.3);
             let snap = Snapshot {
                 scene: &scene,
@@ -726,7 +772,15 @@ mod tests {
             nearest(&snap, ray, 1e-9, &mut 0).map(|(i, h)| (i, h.t))
         };
         let eye = scene.view.eyept;
-        let mut ball = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, true);
+        let mut ball = Poses::new(
+            &scene.objects,
+            &rest,
+            &moving,
+            &moving_of,
+            Fidelity::Thesis,
+            true,
+            false,
+        );
         ball.at(0.3);
         let centre = ball.get(moving[0].object).sphereo;
         for target in [centre, DVec3::new(0.0, 0.0, -0.5)] {
@@ -756,7 +810,7 @@ mod tests {
         assert!(caches[first].is_some(), "the key shape has a cache");
         let rest = rest_poses(&scene);
         let no_moving = vec![None; scene.objects.len()];
-        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis, true);
+        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis, true, false);
         let deforming = [Deforming::new(first, &chain)];
         deforming[0].at(0.5);
         let mut deforming_of = vec![None; scene.objects.len()];

@@ -44,6 +44,9 @@ pub struct Prepared {
     /// sample's time, so it must hold them all: a time outside would find
     /// an object where it is not.
     span: (f64, f64),
+    /// Whether the samples' times come back (the table's, without
+    /// jitter): the loop then keeps each instant's poses for its return.
+    repeats: bool,
 }
 
 impl Prepared {
@@ -120,6 +123,7 @@ impl Prepared {
             kind => Structure::build(kind, &object_bounds(&scene.objects, &moving, span, opts.fidelity)),
         };
         let counted = opts.sampler == TimeSampler::Adaptive;
+        let repeats = opts.sampler == TimeSampler::Table && tables.times.repeats();
         Prepared {
             camera: Camera::new(&scene, opts.fidelity),
             aggregate: Aggregate::new(&scene, structure, counted),
@@ -132,6 +136,7 @@ impl Prepared {
             moving_of,
             caches,
             span,
+            repeats,
         }
     }
 
@@ -194,6 +199,7 @@ impl Prepared {
             &self.moving_of,
             fidelity,
             eager,
+            self.repeats,
         )
     }
 
