@@ -151,10 +151,14 @@ pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
 pub struct TimeTable {
     /// `masksize`.
     m: usize,
-    /// `pattern[row][col]`, 0-based here.
-    pattern: Vec<Vec<u32>>,
-    /// `blur` N (0: no jitter).
+    /// `pattern[row][col]`, 0-based here, at `row`·m + `col`, as a number
+    /// (each read as one for every subpixel).
+    pattern: Vec<f64>,
+    /// `blur` N (0: no jitter), and as a number.
     n: u32,
+    n_real: f64,
+    /// M², as a number.
+    cells: f64,
     clt: Vec<f64>,
     fidelity: Fidelity,
 }
@@ -200,22 +204,23 @@ impl TimeTable {
             .take(m)
             .map(|r| r.iter().take(m).copied().collect())
             .collect();
-        Ok(TimeTable {
-            m,
-            pattern: corner,
-            n: blur,
-            clt: clt_table(blur),
-            fidelity,
-        })
+        Ok(Self::of(m, corner, blur, fidelity))
     }
 
     /// The table for `masksize` with [`default_pattern`].
     pub fn with_default_pattern(masksize: usize, blur: u32, fidelity: Fidelity) -> TimeTable {
         let m = masksize.max(1);
+        Self::of(m, default_pattern(m, fidelity), blur, fidelity)
+    }
+
+    /// The table of an `m`×`m` `pattern` (its rows) and `blur` N.
+    fn of(m: usize, pattern: Vec<Vec<u32>>, blur: u32, fidelity: Fidelity) -> TimeTable {
         TimeTable {
             m,
-            pattern: default_pattern(m, fidelity),
+            pattern: pattern.iter().flatten().map(|&v| f64::from(v)).collect(),
             n: blur,
+            n_real: f64::from(blur),
+            cells: (m * m) as f64,
             clt: clt_table(blur),
             fidelity,
         }
@@ -228,7 +233,7 @@ impl TimeTable {
     pub fn span(&self) -> (f64, f64) {
         match self.fidelity {
             Fidelity::Listing => {
-                let values = self.pattern.iter().flatten().map(|&v| v as f64 * 0.1);
+                let values = self.pattern.iter().map(|&v| v * 0.1);
                 values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| (a.min(t), b.max(t)))
             }
             Fidelity::Thesis => (0.0, 1.0),
@@ -254,7 +259,7 @@ impl TimeTable {
             // and `mindex` is advanced but never read.
             Fidelity::Listing => {
                 let (row, col) = (scancol % self.m, scanline % self.m);
-                self.pattern[row][col] as f64 * 0.1
+                self.pattern[row * self.m + col] * 0.1
             }
             // Thesis: row from the scanline, column from the scancol; the
             // table picks a stratum of [0,1), the CLT mean x̄ (entry `mindex`
@@ -264,9 +269,9 @@ impl TimeTable {
                 let xbar = if self.n == 0 {
                     0.5
                 } else {
-                    self.clt[k % MAXINDEX] / self.n as f64
+                    self.clt[k % MAXINDEX] / self.n_real
                 };
-                (self.pattern[row][col] as f64 + xbar) / (self.m * self.m) as f64
+                (self.pattern[row * self.m + col] + xbar) / self.cells
             }
         }
     }
