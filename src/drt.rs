@@ -635,6 +635,19 @@ mod tests {
         }
     }
 
+    /// A subpixel's time comes back without jitter: always in the listing
+    /// (which never reads `mindex`), with `blur 0` in the thesis; not with
+    /// `blur` N > 0, whose CLT mean moves it.
+    #[test]
+    fn times_repeat_without_jitter() {
+        for m in [1, 2, 3, 4] {
+            let table = |blur, fidelity| TimeTable::with_default_pattern(m, blur, fidelity);
+            assert!(table(0, Fidelity::Listing).repeats() && table(3, Fidelity::Listing).repeats());
+            assert!(table(0, Fidelity::Thesis).repeats(), "{m}");
+            assert!(!table(1, Fidelity::Thesis).repeats() && !table(2, Fidelity::Thesis).repeats());
+        }
+    }
+
     #[test]
     fn noise2_is_centred_and_bounded() {
         let t = noise2_table();

@@ -794,6 +794,46 @@ mod tests {
         assert_eq!(nearest_with(false, &ray).map(|(i, _)| i), Some(moving[0].object));
     }
 
+    /// The loop's poses kept for instants whose times come back are those
+    /// made afresh: over times that return in every order (and more of
+    /// them than there are places, so that instants take each other's),
+    /// every object where it stands then, to the bit.
+    #[test]
+    fn kept_poses_are_the_instants_own() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
+        let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
+        let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
+        let rest = rest_poses(&scene);
+        let moving = crate::motion::paths(&scene);
+        let mut moving_of = vec![None; scene.objects.len()];
+        for (k, m) in moving.iter().enumerate() {
+            moving_of[m.object] = Some(k);
+        }
+        let new = |repeats| {
+            Poses::new(
+                &scene.objects,
+                &rest,
+                &moving,
+                &moving_of,
+                Fidelity::Thesis,
+                true,
+                repeats,
+            )
+        };
+        let (mut kept, mut fresh) = (new(true), new(false));
+        let times: Vec<f64> = (0..40).map(|k| ((k * 7) % 23) as f64 / 23.0).collect();
+        for (n, &t) in times.iter().chain(times.iter().rev()).enumerate() {
+            kept.at(t);
+            fresh.at(t);
+            for i in 0..scene.objects.len() {
+                let (a, b) = (kept.get(i), fresh.get(i));
+                let bits = |p: &Pose| p.transfm.to_cols_array().map(f64::to_bits);
+                assert_eq!(bits(&a), bits(&b), "instant {n}, time {t}, object {i}");
+                assert_eq!(a.sphereo, b.sphereo);
+            }
+        }
+    }
+
     /// An object that deforms is met as its contour of the moment, without
     /// a cache (its caps solved, its bounds made per ray), though its key
     /// shape has one; the same object at rest is met with its cache.

@@ -460,3 +460,58 @@ fn listing_times_past_the_shutter_render_as_the_loop() {
     assert_eq!(images[2], images[0], "octree");
     assert_eq!(prepared[1].time_span(), (0.0, 1.5), "the table's times");
 }
+
+/// The boxes over time of `motion::object_bounds`: as many segments as
+/// make the farthest mover go a quarter of its width or less in each (a
+/// power of two, at most 16), runs over which it goes its width or less;
+/// each moving object's box over a segment holds its bounding sphere at
+/// every time of the segment, and it keeps boxes over the segments only
+/// where they are much smaller than its box over all the times.
+#[test]
+fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
+    for (travel, count, runs) in [
+        (0.0, 1, 1),
+        (0.05, 1, 1),
+        (0.5, 1, 1),
+        (2.0, 4, 1),
+        (4.6, 16, 4),
+        (40.0, 16, 16),
+    ] {
+        let mut deck = String::from(
+            "view eye 0 -20 0 look 0 0 0 screen 10 distance 10\nimage 8 8 mask 1\n\
+             surface op opaque color 0.8 0.2 0.1 ka 0.2 kd 0.8 ks 0 kt 0\nblur 1\n",
+        );
+        for i in 0..6 {
+            let x = i as f64 * 3.0;
+            deck.push_str(&format!("sphere s{i} op at {x} 0 0 radius 0.5\n"));
+            if travel > 0.0 && i % 2 == 0 {
+                deck.push_str(&format!(
+                    "motion s{i} to {} 0 {} law smooth\n",
+                    x + travel * 0.5,
+                    travel * 0.25
+                ));
+            }
+        }
+        let scene = scene_of(&deck, Fidelity::Thesis);
+        let prepared = Prepared::new(scene, Options::default()).unwrap();
+        let moving = prepared.moving();
+        let span = prepared.time_span();
+        let b = raytrace::motion::object_bounds(&prepared.scene().objects, moving, span, Fidelity::Thesis);
+        assert_eq!((b.segments.count(), b.runs), (count, runs), "travel {travel}");
+        for m in moving {
+            let timed = &b.timed[m.object];
+            assert_eq!(!timed.is_empty(), count > 1, "travel {travel}: boxes in time");
+            for (k, bx) in timed.iter().enumerate() {
+                let (t0, t1) = b.segments.span(k);
+                for j in 0..=20 {
+                    let t = t0 + (t1 - t0) * j as f64 / 20.0;
+                    let rest = &prepared.scene().objects[m.object];
+                    let c = m.pose(rest, t, Fidelity::Thesis).sphereo;
+                    let r = rest.radius;
+                    let inside = bx.holds(c - r) && bx.holds(c + r);
+                    assert!(inside, "travel {travel}, segment {k}, t {t}: {c} in {bx:?}");
+                }
+            }
+        }
+    }
+}

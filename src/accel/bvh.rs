@@ -171,7 +171,7 @@ impl Bvh {
     /// boxes over all times; what a node keeps over the segments is the
     /// union of its children's.
     pub fn build_timed(boxes: &Timed) -> Bvh {
-        let count = boxes.segments.len();
+        let count = boxes.segments.count();
         let mut prims: Vec<Prim> = boxes
             .whole
             .iter()
@@ -340,7 +340,7 @@ impl Bvh {
         if self.segments.is_whole() {
             self.walk_in::<false>(ray, tmin, limit, 0, stack, visit)
         } else {
-            let segment = segment.min(self.segments.len() - 1);
+            let segment = segment.min(self.segments.count() - 1);
             self.walk_in::<true>(ray, tmin, limit, segment, stack, visit)
         }
     }

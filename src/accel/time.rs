@@ -35,14 +35,14 @@ impl Segments {
         Segments::new(t0, t1, 1)
     }
 
-    /// The number of segments.
-    pub fn len(&self) -> usize {
+    /// The number of segments (one at least).
+    pub fn count(&self) -> usize {
         self.ends.len() - 1
     }
 
     /// Is it one segment only?
     pub fn is_whole(&self) -> bool {
-        self.len() == 1
+        self.count() == 1
     }
 
     /// The `count` segments from segment `first` on.
@@ -62,7 +62,7 @@ impl Segments {
     /// right), the first or the last for a time before or after them all.
     #[inline]
     pub fn of(&self, time: f64) -> usize {
-        let n = self.len();
+        let n = self.count();
         if n == 1 {
             return 0;
         }
@@ -121,7 +121,7 @@ pub struct Timed {
 
 impl Timed {
     pub fn of(b: &Bounds) -> Timed {
-        let count = b.segments.len();
+        let count = b.segments.count();
         let mut per = Vec::new();
         let first = (0..b.whole.len())
             .map(|i| match b.timed.get(i) {
@@ -199,7 +199,7 @@ impl Hierarchy {
     /// The trees over `boxes`, in `runs` runs of its segments (powers of
     /// two both, the runs no more than the segments; else one run).
     pub fn build(boxes: &Timed, runs: usize) -> Hierarchy {
-        let n = boxes.segments.len();
+        let n = boxes.segments.count();
         let fits = runs.is_power_of_two() && n.is_power_of_two() && runs <= n;
         let runs = if fits { runs } else { 1 };
         let per_run = n / runs;
@@ -246,5 +246,147 @@ impl Hierarchy {
     /// The trees, one a run of segments.
     pub fn trees(&self) -> &[Bvh] {
         &self.trees
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::{BoxRay, Structure, WalkStack};
+    use crate::hash::hashed_uniform;
+    use crate::types::{DVec3, Ray};
+
+    /// Every time of the span lies in the segment `of` gives, to the bit of
+    /// the kept ends; times before and after go to the first and last.
+    #[test]
+    fn a_time_lies_in_its_segment() {
+        for (t0, t1, n) in [(0.0, 1.0, 16), (0.0, 1.5, 8), (-0.25, 3.0, 4), (0.1, 0.3, 2)] {
+            let s = Segments::new(t0, t1, n);
+            assert_eq!(s.count(), n);
+            for i in 0..=10_000 {
+                let t = t0 + (t1 - t0) * i as f64 / 10_000.0;
+                let k = s.of(t);
+                let (a, b) = s.span(k);
+                assert!(a <= t && t <= b, "{t} in segment {k}: {a}..{b}");
+            }
+            for k in 0..n {
+                let (a, b) = s.span(k);
+                assert!(s.of(a) == k || s.of(a) + 1 == k, "{a}");
+                assert!(s.of(b) == k || s.of(b) == k + 1, "{b}");
+            }
+            assert_eq!((s.of(t0 - 1.0), s.of(t1 + 1.0), s.of(f64::NAN)), (0, n - 1, 0));
+        }
+        assert_eq!(Segments::whole(0.0, 1.0).of(0.7), 0);
+        assert!(Segments::whole(0.0, 1.0).is_whole() && !Segments::new(0.0, 1.0, 2).is_whole());
+    }
+
+    /// `n` cubes of half-side `r` moving `travel` of their widths along x
+    /// over `count` segments of [0, 1]: each object's box over each segment
+    /// (those moving), and over all.
+    fn moving_cubes(n: usize, r: f64, travel: f64, count: usize, runs: usize) -> Bounds {
+        let segments = Segments::new(0.0, 1.0, count);
+        let (mut whole, mut timed) = (Vec::new(), Vec::new());
+        for i in 0..n {
+            let u = |j: u64| hashed_uniform(8 * i as u64 + j);
+            let c = DVec3::new(10.0 * u(0), 10.0 * u(1), 10.0 * u(2));
+            let moving = i % 4 != 0;
+            let at = |t: f64| c + DVec3::X * (if moving { 2.0 * r * travel * t } else { 0.0 });
+            let over = |a: f64, b: f64| BoundingBox::EMPTY.holding(at(a) - r).holding(at(b) + r);
+            whole.push(over(0.0, 1.0));
+            timed.push(match moving {
+                true => (0..count)
+                    .map(|k| over(segments.span(k).0, segments.span(k).1))
+                    .collect(),
+                false => Vec::new(),
+            });
+        }
+        Bounds {
+            segments,
+            whole,
+            timed,
+            runs,
+        }
+    }
+
+    /// A ray at a time of segment k visits every object whose box over k
+    /// it meets, and none whose box over all the times it passes farther
+    /// than the nodes' single-precision slack; in one tree or in a tree a
+    /// run of segments.
+    #[test]
+    fn a_ray_meets_the_boxes_of_its_segment() {
+        for runs in [1, 2, 4] {
+            let bounds = moving_cubes(300, 0.2, 3.0, 8, runs);
+            let Some(Structure::Bvh(h)) = Structure::build(crate::accel::Accel::Bvh, &bounds) else {
+                panic!("a hierarchy");
+            };
+            assert_eq!(h.trees().len(), runs);
+            // Over the whole shutter the fast movers' nodes keep boxes in
+            // time; over a quarter of it, the rule may find one box enough.
+            assert!(
+                runs > 1 || h.trees()[0].timed_len() > 0,
+                "fast movers keep boxes in time"
+            );
+            let structure = Structure::Bvh(h);
+            // The same objects with their boxes over all the times only.
+            let still = Structure::build(crate::accel::Accel::Bvh, &Bounds::still(bounds.whole.clone())).unwrap();
+            let (mut visits, mut stack, mut still_visits) = (0, WalkStack::default(), 0);
+            for k in 0..500u64 {
+                let u = |j: u64| hashed_uniform(1_000_000 + 8 * k + j);
+                let o = DVec3::new(-5.0, 10.0 * u(0), 10.0 * u(1));
+                let ray = Ray::new(o, (DVec3::new(15.0, 10.0 * u(2), 10.0 * u(3)) - o).normalize());
+                let time = u(4);
+                let segment = structure.segment(time);
+                let mut got = Vec::new();
+                structure.candidates(&ray, 0.0, segment, &mut stack, &mut got);
+                let boxray = BoxRay::new(&ray);
+                let at = |i: usize| Aabb::of(bounds.timed[i].get(segment).unwrap_or(&bounds.whole[i]));
+                let whole = |i: usize| {
+                    let b = Aabb::of(&bounds.whole[i]);
+                    boxray
+                        .span(
+                            &Aabb {
+                                lo: b.lo - 1e-4,
+                                hi: b.hi + 1e-4,
+                            },
+                            0.0,
+                            f64::INFINITY,
+                        )
+                        .is_some()
+                };
+                for i in 0..bounds.whole.len() {
+                    if boxray.span(&at(i), 0.0, f64::INFINITY).is_some() {
+                        assert!(got.contains(&i), "ray {k}: object {i} in segment {segment}");
+                    } else if !whole(i) {
+                        // (A node that keeps one box tests its objects'
+                        // boxes over all the times: more visits, never fewer.)
+                        assert!(!got.contains(&i), "ray {k}: object {i} is off the ray");
+                    }
+                }
+                visits += got.len();
+                still.candidates(&ray, 0.0, 0, &mut stack, &mut got);
+                still_visits += got.len();
+            }
+            assert!(visits > 200, "{visits}");
+            assert!(
+                4 * visits < 3 * still_visits,
+                "boxes in time: {visits} visits against {still_visits}"
+            );
+        }
+    }
+
+    /// Slow movers keep one box: the rule finds their boxes over the
+    /// segments as large as over all of them.
+    #[test]
+    fn slow_movers_keep_one_box() {
+        let bounds = moving_cubes(100, 0.5, 0.01, 4, 1);
+        let Some(Structure::Bvh(h)) = Structure::build(crate::accel::Accel::Bvh, &bounds) else {
+            panic!("a hierarchy");
+        };
+        assert_eq!(h.trees()[0].timed_len(), 0);
+        let fast = moving_cubes(100, 0.5, 3.0, 4, 1);
+        let Some(Structure::Bvh(h)) = Structure::build(crate::accel::Accel::Bvh, &fast) else {
+            panic!("a hierarchy");
+        };
+        assert!(h.trees()[0].timed_len() > 0);
     }
 }
