@@ -357,42 +357,38 @@ impl Snapshot<'_> {
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
         let cache = || self.caches[i].as_deref();
         let obj = &self.scene.objects[i];
-        if let Some(pose) = self.all.get(i) {
-            return self.posed_as(i, obj, pose, cache, ray, tmin, f);
-        }
-        let Some((m, time)) = self.poses.asked(i) else {
-            return self.posed_as(i, obj, &self.poses.rest[i], cache, ray, tmin, f);
+        let meets = |centre| crate::shapes::bounding_sphere_hit(centre, obj.radius, ray, tmin);
+        let kept = match self.all.get(i) {
+            Some(pose) => Some(pose),
+            None => self.poses.asked(i).is_none().then(|| &self.poses.rest[i]),
         };
-        if !crate::shapes::bounding_sphere_hit(self.poses.centre(m, time), obj.radius, ray, tmin) {
+        if let Some(pose) = kept {
+            return if meets(pose.sphereo) {
+                self.shaped(i, obj, pose, cache, f)
+            } else {
+                None
+            };
+        }
+        let (m, time) = self.poses.asked(i)?;
+        if !meets(self.poses.centre(m, time)) {
             return None;
         }
         let pose = self.poses.posed(m, time);
         self.shaped(i, obj, &pose, cache, f)
     }
 
-    /// [`Snapshot::posed`] of object `i` whose record and pose the caller
-    /// has at hand, and whose cache `cache` gives (asked for a sweep only):
-    /// the loop walks the tables side by side instead of indexing each.
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    fn posed_as<'s, R>(
-        &'s self,
-        i: usize,
-        obj: &'s ObjectRecord,
-        pose: &'s Pose,
-        cache: impl FnOnce() -> Option<&'s SweepCache>,
-        ray: &Ray,
-        tmin: f64,
-        f: impl FnOnce(&Posed) -> Option<R>,
-    ) -> Option<R> {
-        if !crate::shapes::bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
-            return None;
-        }
-        self.shaped(i, obj, pose, cache, f)
+    /// The objects the structure `s` gives `ray` beyond `tmin` at the
+    /// instant's segment ([`Structure::candidates`]), in the scratch.
+    fn candidates(&self, s: &Structure, ray: &Ray, tmin: f64) -> std::cell::RefMut<'_, Vec<usize>> {
+        let mut out = self.scratch.candidates.borrow_mut();
+        s.candidates(ray, tmin, self.segment, &mut self.scratch.stack.borrow_mut(), &mut out);
+        out
     }
 
-    /// `f` of object `i` at `pose`, a ray having met its bounding sphere
-    /// ([`Snapshot::posed_as`]).
+    /// `f` of object `i` at `pose`, its cache given by `cache` (asked for
+    /// a sweep only), a ray having met its bounding sphere
+    /// ([`Snapshot::posed`]; the loop walks the tables side by side and
+    /// calls it with each object's record and pose at hand).
     #[inline(always)]
     fn shaped<'s, R>(
         &'s self,
@@ -530,16 +526,16 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
         if snap.all.len() == objects.len() && snap.caches.len() == objects.len() {
             let tables = objects.iter().zip(snap.all).zip(snap.caches);
             for (i, ((obj, pose), cache)) in tables.enumerate() {
-                let hit = snap.posed_as(
-                    i,
-                    obj,
-                    pose,
-                    || cache.as_deref(),
-                    ray,
-                    tmin,
-                    |p| p.intersect(ray, tmin, snap.opts, searched),
-                );
-                keep(hit, i, &mut best);
+                if crate::shapes::bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
+                    let hit = snap.shaped(
+                        i,
+                        obj,
+                        pose,
+                        || cache.as_deref(),
+                        |p| p.intersect(ray, tmin, snap.opts, searched),
+                    );
+                    keep(hit, i, &mut best);
+                }
             }
         } else {
             for i in 0..objects.len() {
@@ -556,14 +552,7 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
 fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
     let mut best: Option<(usize, LocalHit)> = None;
     if snap.aggregate.counted {
-        let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(
-            ray,
-            tmin,
-            snap.segment,
-            &mut snap.scratch.stack.borrow_mut(),
-            &mut candidates,
-        );
+        let candidates = snap.candidates(s, ray, tmin);
         for &i in candidates.iter() {
             consider(snap, i, ray, tmin, searched, &mut best);
         }
@@ -659,14 +648,7 @@ fn blockers_in(
     let agg = snap.aggregate;
     let mut blocks = |i: usize| blocks(snap, i, ray, tmin, tmax, searched);
     if agg.counted {
-        let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(
-            ray,
-            tmin,
-            snap.segment,
-            &mut snap.scratch.stack.borrow_mut(),
-            &mut candidates,
-        );
+        let candidates = snap.candidates(s, ray, tmin);
         for &i in candidates.iter() {
             match agg.shadow[i] {
                 Shadow::None => {}
@@ -727,22 +709,29 @@ mod tests {
     use crate::options::Fidelity;
     use crate::types::DVec3;
 
-    /// The loop over poses made when asked (a structure's, at an instant
-    /// outside the times it bounds) meets the objects where the poses made
-    /// all at once put them: the same nearest hit for rays at the moving
-    /// ball and at the floor.
-    #[test]
-    fn the_loop_meets_lazy_poses_as_eager_ones() {
+    /// fig5_1's scene, its objects at rest, its motions, and each object's
+    /// motion by index.
+    fn fig5_1() -> (Scene, Vec<Pose>, Vec<Moving>, Vec<Option<usize>>) {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
         let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
         let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
-        let caches = crate::shapes::prepare_caches(&scene);
         let rest = rest_poses(&scene);
         let moving = crate::motion::paths(&scene);
         let mut moving_of = vec![None; scene.objects.len()];
         for (k, m) in moving.iter().enumerate() {
             moving_of[m.object] = Some(k);
         }
+        (scene, rest, moving, moving_of)
+    }
+
+    /// The loop over poses made when asked (a structure's, at an instant
+    /// outside the times it bounds) meets the objects where the poses made
+    /// all at once put them: the same nearest hit for rays at the moving
+    /// ball and at the floor.
+    #[test]
+    fn the_loop_meets_lazy_poses_as_eager_ones() {
+        let (scene, rest, moving, moving_of) = fig5_1();
+        let caches = crate::shapes::prepare_caches(&scene);
         let (opts, aggregate) = (Options::default(), Aggregate::linear(&scene));
         let nearest_with = |eager: bool, ray: &Ray| {
             let mut poses = Poses::new(
@@ -772,15 +761,8 @@ mod tests {
             nearest(&snap, ray, 1e-9, &mut 0).map(|(i, h)| (i, h.t))
         };
         let eye = scene.view.eyept;
-        let mut ball = Poses::new(
-            &scene.objects,
-            &rest,
-            &moving,
-            &moving_of,
-            Fidelity::Thesis,
-            true,
-            false,
-        );
+        let (objects, moved) = (&scene.objects, &moving_of);
+        let mut ball = Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, true, false);
         ball.at(0.3);
         let centre = ball.get(moving[0].object).sphereo;
         for target in [centre, DVec3::new(0.0, 0.0, -0.5)] {
@@ -800,26 +782,9 @@ mod tests {
     /// every object where it stands then, to the bit.
     #[test]
     fn kept_poses_are_the_instants_own() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
-        let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
-        let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
-        let rest = rest_poses(&scene);
-        let moving = crate::motion::paths(&scene);
-        let mut moving_of = vec![None; scene.objects.len()];
-        for (k, m) in moving.iter().enumerate() {
-            moving_of[m.object] = Some(k);
-        }
-        let new = |repeats| {
-            Poses::new(
-                &scene.objects,
-                &rest,
-                &moving,
-                &moving_of,
-                Fidelity::Thesis,
-                true,
-                repeats,
-            )
-        };
+        let (scene, rest, moving, moving_of) = fig5_1();
+        let (objects, moved) = (&scene.objects, &moving_of);
+        let new = |repeats| Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, true, repeats);
         let (mut kept, mut fresh) = (new(true), new(false));
         let times: Vec<f64> = (0..40).map(|k| ((k * 7) % 23) as f64 / 23.0).collect();
         for (n, &t) in times.iter().chain(times.iter().rev()).enumerate() {

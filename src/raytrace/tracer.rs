@@ -14,13 +14,11 @@ pub(super) struct Tracer<'p> {
     poses: Poses<'p>,
     deforming: Vec<Deforming<'p>>,
     scratch: Scratch,
-    /// The time segment of the instant in the prepared structure (0 for
-    /// the loop, which has none).
-    segment: usize,
-    /// Whether the structure holds the instant: always for a render's
-    /// ([`Tracer::at`]); the loop searches an instant a caller chose
-    /// outside the render's times ([`Tracer::at_any`]).
-    bounded: bool,
+    /// The time segment of the instant in the prepared structure; `None`
+    /// where the loop searches: always without a structure, and with one
+    /// for an instant a caller chose outside the render's times
+    /// ([`Tracer::at_any`]; a render's are all inside, [`Tracer::at`]).
+    segment: Option<usize>,
     pub(super) stats: TraceStats,
 }
 
@@ -31,8 +29,7 @@ impl<'p> Tracer<'p> {
             poses: prepared.poses(),
             deforming: prepared.deforming(),
             scratch: Scratch::default(),
-            segment: 0,
-            bounded: true,
+            segment: prepared.aggregate().structure().map(|_| 0),
             stats: TraceStats::default(),
         }
     }
@@ -50,28 +47,21 @@ impl<'p> Tracer<'p> {
         for d in &self.deforming {
             d.at(time);
         }
-        self.segment = self.prepared.aggregate().structure().map_or(0, |s| s.segment(time));
+        self.segment = self.prepared.aggregate().structure().map(|s| s.segment(time));
     }
 
     /// [`Tracer::at`] for a time a caller chose, which may lie outside the
     /// times the render's samples have: the loop searches it there.
     pub(super) fn at_any(&mut self, time: f64) {
         self.at(time);
-        self.bounded = self.prepared.bounds_time(time);
+        self.segment = self.segment.filter(|_| self.prepared.bounds_time(time));
     }
 
     /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
     /// of `sampler`'s sample, with the scene as the last [`Tracer::at`]
     /// left it.
     pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
-        let snap = snapshot(
-            self.prepared,
-            &self.poses,
-            &self.deforming,
-            &self.scratch,
-            self.segment,
-            self.bounded,
-        );
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         self.stats.primary += 1;
         let mut ctx = Context {
             stats: &mut self.stats,
@@ -83,29 +73,20 @@ impl<'p> Tracer<'p> {
     /// The object `ray` meets first with the scene as the last
     /// [`Tracer::at`] left it, and the hit.
     pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
-        let snap = snapshot(
-            self.prepared,
-            &self.poses,
-            &self.deforming,
-            &self.scratch,
-            self.segment,
-            self.bounded,
-        );
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         intersect(&snap, ray, &mut self.stats)
     }
 }
 
 /// The prepared scene with its objects where `poses` put them and the
 /// deforming objects' contours of the instant, searched by the prepared
-/// structure in the instant's time `segment` if it is `bounded`, else by
-/// the loop.
+/// structure in the instant's time `segment`, or by the loop (`None`).
 fn snapshot<'a>(
     prepared: &'a Prepared,
     poses: &'a Poses<'a>,
     deforming: &'a [Deforming<'a>],
     scratch: &'a Scratch,
-    segment: usize,
-    bounded: bool,
+    segment: Option<usize>,
 ) -> Snapshot<'a> {
     Snapshot {
         scene: prepared.scene(),
@@ -116,8 +97,8 @@ fn snapshot<'a>(
         deforming_of: prepared.deforming_of(),
         caches: prepared.caches(),
         aggregate: prepared.aggregate(),
-        structure: prepared.aggregate().structure().filter(|_| bounded),
-        segment,
+        structure: prepared.aggregate().structure().filter(|_| segment.is_some()),
+        segment: segment.unwrap_or(0),
         scratch,
     }
 }
