@@ -11,7 +11,7 @@
 //! `crate::intersect::Deforming`). The arrangement is the port's: the
 //! listing's `motionblur` does both for every ray.
 
-use crate::accel::{Bounds, Segments};
+use crate::accel::{Aabb, Bounds, Segments, USE_UNION};
 use crate::drt::{motion_bounds, motion_place, motionblur, Isblur};
 use crate::options::Fidelity;
 use crate::paper::PaperChain;
@@ -214,8 +214,9 @@ pub fn object_bounds(objects: &[ObjectRecord], moving: &[Moving], span: (f64, f6
                     object_box(o, Some(m), a, b, fidelity)
                 })
                 .collect();
-            let mean = boxes.iter().map(half_area).sum::<f64>() / count as f64;
-            if half_area(&whole[m.object]) > 1.4 * mean {
+            let area = |b: &BoundingBox| Aabb::of(b).half_area();
+            let mean = boxes.iter().map(area).sum::<f64>() / count as f64;
+            if area(&whole[m.object]) > USE_UNION * mean {
                 timed[m.object] = boxes;
             }
         }
@@ -249,16 +250,6 @@ fn stretch(whole: &BoundingBox, instant: &BoundingBox) -> f64 {
         most
     } else {
         0.0
-    }
-}
-
-/// Half the surface area of `b` (0 for an empty box).
-fn half_area(b: &BoundingBox) -> f64 {
-    let (x, y, z) = (b.xmax - b.xmin, b.ymax - b.ymin, b.zmax - b.zmin);
-    if x < 0.0 || y < 0.0 || z < 0.0 {
-        0.0
-    } else {
-        x * y + y * z + z * x
     }
 }
 

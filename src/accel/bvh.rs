@@ -33,7 +33,7 @@ use std::ops::ControlFlow;
 
 use super::quad::{Quad, QuadRay};
 use super::time::UNTIMED;
-use super::{visit_each, Aabb, BoxRay, Segments, Step, Timed};
+use super::{visit_each, Aabb, BoxRay, Segments, Step, Timed, USE_UNION};
 
 /// Buckets of the heuristic (pbrt-v4's).
 const BUCKETS: usize = 12;
@@ -47,11 +47,6 @@ const MAX_DEPTH: usize = 60;
 
 /// What a node's box test costs against an object's test (pbrt-v4's ½).
 const TRAVERSAL_COST: f64 = 0.5;
-
-/// A node keeps boxes over each time segment when its box over the whole
-/// time has more than this many times their mean half-area (psychopath's
-/// `USE_UNION_FACTOR`).
-const USE_UNION: f64 = 1.4;
 
 /// A node: the boxes of its two to four children side by side (one
 /// [`Quad`], tested at once) and what each child is: a node (its index), a

@@ -25,7 +25,7 @@ use std::ops::ControlFlow;
 
 pub use bvh::Bvh;
 pub use octree::{findnode_digit, Found, Octree, MAX_DEPTH};
-pub use time::{Bounds, Hierarchy, Segments, Timed};
+pub use time::{Bounds, Hierarchy, Segments, Timed, USE_UNION};
 
 use crate::types::{BoundingBox, DVec3, Ray};
 

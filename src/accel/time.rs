@@ -104,6 +104,11 @@ impl Bounds {
     }
 }
 
+/// A node, or an object, keeps boxes over each time segment when its box
+/// over all the times has more than this many times their mean half-area
+/// (psychopath's `USE_UNION_FACTOR`, src/accel/bvh_base.rs).
+pub const USE_UNION: f64 = 1.4;
+
 /// No boxes over time segments: of a node, a leaf's object, or an object
 /// that does not move far.
 pub(super) const UNTIMED: u32 = u32::MAX;
