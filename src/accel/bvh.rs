@@ -24,7 +24,7 @@
 //! keeps its children's boxes over each segment of the times the render
 //! can have ([`super::Segments`]), and a ray tests those of its own
 //! time's segment. Which nodes keep them is psychopath's rule
-//! (`src/accel/bvh_base.rs`: one box where the union of the boxes over
+//! (its `src/accel/bvh_base.rs`: one box where the union of the boxes over
 //! time is at most 1.4 times their average area): a node whose box over
 //! the whole time is not much larger than its boxes over the segments
 //! keeps the one box, as every node of a scene at rest does.

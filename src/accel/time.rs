@@ -106,7 +106,7 @@ impl Bounds {
 
 /// A node, or an object, keeps boxes over each time segment when its box
 /// over all the times has more than this many times their mean half-area
-/// (psychopath's `USE_UNION_FACTOR`, src/accel/bvh_base.rs).
+/// (psychopath's `USE_UNION_FACTOR`, in its src/accel/bvh_base.rs).
 pub const USE_UNION: f64 = 1.4;
 
 /// No boxes over time segments: of a node, a leaf's object, or an object
