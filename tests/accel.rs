@@ -14,6 +14,7 @@ use raytrace::accel::{Accel, Structure};
 use raytrace::deck::initialize;
 use raytrace::hash::hashed_uniform;
 use raytrace::intersect::{for_each_blocker, nearest, Deforming, Poses, Scratch, Snapshot};
+use raytrace::motion::Motion;
 use raytrace::options::{Fidelity, Options, TimeSampler};
 use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
@@ -466,7 +467,8 @@ fn listing_times_past_the_shutter_render_as_the_loop() {
 /// power of two, at most 16), runs over which it goes its width or less;
 /// each moving object's box over a segment holds its bounding sphere at
 /// every time of the segment, and it keeps boxes over the segments only
-/// where they are much smaller than its box over all the times.
+/// where they are much smaller than its box over all the times. A
+/// deforming sweep (a key-frame chain that moves as it deforms) too.
 #[test]
 fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
     for (travel, count, runs) in [
@@ -492,15 +494,36 @@ fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
                 ));
             }
         }
+        // A star that turns into another while it moves as far in its
+        // widths as the spheres go in theirs.
+        for (k, x) in [(0, 0.0), (1, travel * 0.5)] {
+            deck.push_str(&format!(
+                "sweep k{k} op translation bspline at {x} 9 0 length 0.5\n 0 0.5\n -0.5 0\n 0 -0.5\n 0.5 0\nend\n"
+            ));
+        }
+        deck.push_str("rotate k1 z 30\nkeyframe k0 k1\n");
         let scene = scene_of(&deck, Fidelity::Thesis);
         let prepared = Prepared::new(scene, Options::default()).unwrap();
         let moving = prepared.moving();
         let span = prepared.time_span();
         let b = raytrace::motion::object_bounds(&prepared.scene().objects, moving, span, Fidelity::Thesis);
         assert_eq!((b.segments.count(), b.runs), (count, runs), "travel {travel}");
+        let chains = moving
+            .iter()
+            .filter(|m| matches!(m.motion, Motion::Chain { .. }))
+            .count();
+        assert_eq!(chains, 1, "the deforming star moves");
         for m in moving {
             let timed = &b.timed[m.object];
-            assert_eq!(!timed.is_empty(), count > 1, "travel {travel}: boxes in time");
+            // (The star, wider than a sphere, goes fewer of its widths: at
+            // two radii its boxes over the segments are not small enough.)
+            let far = matches!(m.motion, Motion::Path(_)) || travel > 2.0;
+            assert_eq!(
+                !timed.is_empty(),
+                count > 1 && far,
+                "travel {travel}: boxes in time of {:?}",
+                m.motion
+            );
             for (k, bx) in timed.iter().enumerate() {
                 let (t0, t1) = b.segments.span(k);
                 for j in 0..=20 {
