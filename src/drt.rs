@@ -151,10 +151,14 @@ pub fn default_pattern(m: usize, fidelity: Fidelity) -> Vec<Vec<u32>> {
 pub struct TimeTable {
     /// `masksize`.
     m: usize,
-    /// `pattern[row][col]`, 0-based here.
-    pattern: Vec<Vec<u32>>,
-    /// `blur` N (0: no jitter).
+    /// `pattern[row][col]`, 0-based here, at `row`·m + `col`, as a number
+    /// (each read as one for every subpixel).
+    pattern: Vec<f64>,
+    /// `blur` N (0: no jitter), and as a number.
     n: u32,
+    n_real: f64,
+    /// M², as a number.
+    cells: f64,
     clt: Vec<f64>,
     fidelity: Fidelity,
 }
@@ -200,22 +204,23 @@ impl TimeTable {
             .take(m)
             .map(|r| r.iter().take(m).copied().collect())
             .collect();
-        Ok(TimeTable {
-            m,
-            pattern: corner,
-            n: blur,
-            clt: clt_table(blur),
-            fidelity,
-        })
+        Ok(Self::of(m, corner, blur, fidelity))
     }
 
     /// The table for `masksize` with [`default_pattern`].
     pub fn with_default_pattern(masksize: usize, blur: u32, fidelity: Fidelity) -> TimeTable {
         let m = masksize.max(1);
+        Self::of(m, default_pattern(m, fidelity), blur, fidelity)
+    }
+
+    /// The table of an `m`×`m` `pattern` (its rows) and `blur` N.
+    fn of(m: usize, pattern: Vec<Vec<u32>>, blur: u32, fidelity: Fidelity) -> TimeTable {
         TimeTable {
             m,
-            pattern: default_pattern(m, fidelity),
+            pattern: pattern.iter().flatten().map(|&v| f64::from(v)).collect(),
             n: blur,
+            n_real: f64::from(blur),
+            cells: (m * m) as f64,
             clt: clt_table(blur),
             fidelity,
         }
@@ -228,11 +233,20 @@ impl TimeTable {
     pub fn span(&self) -> (f64, f64) {
         match self.fidelity {
             Fidelity::Listing => {
-                let values = self.pattern.iter().flatten().map(|&v| v as f64 * 0.1);
+                let values = self.pattern.iter().map(|&v| v * 0.1);
                 values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| (a.min(t), b.max(t)))
             }
             Fidelity::Thesis => (0.0, 1.0),
         }
+    }
+
+    /// Does a subpixel's time come back at every subpixel of the same place
+    /// in the table (no jitter by the subpixel's index: `blur 0`, or the
+    /// listing, which never reads `mindex`)? Asked of the times
+    /// themselves, one place's over the CLT table's length.
+    pub fn repeats(&self) -> bool {
+        let first = self.time(1, 1, 0);
+        (1..MAXINDEX).all(|k| self.time(1, 1, k).to_bits() == first.to_bits())
     }
 
     /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
@@ -245,7 +259,7 @@ impl TimeTable {
             // and `mindex` is advanced but never read.
             Fidelity::Listing => {
                 let (row, col) = (scancol % self.m, scanline % self.m);
-                self.pattern[row][col] as f64 * 0.1
+                self.pattern[row * self.m + col] * 0.1
             }
             // Thesis: row from the scanline, column from the scancol; the
             // table picks a stratum of [0,1), the CLT mean x̄ (entry `mindex`
@@ -255,9 +269,9 @@ impl TimeTable {
                 let xbar = if self.n == 0 {
                     0.5
                 } else {
-                    self.clt[k % MAXINDEX] / self.n as f64
+                    self.clt[k % MAXINDEX] / self.n_real
                 };
-                (self.pattern[row][col] as f64 + xbar) / (self.m * self.m) as f64
+                (self.pattern[row * self.m + col] + xbar) / self.cells
             }
         }
     }
@@ -336,25 +350,35 @@ pub fn path_point(from: DVec3, motion: &MotionRecord, f: f64) -> DVec3 {
 /// 2036–2186), for an object that moves but does not deform: from the
 /// rest pose (the listing restores `transfm`, `inverse` and `sphereo` from
 /// `temp1`, `temp2`), the pose at `time`, written into `pose` as the
-/// listing writes it into the object's record. The time itself comes from
-/// [`TimeTable::time`]; the key-frame branch (`paper = 1`) comes with the
-/// `paper` unit. Erratum 3.
+/// listing writes it into the object's record: its `rotate` and
+/// `translate` ([`motion_place`]) made one rigid pose. The time itself
+/// comes from [`TimeTable::time`]; the key-frame branch (`paper = 1`)
+/// comes with the `paper` unit. Erratum 3.
 pub fn motionblur(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity, pose: &mut Pose) {
+    let (sphereo, turn) = motion_place(object, motion, time, fidelity);
+    pose.turn_from(&object.transfm, turn, sphereo);
+}
+
+/// Where [`motionblur`] puts the object at `time`: its origin `sphereo`
+/// and the turn about it. Apart so that the origin alone can be asked
+/// (inlined, what goes unused is not computed): a structure tests the
+/// bounding sphere before it poses the object. Erratum 3.
+#[inline(always)]
+pub fn motion_place(object: &ObjectRecord, motion: &MotionRecord, time: f64, fidelity: Fidelity) -> (DVec3, DMat3) {
     match fidelity {
         // Erratum 3, listing: `sphereo.x := sphereo.x+time*6;
         // rotate(name,xaxis,0,0,0,270*time*50); translate(name,sphereo…)`:
         // every moving object slides 6 along x while it spins about x,
         // whatever its motion record says.
-        Fidelity::Listing => {
-            let sphereo = object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0);
-            pose.turn_from(&object.transfm, rotation(Axis::X, 270.0 * time * 50.0), sphereo);
-        }
+        Fidelity::Listing => (
+            object.sphereo + DVec3::new(6.0 * time, 0.0, 0.0),
+            rotation(Axis::X, 270.0 * time * 50.0),
+        ),
         // Thesis (§3.2.2): the user's path, the turn interpolated linearly,
         // both at LAW(law, 1, time); turns about x, then y, then z.
         Fidelity::Thesis => {
             let f = LAW(motion.law, 1.0, time);
-            let sphereo = path_point(object.sphereo, motion, f);
-            pose.turn_from(&object.transfm, turn_xyz(motion.turn * f), sphereo);
+            (path_point(object.sphereo, motion, f), turn_xyz(motion.turn * f))
         }
     }
 }
@@ -608,6 +632,19 @@ mod tests {
         // Two axes, three: the product.
         for d in [DVec3::new(30.0, 0.0, 45.0), DVec3::new(30.0, 20.0, 45.0)] {
             assert_eq!(bits(turn_xyz(d)), bits(product(d)), "{d}");
+        }
+    }
+
+    /// A subpixel's time comes back without jitter: always in the listing
+    /// (which never reads `mindex`), with `blur 0` in the thesis; not with
+    /// `blur` N > 0, whose CLT mean moves it.
+    #[test]
+    fn times_repeat_without_jitter() {
+        for m in [1, 2, 3, 4] {
+            let table = |blur, fidelity| TimeTable::with_default_pattern(m, blur, fidelity);
+            assert!(table(0, Fidelity::Listing).repeats() && table(3, Fidelity::Listing).repeats());
+            assert!(table(0, Fidelity::Thesis).repeats(), "{m}");
+            assert!(!table(1, Fidelity::Thesis).repeats() && !table(2, Fidelity::Thesis).repeats());
         }
     }
 

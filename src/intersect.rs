@@ -12,7 +12,7 @@
 //! object on it, taken in the table's order (the product of their
 //! transmittances is then the same to the bit).
 
-use std::cell::{Cell, OnceCell, Ref, RefCell};
+use std::cell::{Cell, Ref, RefCell};
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
@@ -22,7 +22,7 @@ use crate::options::Options;
 use crate::paper::PaperChain;
 use crate::scene::Scene;
 use crate::shapes::{Posed, SweepCache};
-use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
+use crate::types::{DVec3, LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
 
 /// The scene at one instant of the shutter: the read-only scene and what
 /// was prepared for it, where each of its objects stands then
@@ -42,9 +42,11 @@ pub struct Snapshot<'a> {
     /// What `shapes` prepared for each object's own shape.
     pub caches: &'a [Option<Arc<SweepCache>>],
     pub aggregate: &'a Aggregate,
-    /// The structure to search, or `None` for the loop (also when the
-    /// instant lies outside the times the structure bounds).
+    /// The structure to search, or `None` for the loop.
     pub structure: Option<&'a Structure>,
+    /// The instant's time segment in the structure
+    /// ([`Structure::segment`]; 0 for the loop).
+    pub segment: usize,
     /// The queries' scratch.
     pub scratch: &'a Scratch,
 }
@@ -54,7 +56,8 @@ pub struct Snapshot<'a> {
 /// loop, which meets every object, every moving object is posed when the
 /// instant begins, as `motionblur` did for every ray; with a structure
 /// over the objects, a moving object is posed the first time a ray of the
-/// instant reaches it, and those no ray comes near cost nothing.
+/// instant reaches its bounding sphere (its origin alone found before,
+/// [`Poses::centre`]), and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
     objects: &'a [ObjectRecord],
@@ -72,22 +75,65 @@ pub struct Poses<'a> {
 /// The poses of the instant, as [`Poses`] keeps them.
 #[derive(Debug)]
 enum Now {
-    /// For the loop: every object's.
-    All(Vec<Pose>),
-    /// For a structure: the moving objects', as they are made, and which
-    /// were made this instant, to be cleared at the next (not all of
-    /// them: a structure's rays reach few).
-    Lazy {
-        posed: Vec<OnceCell<Pose>>,
-        made: RefCell<Vec<usize>>,
+    /// For the loop: every object's, in [`SLOTS`] places (one where that
+    /// many copies of the table would be large), each holding the poses
+    /// of one instant and its time (its bits), an instant's place found
+    /// from its time: an instant whose time comes back (the table's times
+    /// without jitter, fig5_1's) is posed once, and another in its place
+    /// is posed over it. `current` is the instant's place.
+    All {
+        slots: Vec<(Option<u64>, Vec<Pose>)>,
+        current: usize,
     },
+    /// For a structure: the poses of the moving objects asked at the
+    /// instant, in the order they were asked, each written where it is
+    /// kept (the list is kept from one instant to the next and written
+    /// over: it grows only while more are asked than ever before); how
+    /// many are the instant's; and for each moving object the instant it
+    /// was last posed at and its place in the list (instants counted from
+    /// 1: nothing to clear at the next).
+    Lazy {
+        posed: RefCell<Vec<Pose>>,
+        made: Cell<usize>,
+        slot: Vec<Cell<(u64, u32)>>,
+        instant: u64,
+    },
+}
+
+/// How many instants' poses the loop keeps ([`Now::All`]): a power of two,
+/// as many as a 4×4 table has times.
+const SLOTS: usize = 16;
+
+/// The most poses the loop keeps in its places for instants: beyond, one
+/// place.
+const SLOT_POSES: usize = 1024;
+
+/// A pose as [`Poses::get`] gives it: one kept for the instant, or a
+/// moving object's written at it.
+#[derive(Debug)]
+pub enum PoseRef<'p> {
+    Kept(&'p Pose),
+    Written(Ref<'p, Pose>),
+}
+
+impl std::ops::Deref for PoseRef<'_> {
+    type Target = Pose;
+
+    #[inline(always)]
+    fn deref(&self) -> &Pose {
+        match self {
+            PoseRef::Kept(p) => p,
+            PoseRef::Written(p) => p,
+        }
+    }
 }
 
 impl<'a> Poses<'a> {
     /// Every object at rest: `rest[i]` for `objects[i]`, which `moving`
     /// (`moving_of[i]` its index there) moves from [`Poses::at`] on, all
     /// of them at once if `eager` (for the loop), else each when first
-    /// asked.
+    /// asked. Eager poses of instants whose times come back (`repeats`)
+    /// are kept for them ([`Now::All`]).
     pub fn new(
         objects: &'a [ObjectRecord],
         rest: &'a [Pose],
@@ -95,13 +141,24 @@ impl<'a> Poses<'a> {
         moving_of: &'a [Option<usize>],
         fidelity: crate::options::Fidelity,
         eager: bool,
+        repeats: bool,
     ) -> Poses<'a> {
         let now = if eager {
-            Now::All(rest.to_vec())
+            let count = if repeats && rest.len() * SLOTS <= SLOT_POSES {
+                SLOTS
+            } else {
+                1
+            };
+            Now::All {
+                slots: vec![(None, rest.to_vec()); count],
+                current: 0,
+            }
         } else {
             Now::Lazy {
-                posed: vec![OnceCell::new(); moving.len()],
-                made: RefCell::new(Vec::new()),
+                posed: RefCell::new(Vec::new()),
+                made: Cell::new(0),
+                slot: vec![Cell::new((0, 0)); moving.len()],
+                instant: 0,
             }
         };
         Poses {
@@ -120,15 +177,26 @@ impl<'a> Poses<'a> {
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
         match &mut self.now {
-            Now::All(all) => {
-                for m in self.moving {
-                    m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
+            Now::All { slots, current } => {
+                let bits = time.to_bits();
+                // A multiplicative hash's top bits: the times of a table
+                // land in different places.
+                let k = match slots.len() {
+                    1 => 0,
+                    n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
+                };
+                *current = k;
+                let (at, all) = &mut slots[k];
+                if *at != Some(bits) {
+                    for m in self.moving {
+                        m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
+                    }
+                    *at = Some(bits);
                 }
             }
-            Now::Lazy { posed, made } => {
-                for m in made.get_mut().drain(..) {
-                    posed[m].take();
-                }
+            Now::Lazy { instant, made, .. } => {
+                *instant += 1;
+                made.set(0);
             }
         }
     }
@@ -136,10 +204,11 @@ impl<'a> Poses<'a> {
     /// Where object `i` stands at the instant (its rest pose until the
     /// first [`Poses::at`]).
     #[inline(always)]
-    pub fn get(&self, i: usize) -> &Pose {
-        match &self.now {
-            Now::All(all) => &all[i],
-            Now::Lazy { posed, made } => self.lazy(i, posed, made),
+    pub fn get(&self, i: usize) -> PoseRef<'_> {
+        match (&self.now, self.moving_of[i], self.time) {
+            (Now::All { slots, current }, ..) => PoseRef::Kept(&slots[*current].1[i]),
+            (Now::Lazy { .. }, Some(m), Some(time)) => PoseRef::Written(self.posed(m, time)),
+            _ => PoseRef::Kept(&self.rest[i]),
         }
     }
 
@@ -147,22 +216,66 @@ impl<'a> Poses<'a> {
     /// the loop); empty when each is posed when asked.
     pub fn all(&self) -> &[Pose] {
         match &self.now {
-            Now::All(all) => all,
+            Now::All { slots, current } => &slots[*current].1,
             Now::Lazy { .. } => &[],
         }
     }
 
-    /// [`Poses::get`] for a structure: a moving object posed on first use.
-    #[inline(never)]
-    fn lazy<'p>(&'p self, i: usize, posed: &'p [OnceCell<Pose>], made: &RefCell<Vec<usize>>) -> &'p Pose {
-        match (self.moving_of[i], self.time) {
-            (Some(m), Some(time)) => posed[m].get_or_init(|| {
-                made.borrow_mut().push(m);
-                let moving = &self.moving[m];
-                moving.pose(&self.objects[moving.object], time, self.fidelity)
-            }),
-            _ => &self.rest[i],
+    /// For object `i`, when it is posed when asked ([`Poses::all`] empty):
+    /// its index among the moving objects if it moves, once the instant is
+    /// set.
+    #[inline(always)]
+    fn asked(&self, i: usize) -> Option<(usize, f64)> {
+        Some((self.moving_of[i]?, self.time?))
+    }
+
+    /// Where moving object `m`'s origin (`sphereo`) stands at `time`, the
+    /// instant, as [`Poses::get`] puts it, to the bit: without posing it
+    /// when it is not posed yet.
+    #[inline(always)]
+    fn centre(&self, m: usize, time: f64) -> DVec3 {
+        if let Now::Lazy {
+            posed, slot, instant, ..
+        } = &self.now
+        {
+            let (when, k) = slot[m].get();
+            if when == *instant {
+                return posed.borrow()[k as usize].sphereo;
+            }
         }
+        let moving = &self.moving[m];
+        moving.centre(&self.objects[moving.object], time, self.fidelity)
+    }
+
+    /// Moving object `m`'s pose at `time`, the instant, posed on first use
+    /// at the instant and written where it is kept (the poses are made
+    /// when asked).
+    #[inline(never)]
+    fn posed(&self, m: usize, time: f64) -> Ref<'_, Pose> {
+        let Now::Lazy {
+            posed,
+            made,
+            slot,
+            instant,
+        } = &self.now
+        else {
+            unreachable!("the loop's poses are all made at once");
+        };
+        let (when, mut k) = slot[m].get();
+        if when != *instant {
+            // A pose is lent only while one object is tested or shaded,
+            // never while another is posed: the list is free to write.
+            let mut list = posed.borrow_mut();
+            k = made.get() as u32;
+            made.set(k as usize + 1);
+            if k as usize == list.len() {
+                list.push(Pose::IDENTITY);
+            }
+            let moving = &self.moving[m];
+            moving.pose_into(&self.objects[moving.object], time, self.fidelity, &mut list[k as usize]);
+            slot[m].set((*instant, k));
+        }
+        Ref::map(posed.borrow(), |list| &list[k as usize])
     }
 }
 
@@ -229,9 +342,9 @@ impl<'a> Deforming<'a> {
 impl Snapshot<'_> {
     /// Where object `i` stands at this instant ([`Poses::get`]).
     #[inline(always)]
-    pub fn pose(&self, i: usize) -> &Pose {
+    pub fn pose(&self, i: usize) -> PoseRef<'_> {
         match self.all.get(i) {
-            Some(p) => p,
+            Some(p) => PoseRef::Kept(p),
             None => self.poses.get(i),
         }
     }
@@ -239,26 +352,50 @@ impl Snapshot<'_> {
     /// `f` of object `i` as it stands at this instant (its own shape and
     /// what was prepared for it, or its contour of the moment when it
     /// deforms), for a ray that reaches its bounding sphere beyond `tmin`;
-    /// `None` for one that does not.
+    /// `None` for one that does not. A moving object is posed only then.
     #[inline(always)]
     fn posed<R>(&self, i: usize, ray: &Ray, tmin: f64, f: impl FnOnce(&Posed) -> Option<R>) -> Option<R> {
         let cache = || self.caches[i].as_deref();
-        self.posed_as(i, &self.scene.objects[i], self.pose(i), cache, ray, tmin, f)
+        let obj = &self.scene.objects[i];
+        let meets = |centre| crate::shapes::bounding_sphere_hit(centre, obj.radius, ray, tmin);
+        let kept = match self.all.get(i) {
+            Some(pose) => Some(pose),
+            None => self.poses.asked(i).is_none().then(|| &self.poses.rest[i]),
+        };
+        if let Some(pose) = kept {
+            return if meets(pose.sphereo) {
+                self.shaped(i, obj, pose, cache, f)
+            } else {
+                None
+            };
+        }
+        let (m, time) = self.poses.asked(i)?;
+        if !meets(self.poses.centre(m, time)) {
+            return None;
+        }
+        let pose = self.poses.posed(m, time);
+        self.shaped(i, obj, &pose, cache, f)
     }
 
-    /// [`Snapshot::posed`] of object `i` whose record and pose the caller
-    /// has at hand, and whose cache `cache` gives (asked for a sweep only):
-    /// the loop walks the tables side by side instead of indexing each.
-    #[allow(clippy::too_many_arguments)]
+    /// The objects the structure `s` gives `ray` beyond `tmin` at the
+    /// instant's segment ([`Structure::candidates`]), in the scratch.
+    fn candidates(&self, s: &Structure, ray: &Ray, tmin: f64) -> std::cell::RefMut<'_, Vec<usize>> {
+        let mut out = self.scratch.candidates.borrow_mut();
+        s.candidates(ray, tmin, self.segment, &mut self.scratch.stack.borrow_mut(), &mut out);
+        out
+    }
+
+    /// `f` of object `i` at `pose`, its cache given by `cache` (asked for
+    /// a sweep only), a ray having met its bounding sphere
+    /// ([`Snapshot::posed`]; the loop walks the tables side by side and
+    /// calls it with each object's record and pose at hand).
     #[inline(always)]
-    fn posed_as<'s, R>(
+    fn shaped<'s, R>(
         &'s self,
         i: usize,
         obj: &'s ObjectRecord,
         pose: &'s Pose,
         cache: impl FnOnce() -> Option<&'s SweepCache>,
-        ray: &Ray,
-        tmin: f64,
         f: impl FnOnce(&Posed) -> Option<R>,
     ) -> Option<R> {
         let mut at_rest = Posed {
@@ -267,9 +404,6 @@ impl Snapshot<'_> {
             cache: None,
             pose,
         };
-        if !at_rest.meets_bounding_sphere(ray, tmin) {
-            return None;
-        }
         // Only a sweep has a cache: the others need not look.
         if matches!(obj.shape, Shape::Sweep(_)) {
             at_rest.cache = cache();
@@ -392,16 +526,16 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
         if snap.all.len() == objects.len() && snap.caches.len() == objects.len() {
             let tables = objects.iter().zip(snap.all).zip(snap.caches);
             for (i, ((obj, pose), cache)) in tables.enumerate() {
-                let hit = snap.posed_as(
-                    i,
-                    obj,
-                    pose,
-                    || cache.as_deref(),
-                    ray,
-                    tmin,
-                    |p| p.intersect(ray, tmin, snap.opts, searched),
-                );
-                keep(hit, i, &mut best);
+                if crate::shapes::bounding_sphere_hit(pose.sphereo, obj.radius, ray, tmin) {
+                    let hit = snap.shaped(
+                        i,
+                        obj,
+                        pose,
+                        || cache.as_deref(),
+                        |p| p.intersect(ray, tmin, snap.opts, searched),
+                    );
+                    keep(hit, i, &mut best);
+                }
             }
         } else {
             for i in 0..objects.len() {
@@ -418,8 +552,7 @@ pub fn nearest(snap: &Snapshot, ray: &Ray, tmin: f64, searched: &mut u64) -> Opt
 fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &mut u64) -> Option<(usize, LocalHit)> {
     let mut best: Option<(usize, LocalHit)> = None;
     if snap.aggregate.counted {
-        let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        let candidates = snap.candidates(s, ray, tmin);
         for &i in candidates.iter() {
             consider(snap, i, ray, tmin, searched, &mut best);
         }
@@ -428,10 +561,17 @@ fn nearest_in(snap: &Snapshot, s: &Structure, ray: &Ray, tmin: f64, searched: &m
     // Front to back; an object whose box the ray enters beyond the nearest
     // hit so far cannot be nearer (nor, entered at its t, tie it: such a
     // box is still visited).
-    let _ = s.walk(ray, tmin, f64::INFINITY, &mut snap.scratch.stack.borrow_mut(), |i| {
-        consider(snap, i, ray, tmin, searched, &mut best);
-        ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
-    });
+    let _ = s.walk(
+        ray,
+        tmin,
+        f64::INFINITY,
+        snap.segment,
+        &mut snap.scratch.stack.borrow_mut(),
+        |i| {
+            consider(snap, i, ray, tmin, searched, &mut best);
+            ControlFlow::Continue(best.map_or(f64::INFINITY, |(_, h)| h.t))
+        },
+    );
     best
 }
 
@@ -508,8 +648,7 @@ fn blockers_in(
     let agg = snap.aggregate;
     let mut blocks = |i: usize| blocks(snap, i, ray, tmin, tmax, searched);
     if agg.counted {
-        let mut candidates = snap.scratch.candidates.borrow_mut();
-        s.candidates(ray, tmin, &mut snap.scratch.stack.borrow_mut(), &mut candidates);
+        let candidates = snap.candidates(s, ray, tmin);
         for &i in candidates.iter() {
             match agg.shadow[i] {
                 Shadow::None => {}
@@ -529,8 +668,13 @@ fn blockers_in(
     }
     let mut crystals = snap.scratch.crystals.borrow_mut();
     crystals.clear();
-    s.walk(ray, tmin, tmax, &mut snap.scratch.stack.borrow_mut(), |i| {
-        match agg.shadow[i] {
+    s.walk(
+        ray,
+        tmin,
+        tmax,
+        snap.segment,
+        &mut snap.scratch.stack.borrow_mut(),
+        |i| match agg.shadow[i] {
             Shadow::None => ControlFlow::Continue(tmax),
             Shadow::Crystal => {
                 if blocks(i) {
@@ -543,8 +687,8 @@ fn blockers_in(
                 ControlFlow::Break(())
             }
             Shadow::Opaque => ControlFlow::Continue(tmax),
-        }
-    })?;
+        },
+    )?;
     crystals.sort_unstable();
     crystals.dedup();
     for &i in crystals.iter() {
@@ -565,25 +709,40 @@ mod tests {
     use crate::options::Fidelity;
     use crate::types::DVec3;
 
-    /// The loop over poses made when asked (a structure's, at an instant
-    /// outside the times it bounds) meets the objects where the poses made
-    /// all at once put them: the same nearest hit for rays at the moving
-    /// ball and at the floor.
-    #[test]
-    fn the_loop_meets_lazy_poses_as_eager_ones() {
+    /// fig5_1's scene, its objects at rest, its motions, and each object's
+    /// motion by index.
+    fn fig5_1() -> (Scene, Vec<Pose>, Vec<Moving>, Vec<Option<usize>>) {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
         let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
         let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
-        let caches = crate::shapes::prepare_caches(&scene);
         let rest = rest_poses(&scene);
         let moving = crate::motion::paths(&scene);
         let mut moving_of = vec![None; scene.objects.len()];
         for (k, m) in moving.iter().enumerate() {
             moving_of[m.object] = Some(k);
         }
+        (scene, rest, moving, moving_of)
+    }
+
+    /// The loop over poses made when asked (a structure's, at an instant
+    /// outside the times it bounds) meets the objects where the poses made
+    /// all at once put them: the same nearest hit for rays at the moving
+    /// ball and at the floor.
+    #[test]
+    fn the_loop_meets_lazy_poses_as_eager_ones() {
+        let (scene, rest, moving, moving_of) = fig5_1();
+        let caches = crate::shapes::prepare_caches(&scene);
         let (opts, aggregate) = (Options::default(), Aggregate::linear(&scene));
         let nearest_with = |eager: bool, ray: &Ray| {
-            let mut poses = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, eager);
+            let mut poses = Poses::new(
+                &scene.objects,
+                &rest,
+                &moving,
+                &moving_of,
+                Fidelity::Thesis,
+                eager,
+                false,
+            );
             poses.at(0.3);
             let snap = Snapshot {
                 scene: &scene,
@@ -595,13 +754,15 @@ mod tests {
                 caches: &caches,
                 aggregate: &aggregate,
                 structure: None,
+                segment: 0,
                 scratch: &Scratch::default(),
             };
             assert_eq!(snap.all.len(), if eager { scene.objects.len() } else { 0 });
             nearest(&snap, ray, 1e-9, &mut 0).map(|(i, h)| (i, h.t))
         };
         let eye = scene.view.eyept;
-        let mut ball = Poses::new(&scene.objects, &rest, &moving, &moving_of, Fidelity::Thesis, true);
+        let (objects, moved) = (&scene.objects, &moving_of);
+        let mut ball = Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, true, false);
         ball.at(0.3);
         let centre = ball.get(moving[0].object).sphereo;
         for target in [centre, DVec3::new(0.0, 0.0, -0.5)] {
@@ -613,6 +774,29 @@ mod tests {
         // The ball is met where it stands at 0.3, not at rest.
         let ray = Ray::new(eye, (centre - eye).normalize());
         assert_eq!(nearest_with(false, &ray).map(|(i, _)| i), Some(moving[0].object));
+    }
+
+    /// The loop's poses kept for instants whose times come back are those
+    /// made afresh: over times that return in every order (and more of
+    /// them than there are places, so that instants take each other's),
+    /// every object where it stands then, to the bit.
+    #[test]
+    fn kept_poses_are_the_instants_own() {
+        let (scene, rest, moving, moving_of) = fig5_1();
+        let (objects, moved) = (&scene.objects, &moving_of);
+        let new = |repeats| Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, true, repeats);
+        let (mut kept, mut fresh) = (new(true), new(false));
+        let times: Vec<f64> = (0..40).map(|k| ((k * 7) % 23) as f64 / 23.0).collect();
+        for (n, &t) in times.iter().chain(times.iter().rev()).enumerate() {
+            kept.at(t);
+            fresh.at(t);
+            for i in 0..scene.objects.len() {
+                let (a, b) = (kept.get(i), fresh.get(i));
+                let bits = |p: &Pose| p.transfm.to_cols_array().map(f64::to_bits);
+                assert_eq!(bits(&a), bits(&b), "instant {n}, time {t}, object {i}");
+                assert_eq!(a.sphereo, b.sphereo);
+            }
+        }
     }
 
     /// An object that deforms is met as its contour of the moment, without
@@ -631,7 +815,7 @@ mod tests {
         assert!(caches[first].is_some(), "the key shape has a cache");
         let rest = rest_poses(&scene);
         let no_moving = vec![None; scene.objects.len()];
-        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis, true);
+        let poses = Poses::new(&scene.objects, &rest, &[], &no_moving, Fidelity::Thesis, true, false);
         let deforming = [Deforming::new(first, &chain)];
         deforming[0].at(0.5);
         let mut deforming_of = vec![None; scene.objects.len()];
@@ -648,6 +832,7 @@ mod tests {
             caches: &caches,
             aggregate: &aggregate,
             structure: None,
+            segment: 0,
             scratch: &Scratch::default(),
         };
         let eye = scene.view.eyept;

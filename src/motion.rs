@@ -11,11 +11,12 @@
 //! `crate::intersect::Deforming`). The arrangement is the port's: the
 //! listing's `motionblur` does both for every ray.
 
-use crate::drt::{motion_bounds, motionblur, Isblur};
+use crate::accel::{Aabb, Bounds, Segments, USE_UNION};
+use crate::drt::{motion_bounds, motion_place, motionblur, Isblur};
 use crate::options::Fidelity;
 use crate::paper::PaperChain;
 use crate::scene::{MotionRecord, Scene};
-use crate::types::{BoundingBox, ObjectRecord, Pose};
+use crate::types::{BoundingBox, DVec3, ObjectRecord, Pose};
 
 /// How much wider than the exact bounds [`Moving::centre_bounds`] are,
 /// relative to the size of their coordinates: a path's point is a cubic
@@ -57,6 +58,17 @@ impl Moving {
         match &self.motion {
             Motion::Path(record) => motionblur(rest, record, time, fidelity, pose),
             Motion::Chain { chain, .. } => *pose = chain.pose(time),
+        }
+    }
+
+    /// Where [`Moving::pose`] puts the object's origin (`sphereo`) at film
+    /// time `time`, the same to the bit, without the rest of the pose: what
+    /// the bounding sphere's test needs.
+    #[inline(always)]
+    pub fn centre(&self, rest: &ObjectRecord, time: f64, fidelity: Fidelity) -> DVec3 {
+        match &self.motion {
+            Motion::Path(record) => motion_place(rest, record, time, fidelity).0,
+            Motion::Chain { chain, .. } => chain.centre(time),
         }
     }
 
@@ -110,18 +122,46 @@ pub fn paths(scene: &Scene) -> Vec<Moving> {
 /// never leaves out an object the loop would find.
 pub const BOX_SLACK: f64 = 1e-9;
 
-/// Each object's box in the world over the film times `t0` ≤ t ≤ `t1`, by
-/// index: the box its origin stays in ([`Moving::centre_bounds`], from
-/// each motion's own bounds: the path's in `thesis` fidelity, erratum 3's
-/// slide in `listing` fidelity, the key-frame chain's), widened by the
-/// bounding sphere the intersection tests first
-/// ([`crate::shapes::bounding_radius`] of the object's `radius`, as
-/// `prepare` widened it to hold its own box, or its chain's), and by
-/// [`BOX_SLACK`]. The object lies within its radius of its origin
-/// whichever way it turns, so one box holds it over the whole path. An
-/// object that does not move is held tighter where its shape's own box
-/// ([`crate::shapes::local_box`]) turned into the world is smaller. The
-/// port's (the thesis bounds objects at rest only).
+/// The most time segments a structure's boxes are kept for
+/// ([`object_bounds`]).
+pub const MAX_SEGMENTS: usize = 16;
+
+/// An object's box in the world over the film times `t0` ≤ t ≤ `t1`, for
+/// `o` moved by `moving` (`None`: it does not move): the one function
+/// every kind of object's bounds over time go through, for the whole of
+/// the times a render can have and for each segment of them
+/// ([`object_bounds`]). The box its origin stays in
+/// ([`Moving::centre_bounds`], from each motion's own bounds: the path's
+/// in `thesis` fidelity, erratum 3's slide in `listing` fidelity, the
+/// key-frame chain's), widened by the bounding sphere the intersection
+/// tests first ([`crate::shapes::bounding_radius`] of the object's
+/// `radius`, as `prepare` widened it to hold its own box, or its chain's
+/// at every time), and by [`BOX_SLACK`]. The object lies within its
+/// radius of its origin whichever way it turns, so the box holds it at
+/// every time of the interval. An object that does not move is held
+/// tighter where its shape's own box ([`crate::shapes::local_box`])
+/// turned into the world is smaller. The port's (the thesis bounds
+/// objects at rest only).
+pub fn object_box(o: &ObjectRecord, moving: Option<&Moving>, t0: f64, t1: f64, fidelity: Fidelity) -> BoundingBox {
+    let r = crate::shapes::bounding_radius(o.radius);
+    let b = match moving {
+        Some(m) => m.centre_bounds(o, t0, t1, fidelity).widened(r),
+        None => {
+            let sphere = BoundingBox::EMPTY.holding(o.sphereo).widened(r);
+            match crate::shapes::local_box(o) {
+                Some(local) => intersection(&sphere, &world_box(&local, o).widened(r - o.radius)),
+                None => sphere,
+            }
+        }
+    };
+    let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+        .iter()
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    b.widened(BOX_SLACK * size)
+}
+
+/// Each object's box over the film times `t0` ≤ t ≤ `t1`
+/// ([`object_box`]), by index.
 pub fn object_boxes(
     objects: &[ObjectRecord],
     moving: &[Moving],
@@ -129,31 +169,88 @@ pub fn object_boxes(
     t1: f64,
     fidelity: Fidelity,
 ) -> Vec<BoundingBox> {
-    let mut centres: Vec<Option<BoundingBox>> = vec![None; objects.len()];
+    let mut by_object: Vec<Option<&Moving>> = vec![None; objects.len()];
     for m in moving {
-        centres[m.object] = Some(m.centre_bounds(&objects[m.object], t0, t1, fidelity));
+        by_object[m.object] = Some(m);
     }
-    centres
+    objects
         .iter()
-        .zip(objects)
-        .map(|(c, o)| {
-            let r = crate::shapes::bounding_radius(o.radius);
-            let b = match c {
-                Some(c) => c.widened(r),
-                None => {
-                    let sphere = BoundingBox::EMPTY.holding(o.sphereo).widened(r);
-                    match crate::shapes::local_box(o) {
-                        Some(local) => intersection(&sphere, &world_box(&local, o).widened(r - o.radius)),
-                        None => sphere,
-                    }
-                }
-            };
-            let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
-                .iter()
-                .fold(1.0f64, |m, v| m.max(v.abs()));
-            b.widened(BOX_SLACK * size)
-        })
+        .zip(by_object)
+        .map(|(o, m)| object_box(o, m, t0, t1, fidelity))
         .collect()
+}
+
+/// Each object's boxes over the film times `span` a render can have, for
+/// a structure over the objects ([`Bounds`]): over all of them, and, for
+/// an object that moves far against its size, over each of the segments
+/// the times are cut into. How far: an object's box over all the times
+/// against its box at one instant, on the axis where the path stretches
+/// it most, the path's length in its own widths, w; the times are cut
+/// into the power of two of segments (at most [`MAX_SEGMENTS`]) that
+/// makes the largest w among the moving objects a quarter of a width or
+/// less a segment, and an object keeps its boxes over them when its box
+/// over all the times has more than 1.4 times their mean area
+/// (psychopath's rule, as the hierarchy's nodes: `crate::accel`). Nothing
+/// moving far: one segment, one box an object.
+pub fn object_bounds(objects: &[ObjectRecord], moving: &[Moving], span: (f64, f64), fidelity: Fidelity) -> Bounds {
+    let (t0, t1) = span;
+    let whole = object_boxes(objects, moving, t0, t1, fidelity);
+    let reach = moving.iter().fold(0.0f64, |w, m| {
+        let o = &objects[m.object];
+        w.max(stretch(&whole[m.object], &object_box(o, Some(m), t0, t0, fidelity)))
+    });
+    let mut count = 1;
+    while count < MAX_SEGMENTS && (count as f64) < 4.0 * reach {
+        count *= 2;
+    }
+    let segments = Segments::new(t0, t1, count);
+    let mut timed = vec![Vec::new(); objects.len()];
+    if count > 1 {
+        for m in moving {
+            let o = &objects[m.object];
+            let boxes: Vec<BoundingBox> = (0..count)
+                .map(|k| {
+                    let (a, b) = segments.span(k);
+                    object_box(o, Some(m), a, b, fidelity)
+                })
+                .collect();
+            let area = |b: &BoundingBox| Aabb::of(b).half_area();
+            let mean = boxes.iter().map(area).sum::<f64>() / count as f64;
+            if area(&whole[m.object]) > USE_UNION * mean {
+                timed[m.object] = boxes;
+            }
+        }
+    }
+    // A tree of its own for each run of segments over which the farthest
+    // mover goes its width or less (a power of two, as the segments are),
+    // while the trees together keep within RUN_OBJECTS objects.
+    let mut runs = 1;
+    while runs < count && (runs as f64) < reach && 2 * runs * objects.len() <= RUN_OBJECTS {
+        runs *= 2;
+    }
+    Bounds {
+        segments,
+        whole,
+        timed,
+        runs,
+    }
+}
+
+/// The most objects the hierarchy's trees over the runs of time segments
+/// hold together ([`object_bounds`]): a bound on their memory.
+pub const RUN_OBJECTS: usize = 4_000_000;
+
+/// How much `whole` outstretches `instant` on the axis where it does most,
+/// in widths of `instant` (0 for boxes that are not finite).
+fn stretch(whole: &BoundingBox, instant: &BoundingBox) -> f64 {
+    let spans = |b: &BoundingBox| [b.xmax - b.xmin, b.ymax - b.ymin, b.zmax - b.zmin];
+    let (w, i) = (spans(whole), spans(instant));
+    let most = (0..3).map(|k| (w[k] - i[k]) / i[k]).fold(0.0f64, f64::max);
+    if most.is_finite() {
+        most
+    } else {
+        0.0
+    }
 }
 
 /// The world box of the local box `b` of object `o` at rest: its eight

@@ -87,7 +87,9 @@ pub struct Context<'a> {
 
 /// The nearest hit of a ray with the scene's objects beyond the ray's
 /// origin ([`nearest`]), as an `intersectionrecord` (Fig. 4.3); `None` is
-/// `status = false`. `dir` must be unit length.
+/// `status = false`. `dir` must be unit length. Inlined, so that the
+/// record is made where `raytrace` keeps it, not copied there.
+#[inline(always)]
 pub fn intersect(snap: &Snapshot, ray: &Ray, stats: &mut TraceStats) -> Option<IntersectionRecord> {
     let (object, hit) = nearest(snap, ray, TMIN, &mut stats.searched)?;
     Some(record_of(snap, object, ray, &hit))
@@ -95,6 +97,7 @@ pub fn intersect(snap: &Snapshot, ray: &Ray, stats: &mut TraceStats) -> Option<I
 
 /// The intersection record of a local hit: world point and normal, and the
 /// fudged-out and fudged-in points.
+#[inline(always)]
 fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> IntersectionRecord {
     let obj = &snap.scene.objects[object];
     let point = ray.at(hit.t);

@@ -14,6 +14,7 @@ use raytrace::accel::{Accel, Structure};
 use raytrace::deck::initialize;
 use raytrace::hash::hashed_uniform;
 use raytrace::intersect::{for_each_blocker, nearest, Deforming, Poses, Scratch, Snapshot};
+use raytrace::motion::Motion;
 use raytrace::options::{Fidelity, Options, TimeSampler};
 use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
@@ -25,6 +26,8 @@ struct Probe<'p> {
     poses: Poses<'p>,
     deforming: Vec<Deforming<'p>>,
     scratch: Scratch,
+    /// The instant's time segment in the structure.
+    segment: usize,
 }
 
 impl<'p> Probe<'p> {
@@ -34,6 +37,7 @@ impl<'p> Probe<'p> {
             poses: prepared.poses(),
             deforming: prepared.deforming(),
             scratch: Scratch::default(),
+            segment: 0,
         }
     }
 
@@ -43,6 +47,7 @@ impl<'p> Probe<'p> {
         for d in &self.deforming {
             d.at(time);
         }
+        self.segment = self.prepared.aggregate().structure().map_or(0, |s| s.segment(time));
     }
 
     fn snap(&self) -> Snapshot<'_> {
@@ -57,6 +62,7 @@ impl<'p> Probe<'p> {
             caches: p.caches(),
             aggregate: p.aggregate(),
             structure: p.aggregate().structure(),
+            segment: self.segment,
             scratch: &self.scratch,
         }
     }
@@ -408,4 +414,127 @@ fn copies_of_one_contour_share_their_cache() {
     assert!(same(0, 1) && same(0, 2), "placed and turned copies share");
     assert!(!same(0, 3), "another contour has its own");
     assert_eq!(c[3], raytrace::shapes::prepare_caches(p.scene())[3]);
+}
+
+/// Erratum 2 pinned through the structures: in `listing` fidelity the
+/// table's times reach 1.5 (`pattern[row,col]*0.1` of Fig. 2.33) and every
+/// moving object slides 6·t along x (erratum 3), so past the shutter's end
+/// it goes on from x + 6 to x + 9. The structures bound the objects over
+/// every time the table gives (`TimeTable::span`), not the shutter alone:
+/// the image is the loop's, byte for byte, with each. Bounded over (0, 1)
+/// only, the rays of the last third of the times would pass the objects
+/// where they are then.
+#[test]
+fn listing_times_past_the_shutter_render_as_the_loop() {
+    let mut deck = String::from(
+        "view eye 0 -20 0 look 0 0 0 screen 10 distance 10\nimage 48 16 mask 4\nbackground 0.1 0.1 0.2\n\
+         light sun 5 -10 10 1 1 1\nsurface op opaque color 0.8 0.2 0.1 ka 0.2 kd 0.8 ks 0 kt 0\n",
+    );
+    for i in 0..12 {
+        let (x, z) = (-8.0 + (i % 4) as f64, -1.5 + (i / 4) as f64 * 1.5);
+        deck.push_str(&format!(
+            "sphere s{i} op at {x} 0 {z} radius 0.4\nmotion s{i} to {x} 0 {z}\n"
+        ));
+    }
+    let scene = scene_of(&deck, Fidelity::Listing);
+    let opts = Options {
+        fidelity: Fidelity::Listing,
+        ..Options::default()
+    };
+    let prepared = each_accel(&scene, opts);
+    let images: Vec<Vec<[u8; 3]>> = prepared
+        .iter()
+        .map(|p| {
+            let r = raytrace::raytrace::render(p, &raytrace::raytrace::Request::STILL).unwrap();
+            r.raster.pixels
+        })
+        .collect();
+    // The spheres are seen where the times past 1 put them (x from 1 to
+    // 4.4, right of the middle), not only where the shutter does.
+    let background = images[0][0];
+    let right = (0..16 * 48).filter(|i| (29..40).contains(&(i % 48)));
+    assert!(
+        right.clone().any(|i| images[0][i] != background),
+        "the spheres past t = 1"
+    );
+    assert_eq!(images[1], images[0], "bvh");
+    assert_eq!(images[2], images[0], "octree");
+    assert_eq!(prepared[1].time_span(), (0.0, 1.5), "the table's times");
+}
+
+/// The boxes over time of `motion::object_bounds`: as many segments as
+/// make the farthest mover go a quarter of its width or less in each (a
+/// power of two, at most 16), runs over which it goes its width or less;
+/// each moving object's box over a segment holds its bounding sphere at
+/// every time of the segment, and it keeps boxes over the segments only
+/// where they are much smaller than its box over all the times. A
+/// deforming sweep (a key-frame chain that moves as it deforms) too.
+#[test]
+fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
+    for (travel, count, runs) in [
+        (0.0, 1, 1),
+        (0.05, 1, 1),
+        (0.5, 1, 1),
+        (2.0, 4, 1),
+        (4.6, 16, 4),
+        (40.0, 16, 16),
+    ] {
+        let mut deck = String::from(
+            "view eye 0 -20 0 look 0 0 0 screen 10 distance 10\nimage 8 8 mask 1\n\
+             surface op opaque color 0.8 0.2 0.1 ka 0.2 kd 0.8 ks 0 kt 0\nblur 1\n",
+        );
+        for i in 0..6 {
+            let x = i as f64 * 3.0;
+            deck.push_str(&format!("sphere s{i} op at {x} 0 0 radius 0.5\n"));
+            if travel > 0.0 && i % 2 == 0 {
+                deck.push_str(&format!(
+                    "motion s{i} to {} 0 {} law smooth\n",
+                    x + travel * 0.5,
+                    travel * 0.25
+                ));
+            }
+        }
+        // A star that turns into another while it moves as far in its
+        // widths as the spheres go in theirs.
+        for (k, x) in [(0, 0.0), (1, travel * 0.5)] {
+            deck.push_str(&format!(
+                "sweep k{k} op translation bspline at {x} 9 0 length 0.5\n 0 0.5\n -0.5 0\n 0 -0.5\n 0.5 0\nend\n"
+            ));
+        }
+        deck.push_str("rotate k1 z 30\nkeyframe k0 k1\n");
+        let scene = scene_of(&deck, Fidelity::Thesis);
+        let prepared = Prepared::new(scene, Options::default()).unwrap();
+        let moving = prepared.moving();
+        let span = prepared.time_span();
+        let b = raytrace::motion::object_bounds(&prepared.scene().objects, moving, span, Fidelity::Thesis);
+        assert_eq!((b.segments.count(), b.runs), (count, runs), "travel {travel}");
+        let chains = moving
+            .iter()
+            .filter(|m| matches!(m.motion, Motion::Chain { .. }))
+            .count();
+        assert_eq!(chains, 1, "the deforming star moves");
+        for m in moving {
+            let timed = &b.timed[m.object];
+            // (The star, wider than a sphere, goes fewer of its widths: at
+            // two radii its boxes over the segments are not small enough.)
+            let far = matches!(m.motion, Motion::Path(_)) || travel > 2.0;
+            assert_eq!(
+                !timed.is_empty(),
+                count > 1 && far,
+                "travel {travel}: boxes in time of {:?}",
+                m.motion
+            );
+            for (k, bx) in timed.iter().enumerate() {
+                let (t0, t1) = b.segments.span(k);
+                for j in 0..=20 {
+                    let t = t0 + (t1 - t0) * j as f64 / 20.0;
+                    let rest = &prepared.scene().objects[m.object];
+                    let c = m.pose(rest, t, Fidelity::Thesis).sphereo;
+                    let r = rest.radius;
+                    let inside = bx.holds(c - r) && bx.holds(c + r);
+                    assert!(inside, "travel {travel}, segment {k}, t {t}: {c} in {bx:?}");
+                }
+            }
+        }
+    }
 }

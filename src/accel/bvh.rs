@@ -19,11 +19,21 @@
 //! test that may let in a box the ray passes very near but never keeps
 //! out one it meets. A ray then steps through half as many levels, each
 //! step one test of four boxes where it was two of two.
+//!
+//! Bounds in time: where objects move far against their size, a node
+//! keeps its children's boxes over each segment of the times the render
+//! can have ([`super::Segments`]), and a ray tests those of its own
+//! time's segment. Which nodes keep them is psychopath's rule
+//! (its `src/accel/bvh_base.rs`: one box where the union of the boxes over
+//! time is at most 1.4 times their average area): a node whose box over
+//! the whole time is not much larger than its boxes over the segments
+//! keeps the one box, as every node of a scene at rest does.
 
 use std::ops::ControlFlow;
 
 use super::quad::{Quad, QuadRay};
-use super::{visit_each, Aabb, BoxRay, Step};
+use super::time::UNTIMED;
+use super::{visit_each, Aabb, BoxRay, Segments, Step, Timed, USE_UNION};
 
 /// Buckets of the heuristic (pbrt-v4's).
 const BUCKETS: usize = 12;
@@ -54,6 +64,9 @@ struct Node {
     child: [u32; 4],
     /// Bit c set for each lane c with a child.
     lanes: u32,
+    /// [`UNTIMED`], or where the node's boxes over each time segment
+    /// start in `Bvh::quads` (one [`Quad`] a segment, in their order).
+    timed: u32,
 }
 
 /// A child that is a leaf: its index in `leaves`, with this bit.
@@ -72,30 +85,55 @@ pub struct Bvh {
     /// A leaf's objects: `items[offset..offset + count]`.
     leaves: Vec<(u32, u32)>,
     items: Vec<Item>,
+    /// The time segments the boxes over time are for.
+    segments: Segments,
+    /// The root's box over each segment (none when it keeps one box).
+    root_at: Vec<Aabb>,
+    /// The timed nodes' boxes, a [`Quad`] a segment ([`Node::timed`]).
+    quads: Vec<Quad>,
+    /// The boxes over each segment of the objects that have them
+    /// ([`Item::at`]).
+    object_at: Vec<Aabb>,
 }
 
-/// An object of a leaf: its box and index.
+/// An object of a leaf: its box, its index, and where its boxes over the
+/// segments start in `Bvh::object_at` ([`UNTIMED`] if it has none).
 #[derive(Clone, Debug, PartialEq)]
 struct Item {
     bounds: Aabb,
     object: u32,
+    at: u32,
 }
 
 /// An object while building: its box, the box's centre (0 on an axis
-/// where the box is not finite), its index.
+/// where the box is not finite), its index, and where its boxes over the
+/// segments start ([`Item::at`]).
 #[derive(Clone, Copy)]
 struct Prim {
     bounds: Aabb,
     centre: [f64; 3],
     object: u32,
+    at: u32,
 }
 
 /// A node of the binary hierarchy while building: its box, and its two
-/// children or (a leaf) its objects' place in `items`.
+/// children or (a leaf) its objects' place in `items`; where its boxes
+/// over the segments start in the build's table ([`UNTIMED`] when
+/// nothing in it has any), and whether it keeps them ([`USE_UNION`]).
 struct Binary {
     bounds: Aabb,
     kids: Option<[usize; 2]>,
     items: (u32, u32),
+    at: u32,
+    keep: bool,
+}
+
+/// What the build keeps beside the binary nodes: their boxes over the
+/// segments, `count` a node.
+struct Scratch {
+    binary: Vec<Binary>,
+    at: Vec<Aabb>,
+    count: usize,
 }
 
 /// The fraction of the rays through a box of half-area `total` that also
@@ -117,9 +155,20 @@ fn fraction(part: f64, total: f64) -> f64 {
 }
 
 impl Bvh {
-    /// The hierarchy over `boxes`, object i's box at index i.
+    /// The hierarchy over `boxes`, object i's box at index i, one box an
+    /// object over all times.
     pub fn build(boxes: &[Aabb]) -> Bvh {
+        Bvh::build_timed(&Timed::still(boxes.to_vec()))
+    }
+
+    /// The hierarchy over `boxes`: object i's box over all times, and
+    /// over each time segment where it has them. The tree is built on the
+    /// boxes over all times; what a node keeps over the segments is the
+    /// union of its children's.
+    pub fn build_timed(boxes: &Timed) -> Bvh {
+        let count = boxes.segments.count();
         let mut prims: Vec<Prim> = boxes
+            .whole
             .iter()
             .enumerate()
             .map(|(i, b)| {
@@ -128,63 +177,93 @@ impl Bvh {
                     bounds: *b,
                     centre: c.to_array().map(|v| if v.is_finite() { v } else { 0.0 }),
                     object: i as u32,
+                    at: boxes.first[i],
                 }
             })
             .collect();
+        let n = boxes.whole.len();
         let mut bvh = Bvh {
             bounds: Aabb::EMPTY,
             root: NO_CHILD,
-            nodes: Vec::with_capacity(boxes.len() / 2),
-            leaves: Vec::with_capacity(boxes.len()),
-            items: Vec::with_capacity(boxes.len()),
+            nodes: Vec::with_capacity(n / 2),
+            leaves: Vec::with_capacity(n),
+            items: Vec::with_capacity(n),
+            segments: boxes.segments.clone(),
+            root_at: Vec::new(),
+            quads: Vec::new(),
+            object_at: boxes.per.clone(),
         };
         if !prims.is_empty() {
-            let mut binary = Vec::with_capacity(2 * boxes.len());
-            let top = bvh.node(&mut binary, &mut prims, 0);
-            bvh.bounds = binary[top].bounds;
-            bvh.root = bvh.wide(&binary, top);
+            let mut scratch = Scratch {
+                binary: Vec::with_capacity(2 * n),
+                at: Vec::new(),
+                count,
+            };
+            let top = bvh.node(&mut scratch, &mut prims, 0);
+            let root = &scratch.binary[top];
+            bvh.bounds = root.bounds;
+            if root.keep {
+                bvh.root_at = scratch.at[root.at as usize..][..count].to_vec();
+            }
+            bvh.root = bvh.wide(&scratch, top);
         }
         bvh
     }
 
-    /// The binary node over `prims` and all below it, into `binary`;
+    /// The binary node over `prims` and all below it, into `scratch`;
     /// returns its index.
-    fn node(&mut self, binary: &mut Vec<Binary>, prims: &mut [Prim], depth: usize) -> usize {
+    fn node(&mut self, scratch: &mut Scratch, prims: &mut [Prim], depth: usize) -> usize {
         // A leaf of one object has that object's box itself, so that the
         // test of it in its parent is the object's own test.
         let bounds = match prims {
             [one] => one.bounds,
             _ => prims.iter().fold(Aabb::EMPTY, |b, p| b.union(&p.bounds)),
         };
-        let index = binary.len();
-        binary.push(Binary {
+        let index = scratch.binary.len();
+        scratch.binary.push(Binary {
             bounds,
             kids: None,
             items: (0, 0),
+            at: UNTIMED,
+            keep: false,
         });
-        match split(prims, &bounds, depth) {
+        let at = match split(prims, &bounds, depth) {
             None => {
                 prims.sort_unstable_by_key(|p| p.object);
-                binary[index].items = (self.items.len() as u32, prims.len() as u32);
+                scratch.binary[index].items = (self.items.len() as u32, prims.len() as u32);
                 self.items.extend(prims.iter().map(|p| Item {
                     bounds: p.bounds,
                     object: p.object,
+                    at: p.at,
                 }));
+                let parts = prims.iter().map(|p| (p.bounds, p.at));
+                union_over_segments(&mut scratch.at, Some(&self.object_at), scratch.count, parts)
             }
             Some(mid) => {
                 let (near, far) = prims.split_at_mut(mid);
-                let a = self.node(binary, near, depth + 1);
-                let b = self.node(binary, far, depth + 1);
-                binary[index].kids = Some([a, b]);
+                let a = self.node(scratch, near, depth + 1);
+                let b = self.node(scratch, far, depth + 1);
+                scratch.binary[index].kids = Some([a, b]);
+                let parts = [a, b].map(|k| (scratch.binary[k].bounds, scratch.binary[k].at));
+                union_over_segments(&mut scratch.at, None, scratch.count, parts.into_iter())
             }
-        }
+        };
+        let keep = at != UNTIMED && {
+            let boxes = &scratch.at[at as usize..][..scratch.count];
+            let mean = boxes.iter().map(Aabb::half_area).sum::<f64>() / scratch.count as f64;
+            bounds.half_area() > USE_UNION * mean
+        };
+        scratch.binary[index].at = at;
+        scratch.binary[index].keep = keep;
         index
     }
 
     /// The walked node of binary node `b` (a leaf stays a leaf): its
     /// children, each child that is not a leaf replaced by its own two;
-    /// returns the child reference.
-    fn wide(&mut self, binary: &[Binary], b: usize) -> u32 {
+    /// returns the child reference. The node keeps its lanes' boxes over
+    /// the segments when one of them keeps its own.
+    fn wide(&mut self, scratch: &Scratch, b: usize) -> u32 {
+        let binary = &scratch.binary;
         let Some(two) = binary[b].kids else {
             self.leaves.push(binary[b].items);
             return LEAF | (self.leaves.len() - 1) as u32;
@@ -207,13 +286,27 @@ impl Bvh {
         for (b, &k) in boxes.iter_mut().zip(&kids[..n]) {
             *b = binary[k].bounds;
         }
+        let mut timed = UNTIMED;
+        if kids[..n].iter().any(|&k| binary[k].keep) {
+            timed = self.quads.len() as u32;
+            for seg in 0..scratch.count {
+                let mut at = boxes;
+                for (a, &k) in at.iter_mut().zip(&kids[..n]) {
+                    if binary[k].at != UNTIMED {
+                        *a = scratch.at[binary[k].at as usize + seg];
+                    }
+                }
+                self.quads.push(Quad::of(&at[..n]));
+            }
+        }
         self.nodes.push(Node {
             boxes: Quad::of(&boxes[..n]),
             child: [NO_CHILD; 4],
             lanes: (1 << n) - 1,
+            timed,
         });
         for (c, &k) in kids[..n].iter().enumerate() {
-            let child = self.wide(binary, k);
+            let child = self.wide(scratch, k);
             self.nodes[index].child[c] = child;
         }
         index as u32
@@ -225,19 +318,48 @@ impl Bvh {
     /// its own box (a leaf of one object behind its lane of the parent's
     /// test, which is its box). The nodes' tests are [`QuadRay::span`]'s,
     /// which may let in a box the ray only passes near, never keep out one
-    /// it meets.
+    /// it meets. Where a node, or an object of a leaf, has boxes over the
+    /// time segments, those of `segment` are tested: the ray's time must
+    /// lie in it ([`Segments::of`]).
     pub fn walk(
         &self,
         ray: &BoxRay,
         tmin: f64,
+        limit: f64,
+        segment: usize,
+        stack: &mut Vec<(u32, f32)>,
+        visit: impl FnMut(usize) -> Step,
+    ) -> ControlFlow<()> {
+        // A tree with no boxes over time (every scene at rest) is walked
+        // without asking each node for them.
+        if self.segments.is_whole() {
+            self.walk_in::<false>(ray, tmin, limit, 0, stack, visit)
+        } else {
+            let segment = segment.min(self.segments.count() - 1);
+            self.walk_in::<true>(ray, tmin, limit, segment, stack, visit)
+        }
+    }
+
+    /// [`Bvh::walk`], asking each node and leaf for its boxes over the
+    /// time segments if `TIMED`.
+    #[inline(always)]
+    fn walk_in<const TIMED: bool>(
+        &self,
+        ray: &BoxRay,
+        tmin: f64,
         mut limit: f64,
+        segment: usize,
         stack: &mut Vec<(u32, f32)>,
         mut visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
         if self.is_empty() {
             return ControlFlow::Continue(());
         }
-        if ray.span(&self.bounds, tmin, limit).is_none() {
+        let root = match TIMED {
+            true => self.root_at.get(segment).unwrap_or(&self.bounds),
+            false => &self.bounds,
+        };
+        if ray.span(root, tmin, limit).is_none() {
             return ControlFlow::Continue(());
         }
         let quad = QuadRay::new(ray, tmin);
@@ -253,13 +375,23 @@ impl Bvh {
                     if let [one] = items {
                         limit = visit(one.object as usize)?;
                     } else {
-                        let objects = items.iter().map(|item| (item.object as usize, &item.bounds));
+                        let objects = items.iter().map(|item| {
+                            let b = match item.at {
+                                at if TIMED && at != UNTIMED => &self.object_at[at as usize + segment],
+                                _ => &item.bounds,
+                            };
+                            (item.object as usize, b)
+                        });
                         visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
                     }
                     t1 = quad.limit(limit);
                 } else {
                     let node = &self.nodes[at as usize];
-                    let (enters, bits) = quad.span(&node.boxes, t1);
+                    let boxes = match node.timed {
+                        timed if TIMED && timed != UNTIMED => &self.quads[timed as usize + segment],
+                        _ => &node.boxes,
+                    };
+                    let (enters, bits) = quad.span(boxes, t1);
                     let lane = |c: usize| (node.child[c], enters[c]);
                     // The nearer of two next, the other kept for after.
                     let mut two = |x: (u32, f32), y: (u32, f32)| {
@@ -329,6 +461,51 @@ impl Bvh {
     pub fn is_empty(&self) -> bool {
         self.root == NO_CHILD
     }
+
+    /// The time segments its boxes are kept for.
+    pub fn segments(&self) -> &Segments {
+        &self.segments
+    }
+
+    /// The number of nodes that keep boxes over the time segments.
+    pub fn timed_len(&self) -> usize {
+        self.nodes.iter().filter(|n| n.timed != UNTIMED).count()
+    }
+}
+
+/// The union of `parts` over each of `count` segments, pushed on `out`;
+/// returns where it starts there, or [`UNTIMED`] when no part has boxes
+/// over the segments. A part is its box over all times and where its
+/// boxes over the segments start, in `from` (`None`: in `out` itself), or
+/// [`UNTIMED`] (its one box in every segment).
+fn union_over_segments(
+    out: &mut Vec<Aabb>,
+    from: Option<&[Aabb]>,
+    count: usize,
+    parts: impl Iterator<Item = (Aabb, u32)>,
+) -> u32 {
+    if count == 1 {
+        return UNTIMED;
+    }
+    let start = out.len();
+    out.resize(start + count, Aabb::EMPTY);
+    let mut any = false;
+    for (whole, at) in parts {
+        any |= at != UNTIMED;
+        for k in 0..count {
+            let b = match (at, from) {
+                (UNTIMED, _) => whole,
+                (at, Some(from)) => from[at as usize + k],
+                (at, None) => out[at as usize + k],
+            };
+            out[start + k] = out[start + k].union(&b);
+        }
+    }
+    if !any {
+        out.truncate(start);
+        return UNTIMED;
+    }
+    start as u32
 }
 
 /// Of three or four children met (`first`, `second` and the lanes of
@@ -501,7 +678,7 @@ mod tests {
 
     fn visited(bvh: &Bvh, ray: &Ray, limit: f64) -> Vec<usize> {
         let mut v = Vec::new();
-        let _ = bvh.walk(&BoxRay::new(ray), 0.0, limit, &mut Vec::new(), |i| {
+        let _ = bvh.walk(&BoxRay::new(ray), 0.0, limit, 0, &mut Vec::new(), |i| {
             v.push(i);
             ControlFlow::Continue(limit)
         });

@@ -7,21 +7,25 @@
 //! ([`Octree`]). The original's loop over the table stays the third
 //! choice and the default below [`THRESHOLD`] objects (`--accel`).
 //!
-//! A structure knows boxes, not objects: each object's box over the whole
-//! shutter (`crate::motion::object_boxes`), by index. What it answers is
-//! which objects a ray may meet, in an order that lets a query stop early
-//! ([`Structure::walk`]); the objects themselves are tested by the
-//! intersection seam (`crate::intersect`), which keeps the loop's rule of
-//! the nearest hit (the lower index of equal distances).
+//! A structure knows boxes, not objects: each object's box over every
+//! time a sample can have, and for an object that moves far against its
+//! size its box over each segment of those times ([`Bounds`], made by
+//! `crate::motion::object_bounds`), by index. What it answers is which
+//! objects a ray at a time of one segment may meet, in an order that lets
+//! a query stop early ([`Structure::walk`]); the objects themselves are
+//! tested by the intersection seam (`crate::intersect`), which keeps the
+//! loop's rule of the nearest hit (the lower index of equal distances).
 
 mod bvh;
 mod octree;
 mod quad;
+mod time;
 
 use std::ops::ControlFlow;
 
 pub use bvh::Bvh;
 pub use octree::{findnode_digit, Found, Octree, MAX_DEPTH};
+pub use time::{Bounds, Hierarchy, Segments, Timed, USE_UNION};
 
 use crate::types::{BoundingBox, DVec3, Ray};
 
@@ -200,19 +204,32 @@ pub struct WalkStack(Vec<(u32, f32)>);
 /// A structure over the objects' boxes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Structure {
-    Bvh(Bvh),
+    Bvh(Hierarchy),
     Octree(Octree),
 }
 
 impl Structure {
     /// The structure `accel` names (after [`Accel::resolve`]) over the
-    /// objects' boxes, by index; `None` for the loop.
-    pub fn build(accel: Accel, boxes: &[BoundingBox]) -> Option<Structure> {
-        let boxes: Vec<Aabb> = boxes.iter().map(Aabb::of).collect();
-        match accel.resolve(boxes.len()) {
-            Accel::Bvh => Some(Structure::Bvh(Bvh::build(&boxes))),
-            Accel::Octree => Some(Structure::Octree(Octree::build(&boxes))),
+    /// objects' boxes, by index; `None` for the loop. The hierarchy keeps
+    /// the boxes over the time segments; the octree, the thesis's, the
+    /// boxes over all times.
+    pub fn build(accel: Accel, bounds: &Bounds) -> Option<Structure> {
+        match accel.resolve(bounds.whole.len()) {
+            Accel::Bvh => Some(Structure::Bvh(Hierarchy::build(&Timed::of(bounds), bounds.runs))),
+            Accel::Octree => {
+                let boxes: Vec<Aabb> = bounds.whole.iter().map(Aabb::of).collect();
+                Some(Structure::Octree(Octree::build(&boxes)))
+            }
             Accel::None | Accel::Auto => None,
+        }
+    }
+
+    /// The time segment of film time `time` ([`Segments::of`]), which a
+    /// walk of a ray at that time is given.
+    pub fn segment(&self, time: f64) -> usize {
+        match self {
+            Structure::Bvh(h) => h.segment(time),
+            Structure::Octree(_) => 0,
         }
     }
 
@@ -224,27 +241,33 @@ impl Structure {
     /// about a millionth of its distance may be visited too (the
     /// hierarchy's single-precision test, `quad`). Every object whose box
     /// the ray meets at some t in `[tmin, limit]`, the limit as it stands
-    /// when the walk reaches that t, is visited.
+    /// when the walk reaches that t, is visited: its box over the time
+    /// segment `segment` ([`Structure::segment`] of the ray's time) where
+    /// it has one.
     pub fn walk(
         &self,
         ray: &Ray,
         tmin: f64,
         limit: f64,
+        segment: usize,
         stack: &mut WalkStack,
         visit: impl FnMut(usize) -> Step,
     ) -> ControlFlow<()> {
         match self {
-            Structure::Bvh(b) => b.walk(&BoxRay::new(ray), tmin, limit, &mut stack.0, visit),
+            Structure::Bvh(h) => {
+                let (tree, segment) = h.tree(segment);
+                tree.walk(&BoxRay::new(ray), tmin, limit, segment, &mut stack.0, visit)
+            }
             Structure::Octree(o) => o.walk(&BoxRay::new(ray), tmin, limit, visit),
         }
     }
 
     /// Every object whose box `ray` meets beyond `tmin` (and any
-    /// [`Structure::walk`] visits besides), into `out`, ascending, each
-    /// once.
-    pub fn candidates(&self, ray: &Ray, tmin: f64, stack: &mut WalkStack, out: &mut Vec<usize>) {
+    /// [`Structure::walk`] visits besides) in time segment `segment`, into
+    /// `out`, ascending, each once.
+    pub fn candidates(&self, ray: &Ray, tmin: f64, segment: usize, stack: &mut WalkStack, out: &mut Vec<usize>) {
         out.clear();
-        let _ = self.walk(ray, tmin, f64::INFINITY, stack, |i| {
+        let _ = self.walk(ray, tmin, f64::INFINITY, segment, stack, |i| {
             out.push(i);
             ControlFlow::Continue(f64::INFINITY)
         });
@@ -290,11 +313,11 @@ pub(crate) mod tests {
                 .collect();
             assert!(!through.is_empty());
             for s in [
-                Structure::Bvh(Bvh::build(&boxes)),
+                Structure::Bvh(Hierarchy::of(Bvh::build(&boxes))),
                 Structure::Octree(Octree::build(&boxes)),
             ] {
                 let mut v = Vec::new();
-                s.candidates(&ray, 0.0, &mut WalkStack::default(), &mut v);
+                s.candidates(&ray, 0.0, 0, &mut WalkStack::default(), &mut v);
                 assert_eq!(v, through, "{s:?}");
             }
         }

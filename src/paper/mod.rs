@@ -374,7 +374,7 @@ impl PaperPair {
     /// LAST stands whenever LAST's extra turn is about one axis (or the
     /// deck turned it about x, then y, then z).
     pub fn pose(&self, time: f64) -> Pose {
-        let sphereo = self.first_pose.sphereo + self.diff * time;
+        let sphereo = self.centre(time);
         let turn = match self.fidelity {
             // Listing: rotate(name,xaxis,0,0,0,angle.x) on the restored
             // temp1, which holds angle.x already: no further turn. The y
@@ -384,6 +384,13 @@ impl PaperPair {
             Fidelity::Thesis => crate::drt::turn_xyz(self.diffangle * time),
         };
         self.first_pose.turned(turn, sphereo)
+    }
+
+    /// The in-between object's origin at local time `time`, as
+    /// [`PaperPair::pose`] puts it: FIRST's place plus `time`·`diff`.
+    #[inline]
+    pub fn centre(&self, time: f64) -> DVec3 {
+        self.first_pose.sphereo + self.diff * time
     }
 }
 
@@ -462,6 +469,13 @@ impl PaperChain {
     pub fn pose(&self, time: f64) -> Pose {
         let (pair, local) = self.locate(time);
         pair.pose(local)
+    }
+
+    /// The in-between object's origin at shutter time `time`, as
+    /// [`PaperChain::pose`] puts it.
+    pub fn centre(&self, time: f64) -> DVec3 {
+        let (pair, local) = self.locate(time);
+        pair.centre(local)
     }
 
     /// The box the in-between object's origin (`sphereo`) stays in over

@@ -50,12 +50,14 @@ pub struct Camera {
     /// Width and height of the window on the screen plane.
     screen_w: f64,
     screen_h: f64,
-    /// `virthighx`, `virthighy`: the subpixel raster, width·masksize by
-    /// height·masksize.
-    virthighx: usize,
-    virthighy: usize,
-    /// Where on the window subpixel k lies (DEVIATIONS D5).
-    fidelity: Fidelity,
+    /// Where on the window subpixel k lies (DEVIATIONS D5): at
+    /// (k + `shift` + jitter)/`across_x` of its width, and likewise down
+    /// its height over `across_z`, of the subpixel raster `virthighx` by
+    /// `virthighy` (width·masksize by height·masksize). Made once from
+    /// the fidelity, not converted for every ray.
+    shift: f64,
+    across_x: f64,
+    across_z: f64,
     /// The deck's `lens` of aperture > 0 (the port's extension).
     lens: Option<Lens>,
 }
@@ -69,6 +71,14 @@ impl Camera {
         // The view frame's −x is the viewer's right.
         let right = translookpt(-1.0, 0.0, 0.0, -sinz, cosz, -sinx, cosx, eye) - eye;
         let lens = Lens::new(scene.lens.as_ref(), scene.view.lookpt - eye, right, fidelity);
+        // D5. Listing: (scancol+jitter)/(halfvirtualx*2.0-1.0), h =
+        // `halfvirtualx` = N div 2 (at least 1 here). Thesis: the centre of
+        // cell k of N, moved by the jitter: (k − ½ + jitter)/N.
+        let (virthighx, virthighy) = (img.width * img.masksize, img.height * img.masksize);
+        let (shift, across): (f64, fn(usize) -> f64) = match fidelity {
+            Fidelity::Listing => (0.0, |n| ((2 * (n / 2)) as f64 - 1.0).max(1.0)),
+            Fidelity::Thesis => (-0.5, |n| n as f64),
+        };
         let screen_h = match fidelity {
             // Erratum 14, listing: `xpt` and `zpt` both span `screensize`,
             // so a raster that is not square gets pixels that are not.
@@ -85,9 +95,9 @@ impl Camera {
             scrndistance: scene.view.scrndistance,
             screen_w,
             screen_h,
-            virthighx: img.width * img.masksize,
-            virthighy: img.height * img.masksize,
-            fidelity,
+            shift,
+            across_x: across(virthighx),
+            across_z: across(virthighy),
             lens,
         }
     }
@@ -130,14 +140,10 @@ impl Camera {
     /// The point of the screen plane, in the world, that [`Camera::ray`]
     /// aims through (`translookpt` of `xpt`, `ypt`, `zpt`).
     fn screen_point(&self, scancol: f64, scanline: f64, jx: f64, jz: f64) -> DVec3 {
-        let along = |k: f64, j: f64, n: usize| match self.fidelity {
-            // Listing: (scancol+jitter)/(halfvirtualx*2.0-1.0).
-            Fidelity::Listing => (k + j) / ((2 * (n / 2)) as f64 - 1.0).max(1.0),
-            // Thesis: the centre of cell k of n, moved by the jitter.
-            Fidelity::Thesis => (k - 0.5 + j) / n as f64,
-        };
-        let right = (along(scancol, jx, self.virthighx) - 0.5) * self.screen_w;
-        let up = (0.5 - along(scanline, jz, self.virthighy)) * self.screen_h;
+        // (k + 0) is k, and (k + −½) is k − ½, to the bit.
+        let along = |k: f64, j: f64, across: f64| (k + self.shift + j) / across;
+        let right = (along(scancol, jx, self.across_x) - 0.5) * self.screen_w;
+        let up = (0.5 - along(scanline, jz, self.across_z)) * self.screen_h;
         let xpt = -right;
         let ypt = -self.scrndistance;
         let zpt = up;

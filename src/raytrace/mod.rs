@@ -225,7 +225,7 @@ pub fn trace_ray(prepared: &Prepared, aray: &Ray, time: f64) -> (Intensity, Trac
     sampler.start(1, 1);
     let mut tracer = tracer::Tracer::new(prepared);
     if prepared.timed() {
-        tracer.at(time);
+        tracer.at_any(time);
     }
     let colour = tracer.shoot(aray, &mut sampler);
     (colour, tracer.stats)
@@ -238,7 +238,7 @@ pub fn trace_ray(prepared: &Prepared, aray: &Ray, time: f64) -> (Intensity, Trac
 pub fn first_hit(prepared: &Prepared, ray: &Ray, time: Option<f64>) -> Option<IntersectionRecord> {
     let mut tracer = tracer::Tracer::new(prepared);
     if let Some(time) = time.filter(|_| prepared.timed()) {
-        tracer.at(time);
+        tracer.at_any(time);
     }
     tracer.first_hit(ray)
 }

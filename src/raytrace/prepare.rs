@@ -7,7 +7,7 @@ use super::{Camera, RenderError};
 use crate::accel::{Accel, Structure};
 use crate::drt::TimeTable;
 use crate::intersect::{rest_poses, Aggregate, Deforming, Poses};
-use crate::motion::{object_boxes, paths, Motion, Moving};
+use crate::motion::{object_bounds, paths, Motion, Moving};
 use crate::options::{Fidelity, Options, TimeSampler};
 use crate::paper::PaperChain;
 use crate::sampler::Tables;
@@ -40,8 +40,13 @@ pub struct Prepared {
     caches: Vec<Option<Arc<SweepCache>>>,
     aggregate: Aggregate,
     /// The film times the aggregate's structure bounds the objects over:
-    /// every time a sample can have.
+    /// every time a sample can have. The structure is searched at every
+    /// sample's time, so it must hold them all: a time outside would find
+    /// an object where it is not.
     span: (f64, f64),
+    /// Whether the samples' times come back (the table's, without
+    /// jitter): the loop then keeps each instant's poses for its return.
+    repeats: bool,
 }
 
 impl Prepared {
@@ -115,12 +120,10 @@ impl Prepared {
         let span = film_span(&scene, &tables.times);
         let structure = match accel.resolve(scene.objects.len()) {
             Accel::None => None,
-            kind => Structure::build(
-                kind,
-                &object_boxes(&scene.objects, &moving, span.0, span.1, opts.fidelity),
-            ),
+            kind => Structure::build(kind, &object_bounds(&scene.objects, &moving, span, opts.fidelity)),
         };
         let counted = opts.sampler == TimeSampler::Adaptive;
+        let repeats = opts.sampler == TimeSampler::Table && tables.times.repeats();
         Prepared {
             camera: Camera::new(&scene, opts.fidelity),
             aggregate: Aggregate::new(&scene, structure, counted),
@@ -133,6 +136,7 @@ impl Prepared {
             moving_of,
             caches,
             span,
+            repeats,
         }
     }
 
@@ -195,6 +199,7 @@ impl Prepared {
             &self.moving_of,
             fidelity,
             eager,
+            self.repeats,
         )
     }
 

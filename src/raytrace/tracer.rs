@@ -14,9 +14,11 @@ pub(super) struct Tracer<'p> {
     poses: Poses<'p>,
     deforming: Vec<Deforming<'p>>,
     scratch: Scratch,
-    /// Whether the instant lies within the times the prepared structure
-    /// bounds the objects over (the loop searches them otherwise).
-    bounded: bool,
+    /// The time segment of the instant in the prepared structure; `None`
+    /// where the loop searches: always without a structure, and with one
+    /// for an instant a caller chose outside the render's times
+    /// ([`Tracer::at_any`]; a render's are all inside, [`Tracer::at`]).
+    segment: Option<usize>,
     pub(super) stats: TraceStats,
 }
 
@@ -27,7 +29,7 @@ impl<'p> Tracer<'p> {
             poses: prepared.poses(),
             deforming: prepared.deforming(),
             scratch: Scratch::default(),
-            bounded: true,
+            segment: prepared.aggregate().structure().map(|_| 0),
             stats: TraceStats::default(),
         }
     }
@@ -37,20 +39,29 @@ impl<'p> Tracer<'p> {
     /// `diff`, and the contour (`do34` at time 0 or 1, else `Hermite`) is
     /// made when a ray first needs it. A moving object is posed when a ray
     /// first reaches it ([`Poses`]); objects that do not move keep their
-    /// rest pose at no cost.
+    /// rest pose at no cost. The structure over the objects bounds every
+    /// time a sample of the render can have ([`Prepared::time_span`]);
+    /// the instant's segment of it is found here, once.
     pub(super) fn at(&mut self, time: f64) {
         self.poses.at(time);
         for d in &self.deforming {
             d.at(time);
         }
-        self.bounded = self.prepared.aggregate().structure().is_none() || self.prepared.bounds_time(time);
+        self.segment = self.prepared.aggregate().structure().map(|s| s.segment(time));
+    }
+
+    /// [`Tracer::at`] for a time a caller chose, which may lie outside the
+    /// times the render's samples have: the loop searches it there.
+    pub(super) fn at_any(&mut self, time: f64) {
+        self.at(time);
+        self.segment = self.segment.filter(|_| self.prepared.bounds_time(time));
     }
 
     /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
     /// of `sampler`'s sample, with the scene as the last [`Tracer::at`]
     /// left it.
     pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         self.stats.primary += 1;
         let mut ctx = Context {
             stats: &mut self.stats,
@@ -62,20 +73,20 @@ impl<'p> Tracer<'p> {
     /// The object `ray` meets first with the scene as the last
     /// [`Tracer::at`] left it, and the hit.
     pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         intersect(&snap, ray, &mut self.stats)
     }
 }
 
 /// The prepared scene with its objects where `poses` put them and the
 /// deforming objects' contours of the instant, searched by the prepared
-/// structure if it `bounded` the instant.
+/// structure in the instant's time `segment`, or by the loop (`None`).
 fn snapshot<'a>(
     prepared: &'a Prepared,
     poses: &'a Poses<'a>,
     deforming: &'a [Deforming<'a>],
     scratch: &'a Scratch,
-    bounded: bool,
+    segment: Option<usize>,
 ) -> Snapshot<'a> {
     Snapshot {
         scene: prepared.scene(),
@@ -86,7 +97,8 @@ fn snapshot<'a>(
         deforming_of: prepared.deforming_of(),
         caches: prepared.caches(),
         aggregate: prepared.aggregate(),
-        structure: prepared.aggregate().structure().filter(|_| bounded),
+        structure: prepared.aggregate().structure().filter(|_| segment.is_some()),
+        segment: segment.unwrap_or(0),
         scratch,
     }
 }

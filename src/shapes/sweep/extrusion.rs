@@ -4,7 +4,7 @@
 use super::contour::{inside_contour, tangent};
 use super::probe::{Best, Candidates, Probe, CAP};
 use super::{asc, norm2, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::options::Fidelity;
+use crate::options::{Fidelity, TimeSampler};
 use crate::types::{DVec3, LocalHit};
 
 /// Translation and conic sweeps.
@@ -203,10 +203,16 @@ impl Extrusion {
         // of the two products, as a `min` of both would pick), and the
         // choice is the ray's, made once instead of per segment.
         let (a_pos, b_pos) = (self.alpha > 0.0, self.beta > 0.0);
-        let span = if boxes_hold && !self.conic {
-            self.span(p, slab)
-        } else {
-            None
+        // The conic's span came after the adaptive sampler, which weighs a
+        // pixel by its rays' searches (`Probe::searched`): a segment it
+        // skips would have been searched, so under that sampler it is not
+        // skipped, and the pictures stay as they were.
+        let counted = p.opts.sampler == TimeSampler::Adaptive;
+        let span = match (boxes_hold, self.conic) {
+            (false, _) => None,
+            (true, false) => self.span(p, slab),
+            (true, true) if !counted => self.conic_span(p, slab),
+            (true, true) => None,
         };
         for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
             if let Some(span) = &span {
@@ -275,6 +281,31 @@ impl Extrusion {
             let pad = 1e-6 * p.size;
             [ax.min(bx) - pad, ax.max(bx) + pad, ay.min(by) - pad, ay.max(by) + pad]
         })
+    }
+
+    /// [`Extrusion::span`] for a conic sweep: where the ray runs between
+    /// the caps' planes, its central projection from the apex into the
+    /// contour's plane, (x, y)/k, is the piece of a line from A to B (the
+    /// projections at the two ends) when k stays above 0 there (the apex
+    /// plane not between the caps): a segment whose box keeps away from
+    /// that piece's box has no hit to keep (D69). Padded as the
+    /// translation sweep's, over the least k (a hit's contour point stands
+    /// within its residual over k of the projection). `None` where k
+    /// reaches 0 between the caps or the piece is not finite.
+    #[inline(always)]
+    fn conic_span(&self, p: &Probe, slab: (f64, f64)) -> Option<[f64; 4]> {
+        let (o, d) = (self.o, self.d);
+        let k_at = |t: f64| self.k0 + self.k1 * t;
+        let (ka, kb) = (k_at(slab.0), k_at(slab.1));
+        let least = ka.min(kb);
+        if !(least > 1e-6 && slab.0.is_finite() && slab.1.is_finite()) {
+            return None;
+        }
+        let (ax, ay) = ((o.x + slab.0 * d.x) / ka, (o.y + slab.0 * d.y) / ka);
+        let (bx, by) = ((o.x + slab.1 * d.x) / kb, (o.y + slab.1 * d.y) / kb);
+        let pad = 1e-6 * p.size / least;
+        let span = [ax.min(bx) - pad, ax.max(bx) + pad, ay.min(by) - pad, ay.max(by) + pad];
+        span.iter().all(|v| v.is_finite()).then_some(span)
     }
 
     /// The cap in the plane z = `zc` (outward normal z = `nz`), kept where

@@ -182,7 +182,7 @@ fn scale(c: &mut Criterion) {
     let frame = Frame {
         size: 256,
         mask: 2,
-        moving: false,
+        travel: 0.0,
     };
     g.throughput(Throughput::Elements(256 * 256 * 4));
     for kind in Kind::ALL {

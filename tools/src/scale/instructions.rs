@@ -89,7 +89,7 @@ pub fn measure(set: &Settings, tmp: &Path) -> Result<Vec<Row>, String> {
         let frame = Frame {
             size: SIDE,
             mask: set.mask,
-            moving: false,
+            travel: 0.0,
         };
         let text = scenes::deck(kind, n, frame)?;
         let deck = tmp.join("instructions.deck");

@@ -102,15 +102,21 @@ fn contour(deck: &str) -> Result<Contour, String> {
     })
 }
 
-/// How a scene is drawn: image size, subpixels, and whether each object
+/// How a scene is drawn: image size, subpixels, and how far each object
 /// moves over the shutter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     pub size: usize,
     pub mask: usize,
-    /// Each object moves two of its radii (half widths) in a random
-    /// direction across z, with `blur 1`.
-    pub moving: bool,
+    /// Each object moves this many of its radii (half widths) in a random
+    /// direction across z, with `blur 1`; 0: at rest, no `blur`.
+    pub travel: f64,
+}
+
+impl Frame {
+    pub fn moving(&self) -> bool {
+        self.travel != 0.0
+    }
 }
 
 /// The seed of every scene's positions.
@@ -125,7 +131,11 @@ pub fn deck(kind: Kind, n: usize, frame: Frame) -> Result<String, String> {
         s,
         "{{ tools scale: {n} {}s in a 6x6x3 box, sizes times N^-1/3 = {k:.5}{}. }}",
         kind.name(),
-        if frame.moving { ", each moving" } else { "" }
+        if frame.moving() {
+            format!(", each moving {} radii", frame.travel)
+        } else {
+            String::new()
+        }
     );
     s.push_str("view eye 0 -10.5 7 look 0 0 1.2 screen 3.8 distance 5\n");
     let _ = writeln!(s, "image {0} {0} mask {1}", frame.size, frame.mask);
@@ -134,7 +144,7 @@ pub fn deck(kind: Kind, n: usize, frame: Frame) -> Result<String, String> {
          light sun 5 -6 10 1 1 1\n\
          surface red opaque color 0.8 0.25 0.15 ka 0.15 kd 0.75 ks 0.1 kt 0\n",
     );
-    if frame.moving {
+    if frame.moving() {
         s.push_str("blur 1\n");
     }
     // Half width and height of one object at this N.
@@ -175,9 +185,9 @@ pub fn deck(kind: Kind, n: usize, frame: Frame) -> Result<String, String> {
                 }
             }
         }
-        if frame.moving {
+        if frame.moving() {
             let a = paths.unit() * std::f64::consts::TAU;
-            let (dx, dy) = (2.0 * half * a.cos(), 2.0 * half * a.sin());
+            let (dx, dy) = (frame.travel * half * a.cos(), frame.travel * half * a.sin());
             let base = if contour.is_none() { z + k } else { z };
             let _ = writeln!(s, "motion {name} to {:.5} {:.5} {base:.5}", x + dx, y + dy);
         }
@@ -195,7 +205,7 @@ mod tests {
         let frame = Frame {
             size: 16,
             mask: 1,
-            moving,
+            travel: if moving { 2.0 } else { 0.0 },
         };
         let text = deck(kind, n, frame).unwrap();
         crate::decks::load_source(&text, "scale", Path::new("."), Fidelity::Thesis).unwrap()
@@ -252,7 +262,7 @@ mod tests {
         let f = Frame {
             size: 8,
             mask: 1,
-            moving: false,
+            travel: 0.0,
         };
         assert_eq!(deck(Kind::Star, 5, f).unwrap(), deck(Kind::Star, 5, f).unwrap());
         assert_ne!(deck(Kind::Star, 5, f).unwrap(), deck(Kind::Star, 6, f).unwrap());
