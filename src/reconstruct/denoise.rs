@@ -1,0 +1,526 @@
+//! `--denoise`: each pixel from its own samples and its neighbours', the
+//! port's extension (the thesis's pixel is the mean of its own subpixels,
+//! `antialias`).
+//!
+//! Non-local means over the pixels' mean colours, guided by their mean
+//! features, with the filter chosen pixel by pixel from the data (after
+//! Rousselle, Knaus & Zwicker 2012, *Adaptive rendering with non-local
+//! means filtering*, and Rousselle, Manzi & Zwicker 2013, *Robust
+//! denoising using feature and color information*; the choice by Stein's
+//! unbiased risk estimate as in Li, Wu & Chuang 2012, *SURE-based
+//! optimization for adaptive sampling and reconstruction*):
+//!
+//! - A neighbour j within [`RADIUS`] counts toward pixel i by how alike
+//!   the two are. Colour: the squared difference of the 3×3 patches
+//!   around them, less what the noise of the two means accounts for (the
+//!   variance of each mean, from the spread of its samples), over that
+//!   noise. Features (the surface's own colour, the normal): the squared
+//!   difference less the features' own noise, over the larger of their
+//!   noise, their change from pixel to pixel, and a floor. A checker
+//!   square's edge, a letter's outline, a texture's edge: the features
+//!   differ where the noise does not reach, and the filter stops; a
+//!   blurred streak, whose features spread as its samples do, does not
+//!   stop it.
+//! - Three candidates: the pixel's own mean; the filter of colours and
+//!   features; the filter of colours alone (for what the features do not
+//!   see: a shadow's edge, a reflection). Each pixel takes the one whose
+//!   error the risk estimate says is least, the estimates averaged over
+//!   the 3×3 pixels around it.
+//!
+//! Every output pixel depends on the pixels within [`REACH`] of it and on
+//! nothing else (no statistic of the whole image), so a band of rows
+//! rendered with [`REACH`] rows more on each side and cut is the whole
+//! image's band to the bit, and the result is the same for any number of
+//! threads. The arithmetic is in `f32`, a plane a quantity, so that the
+//! loops over a row run four pixels an instruction.
+
+use rayon::prelude::*;
+
+use super::{Gathered, PixelMeans};
+use crate::types::Intensity;
+
+/// The filter's window reaches this many pixels each way: 2 (5×5). On
+/// the goal's decks at 4 rays a pixel, 1 and 3 gave 1–10 % more error,
+/// and 5 more still: the wider the window, the more it blurs what it
+/// should not, which the risk estimate does not always see.
+pub const RADIUS: usize = 2;
+
+/// How far an output pixel's inputs lie: the window, the 3×3 patches,
+/// the 3×3 pooling of the colour variance and the features' change, and
+/// the 3×3 smoothing of the risk estimates.
+pub const REACH: usize = RADIUS + 3;
+
+/// The colour distance's scale (Rousselle 2013's k_c): a neighbour whose
+/// patch differs by what the noise explains plus `COLOUR_K`² times the
+/// noise weighs about e⁻¹ (0.3 and 0.6 measured within 2 %).
+const COLOUR_K: f32 = 0.45;
+
+/// The features' scale (Rousselle 2013's k_f): 2. Rousselle's 0.6
+/// stopped the filter at every feature edge of the motion-blurred
+/// streaks, whose features are as noisy as their colours (fig5_10 at 4
+/// rays a pixel: RMSE 0.0136 against 0.0124 at 2; 4 and 8 measured as 2).
+const FEATURE_K: f32 = 2.0;
+
+/// The features' floor (Rousselle 2013's τ): a feature that neither
+/// spreads nor changes still lets differences below about √τ through.
+const FEATURE_FLOOR: f32 = 1e-3;
+
+/// Below this noise (the variance of the mean colour summed over the
+/// channels: a quarter of an 8-bit step in each channel) a pixel's own
+/// mean is kept.
+const QUIET: f32 = 3.0 * (0.25 / 255.0) * (0.25 / 255.0);
+
+/// The candidates: the pixel's own mean, colours and features, colours.
+const CANDIDATES: usize = 3;
+
+/// Rows of pixels a worker filters at a time.
+const BAND: usize = 16;
+
+/// The denoised colours of an image `width` pixels wide whose pixels
+/// gathered `pixels` (row by row).
+pub fn denoise(pixels: &[Gathered], width: usize) -> Vec<Intensity> {
+    if pixels.is_empty() || width == 0 {
+        return Vec::new();
+    }
+    let means: Vec<PixelMeans> = pixels.iter().map(Gathered::means).collect();
+    let planes = Planes::new(&means, width);
+    let sums = planes.filter();
+    let risks = planes.risks(&sums);
+    let height = pixels.len() / width;
+    if std::env::var("DN_DEBUG").is_ok() {
+        let mut k = [0usize; 3];
+        for i in 0..pixels.len() {
+            k[choose(&risks, i % width, i / width, width, height)] += 1;
+        }
+        eprintln!("chosen {k:?}");
+        let mut pgm = format!("P5 {width} {height} 255\n").into_bytes();
+        for i in 0..pixels.len() {
+            let c = choose(&risks, i % width, i / width, width, height);
+            pgm.push(if planes.noise[i] <= QUIET {
+                40
+            } else {
+                [120u8, 200, 255][c]
+            });
+        }
+        std::fs::write("/tmp/choice.pgm", pgm).unwrap();
+        if let Ok(p) = std::env::var("DN_PIX") {
+            let v: Vec<usize> = p.split(',').map(|x| x.parse().unwrap()).collect();
+            let i = v[1] * width + v[0];
+            eprintln!(
+                "pix risks {:?} noise {} w {} {} colour {} {} {}",
+                risks[i],
+                planes.noise[i],
+                sums[0].weight[i],
+                sums[1].weight[i],
+                planes.colour[0][i],
+                sums[0].colour[0][i] / sums[0].weight[i],
+                sums[1].colour[0][i] / sums[1].weight[i]
+            );
+        }
+    }
+    (0..pixels.len())
+        .into_par_iter()
+        .map(|i| {
+            let best = choose(&risks, i % width, i / width, width, height);
+            let own = means[i].colour;
+            match best {
+                0 => own,
+                c => {
+                    let s = &sums[c - 1];
+                    let w = f64::from(s.weight[i]);
+                    let f = Intensity::new(
+                        f64::from(s.colour[0][i]),
+                        f64::from(s.colour[1][i]),
+                        f64::from(s.colour[2][i]),
+                    ) / w;
+                    if f.is_finite() {
+                        f
+                    } else {
+                        own
+                    }
+                }
+            }
+        })
+        .collect()
+}
+
+/// The pixels' means as planes of `f32`, what the filter reads.
+struct Planes {
+    width: usize,
+    height: usize,
+    colour: [Vec<f32>; 3],
+    /// The variance of each mean colour, channel by channel, pooled.
+    var: [Vec<f32>; 3],
+    /// The sum of the channels' variances: the noise of the pixel.
+    noise: Vec<f32>,
+    albedo: [Vec<f32>; 3],
+    normal: [Vec<f32>; 3],
+    /// Each feature's variance of the mean.
+    albedo_var: Vec<f32>,
+    normal_var: Vec<f32>,
+    /// 1 / (k_f² · max(τ, variance, change²)) for each feature.
+    albedo_scale: Vec<f32>,
+    normal_scale: Vec<f32>,
+}
+
+/// A candidate filter's sums: the weighted colours and the weights.
+struct Sums {
+    colour: [Vec<f32>; 3],
+    weight: Vec<f32>,
+}
+
+impl Sums {
+    fn new(n: usize) -> Sums {
+        Sums {
+            colour: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            weight: vec![0.0; n],
+        }
+    }
+}
+
+/// The 3×3 neighbours of (x, y) within a `width`×`height` image.
+fn around(x: usize, y: usize, width: usize, height: usize) -> impl Iterator<Item = usize> {
+    (y.saturating_sub(1)..(y + 2).min(height))
+        .flat_map(move |yy| (x.saturating_sub(1)..(x + 2).min(width)).map(move |xx| yy * width + xx))
+}
+
+impl Planes {
+    fn new(means: &[PixelMeans], width: usize) -> Planes {
+        let n = means.len();
+        let height = n / width;
+        let plane = |f: &dyn Fn(&PixelMeans) -> f64| means.iter().map(|m| f(m) as f32).collect::<Vec<f32>>();
+        let colour = [plane(&|m| m.colour.x), plane(&|m| m.colour.y), plane(&|m| m.colour.z)];
+        // A mean of few samples has a very noisy variance: each pixel's is
+        // the average over the 3×3 pixels around it that have one; for
+        // pixels of one sample, the variance of the 3×3 means.
+        let mut var = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+        for i in 0..n {
+            let (x, y) = (i % width, i / width);
+            let (mut sum, mut k) = (Intensity::ZERO, 0.0);
+            let (mut c, mut c2, mut m) = (Intensity::ZERO, Intensity::ZERO, 0.0);
+            for j in around(x, y, width, height) {
+                if let Some(v) = means[j].colour_var {
+                    sum += v;
+                    k += 1.0;
+                }
+                c += means[j].colour;
+                c2 += means[j].colour * means[j].colour;
+                m += 1.0;
+            }
+            let v = if k > 0.0 {
+                sum / k
+            } else {
+                ((c2 - c * c / m) / m).max(Intensity::ZERO)
+            };
+            for (ch, plane) in var.iter_mut().enumerate() {
+                plane[i] = v[ch] as f32;
+            }
+        }
+        let noise = (0..n).map(|i| var[0][i] + var[1][i] + var[2][i]).collect();
+        let albedo = [plane(&|m| m.albedo.x), plane(&|m| m.albedo.y), plane(&|m| m.albedo.z)];
+        let normal = [plane(&|m| m.normal.x), plane(&|m| m.normal.y), plane(&|m| m.normal.z)];
+        let albedo_var = plane(&|m| m.albedo_var);
+        let normal_var = plane(&|m| m.normal_var);
+        let albedo_scale = scales(&albedo, &albedo_var, width);
+        let normal_scale = scales(&normal, &normal_var, width);
+        Planes {
+            width,
+            height,
+            colour,
+            var,
+            noise,
+            albedo,
+            normal,
+            albedo_var,
+            normal_var,
+            albedo_scale,
+            normal_scale,
+        }
+    }
+
+    /// The sums of the two filters over the window: band by band of rows
+    /// in parallel, and in each band offset by offset ([`Band::offset`]).
+    fn filter(&self) -> [Sums; 2] {
+        let h = self.height;
+        let bands: Vec<[Sums; 2]> = (0..h.div_ceil(BAND))
+            .into_par_iter()
+            .map(|b| {
+                let mut band = Band::new(self, b * BAND..((b + 1) * BAND).min(h));
+                let r = RADIUS as isize;
+                for dy in -r..=r {
+                    for dx in -r..=r {
+                        if (dx, dy) != (0, 0) {
+                            band.offset(dx, dy);
+                        }
+                    }
+                }
+                band.sums
+            })
+            .collect();
+        let mut sums = [Sums::new(0), Sums::new(0)];
+        for band in bands {
+            for (all, part) in sums.iter_mut().zip(band) {
+                for ch in 0..3 {
+                    all.colour[ch].extend(part.colour[ch].iter());
+                }
+                all.weight.extend(part.weight);
+            }
+        }
+        sums
+    }
+
+    /// Each candidate's risk at each pixel: the pixel's noise for its own
+    /// mean; for a filter F, SURE's ‖F(y) − y‖² + 2 σ² ∂F/∂y − σ², with
+    /// ∂F/∂y the pixel's own weight over the whole (the weights' own
+    /// change with y left out, as Li et al. do).
+    fn risks(&self, sums: &[Sums; 2]) -> Vec<[f32; CANDIDATES]> {
+        (0..self.noise.len())
+            .into_par_iter()
+            .map(|i| {
+                let noise = self.noise[i];
+                let mut out = [noise, f32::INFINITY, f32::INFINITY];
+                if noise <= QUIET {
+                    return out;
+                }
+                for (c, s) in sums.iter().enumerate() {
+                    let weight = s.weight[i];
+                    let mut d2 = 0.0;
+                    for ch in 0..3 {
+                        let d = s.colour[ch][i] / weight - self.colour[ch][i];
+                        d2 += d * d;
+                    }
+                    let risk = d2 + 2.0 * noise / weight - noise;
+                    out[c + 1] = if risk.is_finite() { risk } else { f32::INFINITY };
+                }
+                out
+            })
+            .collect()
+    }
+}
+
+/// The columns x of a row whose neighbour x + `dx` lies in a row of `w`.
+fn span(dx: isize, w: usize) -> (usize, usize) {
+    let x0 = (-dx).max(0) as usize;
+    let x1 = (w as isize - dx.max(0)).max(0) as usize;
+    (x0.min(w), x1.max(x0.min(w)))
+}
+
+/// Each pixel's feature scale, 1 / (k_f² · max(τ, variance, change²)),
+/// the change the largest squared difference to a 3×3 neighbour, halved
+/// (a central difference).
+fn scales(f: &[Vec<f32>; 3], var: &[f32], width: usize) -> Vec<f32> {
+    let n = var.len();
+    let height = n / width;
+    (0..n)
+        .map(|i| {
+            let mut change = 0.0f32;
+            for j in around(i % width, i / width, width, height) {
+                let d2: f32 = f.iter().map(|p| (p[i] - p[j]) * (p[i] - p[j])).sum();
+                change = change.max(d2 * 0.25);
+            }
+            1.0 / (FEATURE_K * FEATURE_K * FEATURE_FLOOR.max(var[i]).max(change))
+        })
+        .collect()
+}
+
+/// The filter's weight for a distance: e^−d in shape, exactly 0 past 4
+/// (a few multiplications where an exponential is a library call).
+#[inline]
+fn kernel(d: f32) -> f32 {
+    let t = (1.0 - 0.25 * d).max(0.0);
+    let t2 = t * t;
+    t2 * t2
+}
+
+/// A band of rows being filtered: the two filters' sums of its pixels,
+/// and the scratch of the colour distances to one offset.
+struct Band<'a> {
+    planes: &'a Planes,
+    rows: std::ops::Range<usize>,
+    sums: [Sums; 2],
+    /// The pixel distances of the band's rows and one more above and
+    /// below (0 where the pair leaves the image), and their sums along
+    /// rows of three.
+    distance: Vec<f32>,
+    across: Vec<f32>,
+    /// Rows of scratch: 1 / the patch's columns, the features' distance,
+    /// the two filters' weights.
+    cols: Vec<f32>,
+    features: Vec<f32>,
+    kb: Vec<f32>,
+    kc: Vec<f32>,
+}
+
+impl<'a> Band<'a> {
+    /// The band of `rows`, each pixel weighing 1 in its own sums.
+    fn new(planes: &'a Planes, rows: std::ops::Range<usize>) -> Self {
+        let w = planes.width;
+        let own = rows.start * w..rows.end * w;
+        let sums = [0, 1].map(|_| Sums {
+            colour: [0, 1, 2].map(|ch| planes.colour[ch][own.clone()].to_vec()),
+            weight: vec![1.0; own.len()],
+        });
+        let scratch = (rows.len() + 2) * w;
+        Band {
+            planes,
+            rows,
+            sums,
+            distance: vec![0.0; scratch],
+            across: vec![0.0; scratch],
+            cols: vec![0.0; w],
+            features: vec![0.0; w],
+            kb: vec![0.0; w],
+            kc: vec![0.0; w],
+        }
+    }
+
+    /// Adds the neighbour at (`dx`, `dy`) of each of the band's pixels to
+    /// its sums: the colour distance of each pixel to its neighbour
+    /// (the squared difference less the noise of the two means, over the
+    /// noise: Rousselle 2012), averaged over the 3×3 patch around it;
+    /// the features' distances; the weights.
+    fn offset(&mut self, dx: isize, dy: isize) {
+        let p = self.planes;
+        let (w, h) = (p.width, p.height);
+        // The pairs in the image: columns x0..x1, rows y0..y1.
+        let (x0, x1) = span(dx, w);
+        let (y0, y1) = span(dy, h);
+        let first = self.rows.start as isize - 1;
+        // The distances of rows first..first + len (the band and a row
+        // above and below).
+        for (k, (d, across)) in self
+            .distance
+            .chunks_exact_mut(w)
+            .zip(self.across.chunks_exact_mut(w))
+            .enumerate()
+        {
+            d.fill(0.0);
+            across.fill(0.0);
+            let y = first + k as isize;
+            if y < y0 as isize || y >= y1 as isize || x0 >= x1 {
+                continue;
+            }
+            let i = y as usize * w + x0..y as usize * w + x1;
+            let j = ((y + dy) as usize * w + x0).wrapping_add_signed(dx)
+                ..((y + dy) as usize * w + x1).wrapping_add_signed(dx);
+            let out = &mut d[x0..x1];
+            for ch in 0..3 {
+                let (ci, cj) = (&p.colour[ch][i.clone()], &p.colour[ch][j.clone()]);
+                let (vi, vj) = (&p.var[ch][i.clone()], &p.var[ch][j.clone()]);
+                for ((((o, &ci), &cj), &vi), &vj) in out.iter_mut().zip(ci).zip(cj).zip(vi).zip(vj) {
+                    let diff = ci - cj;
+                    *o += (diff * diff - (vi + vi.min(vj))) / (1e-10 + COLOUR_K * COLOUR_K * (vi + vj));
+                }
+            }
+            // Sums along the row of three (outside the pairs, 0).
+            for x in x0..x1 {
+                let left = if x > x0 { d[x - 1] } else { 0.0 };
+                let right = if x + 1 < x1 { d[x + 1] } else { 0.0 };
+                across[x] = left + d[x] + right;
+            }
+        }
+        // 1 / the patch's columns within the pairs' (3, or 2 at an end).
+        let cols = &mut self.cols[x0..x1];
+        cols.fill(1.0 / 3.0);
+        if let Some(c) = cols.first_mut() {
+            *c = 0.5;
+        }
+        if let Some(c) = cols.last_mut() {
+            *c = if x1 - x0 == 1 { 1.0 } else { 0.5 };
+        }
+        let [both, colours] = &mut self.sums;
+        for (k, y) in self.rows.clone().enumerate() {
+            if y < y0 || y >= y1 || x0 >= x1 {
+                continue;
+            }
+            // 1 / 3 channels / the patch's rows within the pairs'.
+            let rows_in = 1 + usize::from(y > y0) + usize::from(y + 1 < y1);
+            let per_row = 1.0 / (3 * rows_in) as f32;
+            let up = &self.across[k * w + x0..k * w + x1];
+            let mid = &self.across[(k + 1) * w + x0..(k + 1) * w + x1];
+            let down = &self.across[(k + 2) * w + x0..(k + 2) * w + x1];
+            let i = y * w + x0..y * w + x1;
+            let jy = (y as isize + dy) as usize * w;
+            let j = (jy + x0).wrapping_add_signed(dx)..(jy + x1).wrapping_add_signed(dx);
+            // The larger of the features' distances.
+            let df = &mut self.features[x0..x1];
+            feature_distances(&p.albedo, &p.albedo_var, &p.albedo_scale, &i, &j, df, false);
+            feature_distances(&p.normal, &p.normal_var, &p.normal_scale, &i, &j, df, true);
+            let (kb, kc) = (&mut self.kb[x0..x1], &mut self.kc[x0..x1]);
+            for (((((kb, kc), df), cols), up), (mid, down)) in kb
+                .iter_mut()
+                .zip(kc.iter_mut())
+                .zip(df.iter())
+                .zip(cols.iter())
+                .zip(up)
+                .zip(mid.iter().zip(down))
+            {
+                let dc = ((up + mid + down) * per_row * cols).max(0.0);
+                *kc = kernel(dc);
+                *kb = kernel(dc.max(*df));
+            }
+            let o = k * w + x0..k * w + x1;
+            for ch in 0..3 {
+                let c = &p.colour[ch][j.clone()];
+                for ((b, cc), ((kb, kc), c)) in both.colour[ch][o.clone()]
+                    .iter_mut()
+                    .zip(colours.colour[ch][o.clone()].iter_mut())
+                    .zip(kb.iter().zip(kc.iter()).zip(c))
+                {
+                    *b += kb * c;
+                    *cc += kc * c;
+                }
+            }
+            for ((b, cc), (kb, kc)) in both.weight[o.clone()]
+                .iter_mut()
+                .zip(colours.weight[o].iter_mut())
+                .zip(kb.iter().zip(kc.iter()))
+            {
+                *b += kb;
+                *cc += kc;
+            }
+        }
+    }
+}
+
+/// A feature's distances between the pixels `i` and `j` (runs of a row),
+/// into `out` (or the larger of it and them, with `max`): the squared
+/// difference less the noise of the two means, times i's scale, at
+/// least 0 (Rousselle 2013).
+fn feature_distances(
+    f: &[Vec<f32>; 3],
+    var: &[f32],
+    scale: &[f32],
+    i: &std::ops::Range<usize>,
+    j: &std::ops::Range<usize>,
+    out: &mut [f32],
+    max: bool,
+) {
+    let (vi, vj, si) = (&var[i.clone()], &var[j.clone()], &scale[i.clone()]);
+    let [a, b, c] = f.each_ref().map(|p| (&p[i.clone()], &p[j.clone()]));
+    let pairs = a.0.iter().zip(a.1).zip(b.0.iter().zip(b.1)).zip(c.0.iter().zip(c.1));
+    for ((((o, vi), vj), si), (((ai, aj), (bi, bj)), (ci, cj))) in out.iter_mut().zip(vi).zip(vj).zip(si).zip(pairs) {
+        let (x, y, z) = (ai - aj, bi - bj, ci - cj);
+        let d = ((x * x + y * y + z * z - (vi + vi.min(*vj))) * si).max(0.0);
+        *o = if max { o.max(d) } else { d };
+    }
+}
+
+/// The candidate of pixel (x, y) whose risk, summed over the 3×3 pixels
+/// around it, is least (ties to the first).
+fn choose(risks: &[[f32; CANDIDATES]], x: usize, y: usize, width: usize, height: usize) -> usize {
+    let mut sum = [0.0f32; CANDIDATES];
+    for j in around(x, y, width, height) {
+        for (s, r) in sum.iter_mut().zip(risks[j]) {
+            *s += r.min(1e30);
+        }
+    }
+    let own = &risks[y * width + x];
+    let mut best = 0;
+    for c in 1..CANDIDATES {
+        if sum[c] < sum[best] && own[c].is_finite() {
+            best = c;
+        }
+    }
+    best
+}
