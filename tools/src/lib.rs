@@ -7,6 +7,7 @@ pub mod deck_misses;
 pub mod decks;
 pub mod fonts;
 pub mod frames;
+pub mod frontier;
 pub mod fuzz;
 pub mod gallery;
 pub mod goal;

@@ -122,6 +122,23 @@ enum Command {
         #[arg(long)]
         cache: Option<PathBuf>,
     },
+    /// The reconstructions' goals: RMSE against a 1024-ray reference and one-thread CPU time
+    /// of `--denoise`, `--sampler sobol` and `--coherence N` on motion scenes, each over the
+    /// best 16-ray render before them (`--sampler adaptive --mask 4`).
+    Frontier {
+        /// The decks (shipped names, `spheres`, `ball`, or paths) [default: fig5_3, fig5_10,
+        /// spheres, ball].
+        decks: Vec<String>,
+        /// The width and height of every render, in pixels.
+        #[arg(long, default_value_t = 128)]
+        size: usize,
+        /// Timed rounds (the medians are compared); 0 for the errors alone.
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+        /// A folder to keep the references in between runs.
+        #[arg(long)]
+        cache: Option<PathBuf>,
+    },
     /// Where `--sampler adaptive` spends its rays: the image beside a heat map
     /// of the rays each pixel got, one PNG.
     Heatmap {
@@ -310,6 +327,12 @@ fn run(command: Command) -> Result<(), Failure> {
         }
         Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
+        Command::Frontier {
+            decks,
+            size,
+            runs,
+            cache,
+        } => tools::frontier::run(&decks, size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
         }
