@@ -294,7 +294,9 @@ mod tests {
             (opts.fidelity, opts.solver, opts.sampler),
             (Fidelity::Listing, Solver::Robust, TimeSampler::Stratified)
         );
-        assert!(parse(&["--sampler", "sobol"]).is_err());
+        let sobol = parse(&["--sampler", "sobol"]).unwrap().options.options().unwrap();
+        assert_eq!(sobol.sampler, TimeSampler::Sobol);
+        assert!(parse(&["--sampler", "halton"]).is_err());
         assert_eq!(parse(&["--accel", "octree"]).unwrap().accel, Accel::Octree);
         assert_eq!(parse(&[]).unwrap().accel, Accel::Auto);
     }
@@ -305,6 +307,36 @@ mod tests {
         let e = args.options.options().unwrap_err();
         assert_eq!(e.kind, crate::exit::Kind::Usage);
         assert!(e.message.contains("--sampler adaptive"), "{e}");
+    }
+
+    /// `--denoise` and `--coherence N` (1..=64) make the reconstruction;
+    /// both together, either twice, a step out of range, or coherence
+    /// with the adaptive sampler are usage errors.
+    #[test]
+    fn the_reconstruction_flags() {
+        let r = |args: &[&str]| parse(args).unwrap().reconstruction().unwrap();
+        assert_eq!(r(&[]), Reconstruction::Box);
+        assert_eq!(r(&["--denoise"]), Reconstruction::Denoise);
+        assert_eq!(r(&["--coherence", "1"]), Reconstruction::Coherence(1));
+        assert_eq!(r(&["--coherence", "64"]), Reconstruction::Coherence(64));
+        assert_eq!(r(&["--denoise", "--sampler", "adaptive"]), Reconstruction::Denoise);
+        for bad in [
+            &["--coherence", "0"][..],
+            &["--coherence", "65"],
+            &["--coherence", "x"],
+            &["--denoise", "--denoise"],
+            &["--coherence", "2", "--coherence", "3"],
+            &["--denoise", "--coherence", "2"],
+        ] {
+            let e = parse(bad).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{bad:?}");
+        }
+        let e = parse(&["--coherence", "4", "--sampler", "adaptive"])
+            .unwrap()
+            .reconstruction()
+            .unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Usage);
+        assert!(e.message.contains("--coherence 4"), "{e}");
     }
 
     #[test]

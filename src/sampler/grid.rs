@@ -595,6 +595,65 @@ mod tests {
         }
     }
 
+    /// Sobol: a pixel's M² = 16 subpixels take its first 16 scrambled
+    /// Sobol points: their places a (0, 4, 2)-net over the pixel (one in
+    /// each elementary box of area 1/16, whatever its shape), their times
+    /// and each further dimension one in each of 16 strata; in both
+    /// fidelities (the place is the Sobol point's, not the listing's
+    /// jitter); the points differ from pixel to pixel, the time too.
+    #[test]
+    fn sobol_subpixels_are_a_pixels_net() {
+        let t = tables();
+        for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+            let (m, width) = (4usize, 5);
+            let mut s = GridSampler::new(&t, GridKind::Sobol, fidelity, width, m, 0.5);
+            let mut firsts = Vec::new();
+            for (x, row) in [(0, 0), (3, 2), (4, 7)] {
+                s.start_row(row);
+                let mut points = Vec::new();
+                for sub in 0..m {
+                    for c in 0..m {
+                        s.start(row * m + sub + 1, x * m + c + 1);
+                        let cam = s.camera();
+                        let u = (cam.scancol - 0.5) / m as f64 - x as f64;
+                        let v = (cam.scanline - 0.5) / m as f64 - row as f64;
+                        assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v), "{u} {v}");
+                        assert_eq!((cam.jx, cam.jz), (0.0, 0.0));
+                        let tau = s.time();
+                        let further: Vec<f64> = (0..4).map(|_| s.get_1d()).collect();
+                        points.push((u, v, tau, further));
+                    }
+                }
+                for k in 0..=4u32 {
+                    let (a, b) = (1usize << k, 1usize << (4 - k));
+                    let mut cells: Vec<usize> = points
+                        .iter()
+                        .map(|p| (p.0 * a as f64) as usize * b + (p.1 * b as f64) as usize)
+                        .collect();
+                    cells.sort_unstable();
+                    assert_eq!(
+                        cells,
+                        (0..16).collect::<Vec<_>>(),
+                        "{fidelity:?} ({x}, {row}) boxes {a}×{b}"
+                    );
+                }
+                for d in 0..5 {
+                    let value = |p: &(f64, f64, f64, Vec<f64>)| if d == 0 { p.2 } else { p.3[d - 1] };
+                    let mut strata: Vec<usize> = points.iter().map(|p| (value(p) * 16.0) as usize).collect();
+                    strata.sort_unstable();
+                    assert_eq!(
+                        strata,
+                        (0..16).collect::<Vec<_>>(),
+                        "{fidelity:?} ({x}, {row}) dimension {d}"
+                    );
+                }
+                firsts.push((points[0].0, points[0].2));
+            }
+            assert!(firsts[0].0 != firsts[1].0 && firsts[1].0 != firsts[2].0);
+            assert!(firsts[0].1 != firsts[1].1 && firsts[1].1 != firsts[2].1);
+        }
+    }
+
     /// The table's first further dimension is `noise[dindex]` with the
     /// cursor at the subpixel's place k in the scan order.
     #[test]
