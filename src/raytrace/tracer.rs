@@ -93,7 +93,6 @@ impl<'p> Tracer<'p> {
         let f = Features {
             albedo,
             normal,
-            nearness: 1.0 / hit.distance.max(1e-9),
             object: Some(hit.object),
         };
         (colour, f)

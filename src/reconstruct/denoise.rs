@@ -82,63 +82,38 @@ pub fn denoise(pixels: &[Gathered], width: usize) -> Vec<Intensity> {
     if pixels.is_empty() || width == 0 {
         return Vec::new();
     }
-    let means: Vec<PixelMeans> = pixels.iter().map(Gathered::means).collect();
-    let planes = Planes::new(&means, width);
+    let planes = Planes::new(pixels, width);
     let sums = planes.filter();
     let risks = planes.risks(&sums);
-    let height = pixels.len() / width;
-    if std::env::var("DN_DEBUG").is_ok() {
-        let mut k = [0usize; 3];
-        for i in 0..pixels.len() {
-            k[choose(&risks, i % width, i / width, width, height)] += 1;
-        }
-        eprintln!("chosen {k:?}");
-        let mut pgm = format!("P5 {width} {height} 255\n").into_bytes();
-        for i in 0..pixels.len() {
-            let c = choose(&risks, i % width, i / width, width, height);
-            pgm.push(if planes.noise[i] <= QUIET {
-                40
-            } else {
-                [120u8, 200, 255][c]
-            });
-        }
-        std::fs::write("/tmp/choice.pgm", pgm).unwrap();
-        if let Ok(p) = std::env::var("DN_PIX") {
-            let v: Vec<usize> = p.split(',').map(|x| x.parse().unwrap()).collect();
-            let i = v[1] * width + v[0];
-            eprintln!(
-                "pix risks {:?} noise {} w {} {} colour {} {} {}",
-                risks[i],
-                planes.noise[i],
-                sums[0].weight[i],
-                sums[1].weight[i],
-                planes.colour[0][i],
-                sums[0].colour[0][i] / sums[0].weight[i],
-                sums[1].colour[0][i] / sums[1].weight[i]
-            );
-        }
-    }
+    // The risks summed over the 3×3 pixels around each: a candidate's
+    // own risk is too noisy to choose by alone.
+    let smoothed = risks.each_ref().map(|r| {
+        let clamped: Vec<f32> = r.iter().map(|v| v.min(1e30)).collect();
+        box_sums(&clamped, width)
+    });
     (0..pixels.len())
         .into_par_iter()
         .map(|i| {
-            let best = choose(&risks, i % width, i / width, width, height);
-            let own = means[i].colour;
-            match best {
-                0 => own,
-                c => {
-                    let s = &sums[c - 1];
-                    let w = f64::from(s.weight[i]);
-                    let f = Intensity::new(
-                        f64::from(s.colour[0][i]),
-                        f64::from(s.colour[1][i]),
-                        f64::from(s.colour[2][i]),
-                    ) / w;
-                    if f.is_finite() {
-                        f
-                    } else {
-                        own
-                    }
+            let own = pixels[i].mean();
+            let best = (1..CANDIDATES).fold(0, |best, c| {
+                match smoothed[c][i] < smoothed[best][i] && risks[c][i].is_finite() {
+                    true => c,
+                    false => best,
                 }
+            });
+            if best == 0 {
+                return own;
+            }
+            let s = &sums[best - 1];
+            let f = Intensity::new(
+                f64::from(s.colour[0][i]),
+                f64::from(s.colour[1][i]),
+                f64::from(s.colour[2][i]),
+            ) / f64::from(s.weight[i]);
+            if f.is_finite() {
+                f
+            } else {
+                own
             }
         })
         .collect()
@@ -161,6 +136,9 @@ struct Planes {
     /// 1 / (k_f² · max(τ, variance, change²)) for each feature.
     albedo_scale: Vec<f32>,
     normal_scale: Vec<f32>,
+    /// Each row's runs of pixels that are not quiet (columns a..b): only
+    /// their sums are made.
+    active: Vec<Vec<(usize, usize)>>,
 }
 
 /// A candidate filter's sums: the weighted colours and the weights.
@@ -178,49 +156,60 @@ impl Sums {
     }
 }
 
-/// The 3×3 neighbours of (x, y) within a `width`×`height` image.
-fn around(x: usize, y: usize, width: usize, height: usize) -> impl Iterator<Item = usize> {
-    (y.saturating_sub(1)..(y + 2).min(height))
-        .flat_map(move |yy| (x.saturating_sub(1)..(x + 2).min(width)).map(move |xx| yy * width + xx))
-}
-
 impl Planes {
-    fn new(means: &[PixelMeans], width: usize) -> Planes {
-        let n = means.len();
+    fn new(pixels: &[Gathered], width: usize) -> Planes {
+        let n = pixels.len();
+        let zeros = || [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+        let (mut colour, mut own_var, mut albedo, mut normal) = (zeros(), zeros(), zeros(), zeros());
         let height = n / width;
-        let plane = |f: &dyn Fn(&PixelMeans) -> f64| means.iter().map(|m| f(m) as f32).collect::<Vec<f32>>();
-        let colour = [plane(&|m| m.colour.x), plane(&|m| m.colour.y), plane(&|m| m.colour.z)];
+        let (mut albedo_var, mut normal_var) = (vec![0.0f32; n], vec![0.0f32; n]);
+        // Whether the pixel has a variance of its own (two samples or more).
+        let mut has_var = vec![false; n];
+        for (i, g) in pixels.iter().enumerate() {
+            let m: PixelMeans = g.means();
+            for ch in 0..3 {
+                colour[ch][i] = m.colour[ch] as f32;
+                albedo[ch][i] = m.albedo[ch] as f32;
+                normal[ch][i] = m.normal[ch] as f32;
+                own_var[ch][i] = m.colour_var.map_or(0.0, |v| v[ch] as f32);
+            }
+            has_var[i] = m.colour_var.is_some();
+            albedo_var[i] = m.albedo_var as f32;
+            normal_var[i] = m.normal_var as f32;
+        }
         // A mean of few samples has a very noisy variance: each pixel's is
         // the average over the 3×3 pixels around it that have one; for
         // pixels of one sample, the variance of the 3×3 means.
-        let mut var = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
-        for i in 0..n {
-            let (x, y) = (i % width, i / width);
-            let (mut sum, mut k) = (Intensity::ZERO, 0.0);
-            let (mut c, mut c2, mut m) = (Intensity::ZERO, Intensity::ZERO, 0.0);
-            for j in around(x, y, width, height) {
-                if let Some(v) = means[j].colour_var {
-                    sum += v;
-                    k += 1.0;
+        let with_var: Vec<f32> = has_var.iter().map(|&h| f32::from(u8::from(h))).collect();
+        let k = box_sums(&with_var, width);
+        let m = box_sums(&vec![1.0; n], width);
+        let var = [0, 1, 2].map(|ch| {
+            let own: Vec<f32> = own_var[ch].iter().zip(&with_var).map(|(v, h)| v * h).collect();
+            let sum = box_sums(&own, width);
+            let c = box_sums(&colour[ch], width);
+            let squares: Vec<f32> = colour[ch].iter().map(|c| c * c).collect();
+            let c2 = box_sums(&squares, width);
+            (0..n)
+                .map(|i| match k[i] > 0.0 {
+                    true => sum[i] / k[i],
+                    false => ((c2[i] - c[i] * c[i] / m[i]) / m[i]).max(0.0),
+                })
+                .collect::<Vec<f32>>()
+        });
+        let noise: Vec<f32> = (0..n).map(|i| var[0][i] + var[1][i] + var[2][i]).collect();
+        let active = noise
+            .chunks_exact(width)
+            .map(|row| {
+                let mut runs: Vec<(usize, usize)> = Vec::new();
+                for (x, _) in row.iter().enumerate().filter(|(_, &v)| v > QUIET) {
+                    match runs.last_mut() {
+                        Some(r) if r.1 == x => r.1 = x + 1,
+                        _ => runs.push((x, x + 1)),
+                    }
                 }
-                c += means[j].colour;
-                c2 += means[j].colour * means[j].colour;
-                m += 1.0;
-            }
-            let v = if k > 0.0 {
-                sum / k
-            } else {
-                ((c2 - c * c / m) / m).max(Intensity::ZERO)
-            };
-            for (ch, plane) in var.iter_mut().enumerate() {
-                plane[i] = v[ch] as f32;
-            }
-        }
-        let noise = (0..n).map(|i| var[0][i] + var[1][i] + var[2][i]).collect();
-        let albedo = [plane(&|m| m.albedo.x), plane(&|m| m.albedo.y), plane(&|m| m.albedo.z)];
-        let normal = [plane(&|m| m.normal.x), plane(&|m| m.normal.y), plane(&|m| m.normal.z)];
-        let albedo_var = plane(&|m| m.albedo_var);
-        let normal_var = plane(&|m| m.normal_var);
+                runs
+            })
+            .collect();
         let albedo_scale = scales(&albedo, &albedo_var, width);
         let normal_scale = scales(&normal, &normal_var, width);
         Planes {
@@ -235,6 +224,7 @@ impl Planes {
             normal_var,
             albedo_scale,
             normal_scale,
+            active,
         }
     }
 
@@ -273,28 +263,28 @@ impl Planes {
     /// mean; for a filter F, SURE's ‖F(y) − y‖² + 2 σ² ∂F/∂y − σ², with
     /// ∂F/∂y the pixel's own weight over the whole (the weights' own
     /// change with y left out, as Li et al. do).
-    fn risks(&self, sums: &[Sums; 2]) -> Vec<[f32; CANDIDATES]> {
-        (0..self.noise.len())
-            .into_par_iter()
-            .map(|i| {
+    fn risks(&self, sums: &[Sums; 2]) -> [Vec<f32>; CANDIDATES] {
+        let n = self.noise.len();
+        let mut out = [self.noise.clone(), vec![f32::INFINITY; n], vec![f32::INFINITY; n]];
+        for (c, s) in sums.iter().enumerate() {
+            for (i, risk) in out[c + 1].iter_mut().enumerate() {
                 let noise = self.noise[i];
-                let mut out = [noise, f32::INFINITY, f32::INFINITY];
                 if noise <= QUIET {
-                    return out;
+                    continue;
                 }
-                for (c, s) in sums.iter().enumerate() {
-                    let weight = s.weight[i];
-                    let mut d2 = 0.0;
-                    for ch in 0..3 {
-                        let d = s.colour[ch][i] / weight - self.colour[ch][i];
-                        d2 += d * d;
-                    }
-                    let risk = d2 + 2.0 * noise / weight - noise;
-                    out[c + 1] = if risk.is_finite() { risk } else { f32::INFINITY };
+                let weight = s.weight[i];
+                let mut d2 = 0.0;
+                for ch in 0..3 {
+                    let d = s.colour[ch][i] / weight - self.colour[ch][i];
+                    d2 += d * d;
                 }
-                out
-            })
-            .collect()
+                let r = d2 + 2.0 * noise / weight - noise;
+                if r.is_finite() {
+                    *risk = r;
+                }
+            }
+        }
+        out
     }
 }
 
@@ -310,15 +300,59 @@ fn span(dx: isize, w: usize) -> (usize, usize) {
 /// (a central difference).
 fn scales(f: &[Vec<f32>; 3], var: &[f32], width: usize) -> Vec<f32> {
     let n = var.len();
-    let height = n / width;
+    // The squared differences to the pixel to the right, below, below
+    // right and below left (0 where there is none).
+    let step = |di: usize, keep: fn(usize, usize) -> bool| -> Vec<f32> {
+        let mut d = vec![0.0; n];
+        for (i, d) in d.iter_mut().enumerate().take(n.saturating_sub(di)) {
+            if keep(i % width, width) {
+                let j = i + di;
+                let (a, b, c) = (f[0][i] - f[0][j], f[1][i] - f[1][j], f[2][i] - f[2][j]);
+                *d = a * a + b * b + c * c;
+            }
+        }
+        d
+    };
+    let right = step(1, |x, w| x + 1 < w);
+    let below = step(width, |_, _| true);
+    let below_right = step(width + 1, |x, w| x + 1 < w);
+    let below_left = step(width - 1, |x, _| x > 0);
     (0..n)
         .map(|i| {
-            let mut change = 0.0f32;
-            for j in around(i % width, i / width, width, height) {
-                let d2: f32 = f.iter().map(|p| (p[i] - p[j]) * (p[i] - p[j])).sum();
-                change = change.max(d2 * 0.25);
-            }
+            let back = |d: &[f32], di: usize| if i >= di { d[i - di] } else { 0.0 };
+            // A pair out of the image has 0 here, so no test is needed.
+            let change = right[i]
+                .max(below[i])
+                .max(below_right[i])
+                .max(below_left[i])
+                .max(back(&right, 1))
+                .max(back(&below, width))
+                .max(back(&below_right, width + 1))
+                .max(back(&below_left, width - 1))
+                * 0.25;
             1.0 / (FEATURE_K * FEATURE_K * FEATURE_FLOOR.max(var[i]).max(change))
+        })
+        .collect()
+}
+
+/// The sums of `values` over the 3×3 pixels around each pixel (fewer at
+/// the image's edges), an image `width` pixels wide: along the rows, then
+/// down the columns.
+fn box_sums(values: &[f32], width: usize) -> Vec<f32> {
+    let n = values.len();
+    let mut across = vec![0.0; n];
+    for (row, out) in values.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+        for x in 0..width {
+            let left = if x > 0 { row[x - 1] } else { 0.0 };
+            let right = if x + 1 < width { row[x + 1] } else { 0.0 };
+            out[x] = left + row[x] + right;
+        }
+    }
+    (0..n)
+        .map(|i| {
+            let up = if i >= width { across[i - width] } else { 0.0 };
+            let down = if i + width < n { across[i + width] } else { 0.0 };
+            up + across[i] + down
         })
         .collect()
 }
@@ -436,48 +470,55 @@ impl<'a> Band<'a> {
             // 1 / 3 channels / the patch's rows within the pairs'.
             let rows_in = 1 + usize::from(y > y0) + usize::from(y + 1 < y1);
             let per_row = 1.0 / (3 * rows_in) as f32;
-            let up = &self.across[k * w + x0..k * w + x1];
-            let mid = &self.across[(k + 1) * w + x0..(k + 1) * w + x1];
-            let down = &self.across[(k + 2) * w + x0..(k + 2) * w + x1];
-            let i = y * w + x0..y * w + x1;
-            let jy = (y as isize + dy) as usize * w;
-            let j = (jy + x0).wrapping_add_signed(dx)..(jy + x1).wrapping_add_signed(dx);
-            // The larger of the features' distances.
-            let df = &mut self.features[x0..x1];
-            feature_distances(&p.albedo, &p.albedo_var, &p.albedo_scale, &i, &j, df, false);
-            feature_distances(&p.normal, &p.normal_var, &p.normal_scale, &i, &j, df, true);
-            let (kb, kc) = (&mut self.kb[x0..x1], &mut self.kc[x0..x1]);
-            for (((((kb, kc), df), cols), up), (mid, down)) in kb
-                .iter_mut()
-                .zip(kc.iter_mut())
-                .zip(df.iter())
-                .zip(cols.iter())
-                .zip(up)
-                .zip(mid.iter().zip(down))
-            {
-                let dc = ((up + mid + down) * per_row * cols).max(0.0);
-                *kc = kernel(dc);
-                *kb = kernel(dc.max(*df));
-            }
-            let o = k * w + x0..k * w + x1;
-            for ch in 0..3 {
-                let c = &p.colour[ch][j.clone()];
-                for ((b, cc), ((kb, kc), c)) in both.colour[ch][o.clone()]
-                    .iter_mut()
-                    .zip(colours.colour[ch][o.clone()].iter_mut())
-                    .zip(kb.iter().zip(kc.iter()).zip(c))
-                {
-                    *b += kb * c;
-                    *cc += kc * c;
+            // Only the pixels the filter may change (not quiet).
+            for &(a, b) in &p.active[y] {
+                let (xa, xb) = (a.max(x0), b.min(x1));
+                if xa >= xb {
+                    continue;
                 }
-            }
-            for ((b, cc), (kb, kc)) in both.weight[o.clone()]
-                .iter_mut()
-                .zip(colours.weight[o].iter_mut())
-                .zip(kb.iter().zip(kc.iter()))
-            {
-                *b += kb;
-                *cc += kc;
+                let up = &self.across[k * w + xa..k * w + xb];
+                let mid = &self.across[(k + 1) * w + xa..(k + 1) * w + xb];
+                let down = &self.across[(k + 2) * w + xa..(k + 2) * w + xb];
+                let i = y * w + xa..y * w + xb;
+                let jy = (y as isize + dy) as usize * w;
+                let j = (jy + xa).wrapping_add_signed(dx)..(jy + xb).wrapping_add_signed(dx);
+                // The larger of the features' distances.
+                let df = &mut self.features[xa..xb];
+                feature_distances(&p.albedo, &p.albedo_var, &p.albedo_scale, &i, &j, df, false);
+                feature_distances(&p.normal, &p.normal_var, &p.normal_scale, &i, &j, df, true);
+                let (kb, kc) = (&mut self.kb[xa..xb], &mut self.kc[xa..xb]);
+                for (((((kb, kc), df), cols), up), (mid, down)) in kb
+                    .iter_mut()
+                    .zip(kc.iter_mut())
+                    .zip(df.iter())
+                    .zip(cols.iter())
+                    .zip(up)
+                    .zip(mid.iter().zip(down))
+                {
+                    let dc = ((up + mid + down) * per_row * cols).max(0.0);
+                    *kc = kernel(dc);
+                    *kb = kernel(dc.max(*df));
+                }
+                let o = k * w + xa..k * w + xb;
+                for ch in 0..3 {
+                    let c = &p.colour[ch][j.clone()];
+                    for ((b, cc), ((kb, kc), c)) in both.colour[ch][o.clone()]
+                        .iter_mut()
+                        .zip(colours.colour[ch][o.clone()].iter_mut())
+                        .zip(kb.iter().zip(kc.iter()).zip(c))
+                    {
+                        *b += kb * c;
+                        *cc += kc * c;
+                    }
+                }
+                for ((b, cc), (kb, kc)) in both.weight[o.clone()]
+                    .iter_mut()
+                    .zip(colours.weight[o].iter_mut())
+                    .zip(kb.iter().zip(kc.iter()))
+                {
+                    *b += kb;
+                    *cc += kc;
+                }
             }
         }
     }
@@ -504,23 +545,4 @@ fn feature_distances(
         let d = ((x * x + y * y + z * z - (vi + vi.min(*vj))) * si).max(0.0);
         *o = if max { o.max(d) } else { d };
     }
-}
-
-/// The candidate of pixel (x, y) whose risk, summed over the 3×3 pixels
-/// around it, is least (ties to the first).
-fn choose(risks: &[[f32; CANDIDATES]], x: usize, y: usize, width: usize, height: usize) -> usize {
-    let mut sum = [0.0f32; CANDIDATES];
-    for j in around(x, y, width, height) {
-        for (s, r) in sum.iter_mut().zip(risks[j]) {
-            *s += r.min(1e30);
-        }
-    }
-    let own = &risks[y * width + x];
-    let mut best = 0;
-    for c in 1..CANDIDATES {
-        if sum[c] < sum[best] && own[c].is_finite() {
-            best = c;
-        }
-    }
-    best
 }

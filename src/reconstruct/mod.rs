@@ -49,9 +49,6 @@ pub struct Features {
     /// The unit normal at the first hit, turned to face the ray; zero for
     /// a ray that meets nothing.
     pub normal: DVec3,
-    /// 1 / the distance to the first hit (bounded where a distance is
-    /// not); 0 for a ray that meets nothing.
-    pub nearness: f64,
     /// The object first met, if any.
     pub object: Option<usize>,
 }
@@ -68,8 +65,6 @@ pub struct Gathered {
     albedo_sq: f64,
     normal: DVec3,
     normal_sq: f64,
-    nearness: f64,
-    nearness_sq: f64,
     /// A bit for each object its samples met first (object k sets bit k
     /// mod 63), bit 63 for a sample that met nothing.
     pub objects: u64,
@@ -88,8 +83,6 @@ pub struct PixelMeans {
     pub albedo_var: f64,
     pub normal: DVec3,
     pub normal_var: f64,
-    pub nearness: f64,
-    pub nearness_var: f64,
 }
 
 impl Gathered {
@@ -102,9 +95,15 @@ impl Gathered {
         self.albedo_sq += f.albedo.length_squared();
         self.normal += f.normal;
         self.normal_sq += f.normal.length_squared();
-        self.nearness += f.nearness;
-        self.nearness_sq += f.nearness * f.nearness;
         self.objects |= 1 << f.object.map_or(63, |k| k % 63);
+    }
+
+    /// The mean colour of the pixel's samples (black without any).
+    pub fn mean(&self) -> Intensity {
+        match self.n {
+            0 => Intensity::ZERO,
+            n => self.colour / f64::from(n),
+        }
     }
 
     /// The pixel's means and their variances; zeros for a pixel without
@@ -129,8 +128,6 @@ impl Gathered {
             albedo_var: spread(self.albedo_sq, self.albedo.length_squared()),
             normal: self.normal / n,
             normal_var: spread(self.normal_sq, self.normal.length_squared()),
-            nearness: self.nearness / n,
-            nearness_var: spread(self.nearness_sq, self.nearness * self.nearness),
         }
     }
 }
@@ -139,11 +136,10 @@ impl Gathered {
 mod tests {
     use super::*;
 
-    fn features(albedo: f64, nearness: f64, object: Option<usize>) -> Features {
+    fn features(albedo: f64, object: Option<usize>) -> Features {
         Features {
             albedo: Intensity::splat(albedo),
             normal: DVec3::Z,
-            nearness,
             object,
         }
     }
@@ -154,10 +150,10 @@ mod tests {
     fn means_and_their_variances() {
         let mut g = Gathered::default();
         assert_eq!(g.means(), PixelMeans::default());
-        g.add(Intensity::new(1.0, 0.0, 0.5), &features(0.2, 0.5, Some(2)));
+        g.add(Intensity::new(1.0, 0.0, 0.5), &features(0.2, Some(2)));
         assert_eq!(g.means().colour_var, None);
         assert_eq!(g.means().albedo_var, 0.0);
-        g.add(Intensity::new(0.0, 0.0, 0.5), &features(0.4, 0.25, None));
+        g.add(Intensity::new(0.0, 0.0, 0.5), &features(0.4, None));
         let m = g.means();
         assert_eq!(m.colour, Intensity::new(0.5, 0.0, 0.5));
         // Red 1, 0: sample variance 0.5, of the mean 0.25.
@@ -168,8 +164,6 @@ mod tests {
         );
         // Albedo 0.2 and 0.4 in each of 3 channels: Σ|a − ā|² = 3·0.02 = 0.06, /1 /2.
         assert!((m.albedo_var - 0.03).abs() < 1e-15, "{}", m.albedo_var);
-        assert!((m.nearness - 0.375).abs() < 1e-15);
-        assert!((m.nearness_var - 0.015625).abs() < 1e-15, "{}", m.nearness_var);
         assert_eq!(m.normal, DVec3::Z);
         assert_eq!(m.normal_var, 0.0);
         assert_eq!(g.objects, 1 << 2 | 1 << 63);
@@ -180,9 +174,9 @@ mod tests {
     #[test]
     fn object_bits() {
         let mut g = Gathered::default();
-        g.add(Intensity::ZERO, &features(0.0, 0.0, Some(64)));
+        g.add(Intensity::ZERO, &features(0.0, Some(64)));
         assert_eq!(g.objects, 1 << 1);
-        g.add(Intensity::ZERO, &features(0.0, 0.0, Some(1)));
+        g.add(Intensity::ZERO, &features(0.0, Some(1)));
         assert_eq!(g.objects, 1 << 1);
     }
 }

@@ -289,10 +289,11 @@ fn main() -> ExitCode {
 /// (their errors exit 2), then the timed renders.
 fn bench(deck: &std::path::Path, runs: usize, render: &RenderArgs) -> Result<(), Failure> {
     let opts = render.options.options()?;
+    let reconstruction = render.reconstruction()?;
     let deck = DeckInput::read(deck)?;
     let scene = render.scene(&deck, &opts)?;
     let pool = render.thread_pool()?;
-    tools::bench::bench(&deck.name, &scene, runs.max(1), &pool).map_err(Failure::other)
+    tools::bench::bench(&deck.name, &scene, reconstruction, runs.max(1), &pool).map_err(Failure::other)
 }
 
 /// Runs a command: the render flags' and the decks' errors are the
