@@ -3,6 +3,8 @@
 
 pub mod bench;
 pub mod chart;
+pub mod chart_reconstructions;
+pub mod compare;
 pub mod deck_misses;
 pub mod decks;
 pub mod fonts;

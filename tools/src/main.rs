@@ -108,6 +108,9 @@ enum Command {
         /// Timed renders a point (the median is plotted).
         #[arg(long, default_value_t = 5)]
         runs: usize,
+        /// A folder to keep the references in between runs (as `tools goal`'s).
+        #[arg(long)]
+        cache: Option<PathBuf>,
     },
     /// The adaptive sampler's goal: RMSE and one-thread CPU time of `--sampler adaptive`
     /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
@@ -326,7 +329,9 @@ fn run(command: Command) -> Result<(), Failure> {
             }
             tools::gallery::run(&tools::gallery::checkout(), &only, check)
         }
-        Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Chart { dir, size, runs, cache } => {
+            tools::chart::run(&dir, size.max(8), runs.max(1), cache.as_deref())
+        }
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
         Command::Frontier {
             decks,
