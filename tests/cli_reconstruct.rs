@@ -2,24 +2,23 @@
 //! sobol`: what they write and say, and the inputs they refuse (exit
 //! status 2, nothing written).
 
-use std::process::{Command, Output};
+use std::process::Command;
 
 mod common;
 use common::{decks, raytrace_command};
 
-fn run(args: &[&str], out: &std::path::Path) -> Output {
-    raytrace_command()
+/// `raytrace fig5_3.deck --size 24x16 ARGS -o OUT`: its exit status and
+/// what it wrote to standard error.
+fn run(args: &[&str], out: &std::path::Path) -> (Option<i32>, String) {
+    let o = raytrace_command()
         .arg(decks().join("fig5_3.deck"))
         .args(["--size", "24x16"])
         .args(args)
         .arg("-o")
         .arg(out)
         .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+        .unwrap();
+    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
 }
 
 /// Each flag renders, and the summary line says how the pixels were made.
@@ -39,9 +38,9 @@ fn the_summary_line_names_the_reconstruction() {
         ),
         (&["--sampler", "sobol", "--mask", "4"], "(24×16, 4×4 subpixels,"),
     ] {
-        let o = run(args, &out);
-        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+        let (status, err) = run(args, &out);
+        assert_eq!(status, Some(0), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
         let r = raytrace::raster::read_raster_file(&out).unwrap();
         assert_eq!((r.width, r.height), (24, 16));
         std::fs::remove_file(&out).unwrap();
@@ -66,9 +65,9 @@ fn bad_reconstruction_flags_are_usage_errors() {
             "--sampler adaptive deals its rays",
         ),
     ] {
-        let o = run(args, &out);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains(says), "{args:?}: {}", stderr(&o));
+        let (status, err) = run(args, &out);
+        assert_eq!(status, Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
         assert!(!out.exists(), "{args:?} wrote {}", out.display());
         assert_eq!(
             std::fs::read_dir(dir.path()).unwrap().count(),
@@ -91,7 +90,7 @@ fn a_film_denoised_frame_by_frame() {
             .arg(&stem)
             .output()
             .unwrap();
-        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     };
     film("1..3");
     let second = std::fs::read(dir.path().join("f.0002.ras")).unwrap();

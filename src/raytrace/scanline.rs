@@ -28,26 +28,18 @@ pub(super) fn render_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Intensity::ZERO; w * rows.len()];
-    let per_row: Vec<TraceStats> = pixels
-        .par_chunks_mut(w)
-        .zip(rows.clone())
-        .map(|(out, row)| {
-            let mut virtual_rows = vec![Intensity::ZERO; m * w];
-            let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, sub, scancol| {
-                let acolor = tracer.shoot(aray, sampler);
-                if scancol >= 1 {
-                    virtual_rows[sub * w + (scancol - 1) / m] += acolor;
-                }
-            });
-            antialias(&virtual_rows, m, out);
-            progress();
-            stats
-        })
-        .collect();
-    let mut stats = TraceStats::default();
-    for s in per_row {
-        stats += s;
-    }
+    let stats = by_rows(&mut pixels, w, rows, |out, row| {
+        let mut virtual_rows = vec![Intensity::ZERO; m * w];
+        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, sub, scancol| {
+            let acolor = tracer.shoot(aray, sampler);
+            if scancol >= 1 {
+                virtual_rows[sub * w + (scancol - 1) / m] += acolor;
+            }
+        });
+        antialias(&virtual_rows, m, out);
+        progress();
+        stats
+    });
     Traced {
         counts: vec![(m * m) as u32; pixels.len()],
         colours: pixels,
@@ -68,27 +60,39 @@ pub(super) fn gather_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Gathered::default(); w * rows.len()];
-    let per_row: Vec<TraceStats> = pixels
-        .par_chunks_mut(w)
-        .zip(rows)
-        .map(|(out, row)| {
-            let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, _, scancol| {
-                let (colour, features) = tracer.shoot_features(aray, sampler);
-                if scancol >= 1 {
-                    out[(scancol - 1) / m].add(colour, &features);
-                }
-            });
-            if told.contains(&row) {
-                progress();
+    let stats = by_rows(&mut pixels, w, rows, |out, row| {
+        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, _, scancol| {
+            let (colour, features) = tracer.shoot_features(aray, sampler);
+            if scancol >= 1 {
+                out[(scancol - 1) / m].add(colour, &features);
             }
-            stats
-        })
+        });
+        if told.contains(&row) {
+            progress();
+        }
+        stats
+    });
+    (pixels, stats)
+}
+
+/// `row` for each row of `rows` (its `width` pixels in `pixels`, which
+/// holds the rows in order), the rows in parallel; their counts summed.
+fn by_rows<T: Send>(
+    pixels: &mut [T],
+    width: usize,
+    rows: Range<usize>,
+    row: impl Fn(&mut [T], usize) -> TraceStats + Sync,
+) -> TraceStats {
+    let per_row: Vec<TraceStats> = pixels
+        .par_chunks_mut(width)
+        .zip(rows)
+        .map(|(out, r)| row(out, r))
         .collect();
     let mut stats = TraceStats::default();
     for s in per_row {
         stats += s;
     }
-    (pixels, stats)
+    stats
 }
 
 /// Traces the subpixels of row `row` of final pixels in the listing's

@@ -249,7 +249,8 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
 const WIDTH: u32 = 2100;
 const HEIGHT: u32 = 1400;
 
-const SAMPLING_COLOURS: [RGBColor; 6] = [
+/// Each sampler's colour, by its place in [`SAMPLINGS`].
+pub(crate) const SAMPLING_COLOURS: [RGBColor; 6] = [
     RGBColor(200, 40, 40),
     RGBColor(40, 90, 200),
     RGBColor(230, 140, 20),

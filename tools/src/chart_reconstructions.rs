@@ -14,7 +14,7 @@ use plotters::prelude::*;
 use raytrace::options::TimeSampler;
 use raytrace::reconstruct::Reconstruction;
 
-use crate::chart::{panel, Series, BLUR_MASKS};
+use crate::chart::{panel, Series, BLUR_MASKS, SAMPLING_COLOURS};
 use crate::decks::BLUR_DECKS;
 use crate::frontier::{measure, Point, Way};
 
@@ -60,11 +60,14 @@ pub const WAYS: [Way; 5] = [
     },
 ];
 
+/// Each way's colour: the upper panels' for the adaptive and the Sobol
+/// samplers, the listing table's red and the random sampler's orange
+/// (neither is drawn below) for their denoised lines, grey for coherence.
 const COLOURS: [RGBColor; 5] = [
-    RGBColor(140, 50, 170),
-    RGBColor(0, 170, 190),
-    RGBColor(200, 40, 40),
-    RGBColor(230, 140, 20),
+    SAMPLING_COLOURS[5],
+    SAMPLING_COLOURS[4],
+    SAMPLING_COLOURS[0],
+    SAMPLING_COLOURS[2],
     RGBColor(90, 90, 90),
 ];
 
