@@ -22,7 +22,10 @@
 //!
 //! Reconstructed here, as the thesis does not print them: `getangle`,
 //! `translookpt` ([`camera`]), `antialias`, and where on the screen a
-//! subpixel lies.
+//! subpixel lies. The port's beside them: the pixels made from their
+//! samples otherwise ([`Request::reconstruction`]: `--denoise`, and the
+//! thesis's coherence of §2.1.2, `--coherence N`, which it describes and
+//! does not build).
 
 mod camera;
 mod coherent;
@@ -148,7 +151,8 @@ pub struct Render {
     /// The raster `outputframe` writes: the window's rows.
     pub raster: Raster,
     /// The primary rays each pixel got: `masksize`² for the samplers of
-    /// the subpixel grid, the pixel's share for `--sampler adaptive`.
+    /// the subpixel grid, the pixel's share for `--sampler adaptive`; with
+    /// `--coherence`, 0 for a pixel interpolated.
     pub counts: Vec<u32>,
     pub stats: TraceStats,
     /// Pixels whose colour was NaN or infinite before `rgbtochars` (which

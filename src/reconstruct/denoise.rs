@@ -31,18 +31,20 @@
 //! nothing else (no statistic of the whole image), so a band of rows
 //! rendered with [`REACH`] rows more on each side and cut is the whole
 //! image's band to the bit, and the result is the same for any number of
-//! threads. The arithmetic is in `f32`, a plane a quantity, so that the
-//! loops over a row run four pixels an instruction.
+//! threads. The arithmetic is in `f32`, a plane (a `Vec`) a quantity,
+//! the loops running along a row's pixels.
 
 use rayon::prelude::*;
 
 use super::{Gathered, PixelMeans};
 use crate::types::Intensity;
 
-/// The filter's window reaches this many pixels each way: 2 (5×5). On
-/// the goal's decks at 4 rays a pixel, 1 and 3 gave 1–10 % more error,
-/// and 5 more still: the wider the window, the more it blurs what it
-/// should not, which the risk estimate does not always see.
+/// The filter's window reaches this many pixels each way: 2 (5×5).
+/// Measured on fig5_10 and fig5_3 at 4 rays a pixel (`tools frontier`'s
+/// way): 3 gave the same error on fig5_10 and 8 % more on fig5_3, 1 gave
+/// 2–7 % more, 5 more still (with Rousselle's k_f, 2 % and 11 % over 3):
+/// the wider the window, the more it blurs what it should not, which the
+/// risk estimate does not always see.
 pub const RADIUS: usize = 2;
 
 /// How far an output pixel's inputs lie: the window, the 3×3 patches,
