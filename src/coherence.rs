@@ -436,7 +436,12 @@ mod tests {
             let whole = reconstruct(&lattice, 0..h, picture(f, &mut t, 0));
             for band in [0..1, 0..7, 3..4, 5..17, 20..29, 28..29] {
                 let window = lattice.rows(&band);
-                assert!(window.start <= band.start && window.end >= band.end);
+                // The cells the band crosses, and no more: from the multiple
+                // of the step at or above its first row to the lattice row
+                // (a multiple, or the last row) at or below its last.
+                let first = band.start / step * step;
+                let last = (0..h).find(|&y| y + 1 >= band.end && (y % step == 0 || y == h - 1));
+                assert_eq!(Some(window.clone()), last.map(|b| first..b + 1), "step {step} band {band:?}");
                 let mut t = Vec::new();
                 let part = reconstruct(&lattice, window.clone(), picture(f, &mut t, window.start));
                 let cut = (band.start - window.start) * w..(band.end - window.start) * w;
