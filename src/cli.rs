@@ -102,14 +102,14 @@ pub struct RenderArgs {
     pub accel: Accel,
 
     /// Make each pixel from its own and its neighbours' samples, weighted by how alike their
-    /// colours, surfaces, normals and distances are: a smooth picture from few rays (e.g.
-    /// --sampler adaptive --mask 2). Not the thesis's (docs/speed_accuracy.md, "--denoise").
+    /// colours, surface colours and normals are: a smooth picture from few rays (e.g.
+    /// --sampler adaptive --mask 2). Not the thesis's (docs/reconstruction.md).
     #[arg(long, conflicts_with = "coherence")]
     pub denoise: bool,
 
     /// The thesis's coherence (§2.1.2): trace every N-th pixel in each direction (N in
     /// 1..64) and interpolate the rest, tracing a pixel after all where its traced neighbours
-    /// disagree. Fast on plain scenes, wrong on busy ones (docs/STABILITY.md). Not with
+    /// disagree. Fast on plain scenes, wrong on busy ones (docs/reconstruction.md). Not with
     /// --sampler adaptive.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_STEP)))]
     pub coherence: Option<u32>,

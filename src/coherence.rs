@@ -25,7 +25,7 @@
 //!
 //! What fails is what the thesis warns of: a thing thinner than N pixels
 //! that falls between the traced pixels of a cell whose corners agree is
-//! not seen at all (docs/STABILITY.md, "Where the reconstructions fail").
+//! not seen at all (docs/reconstruction.md, "Where they fail").
 //!
 //! Every decision depends on the pixels of its line or cell alone, never
 //! on the order the work is done in: the picture is the same for any
@@ -42,12 +42,19 @@ pub const MAX_STEP: u32 = 64;
 /// Two traced pixels whose colours differ by more than this in some
 /// channel do not agree, and the pixels between them are traced: 0.02,
 /// about 5 steps of an 8-bit channel. Measured with `tools frontier`'s
-/// decks at 128² and 16 rays a pixel, N = 4 (RMSE against the 1024-ray
-/// reference; the share of pixels traced): 0.02 gave 0.0131–0.0238 and
-/// 29–44 %, 0.05 gave 0.0129–0.0296 and 23–44 %, 0.1 gave 0.0127–0.0365
-/// and 17–43 %; what the larger thresholds lose is the checker floor's
-/// squares between two traced pixels on squares of one colour (fig5_10,
-/// the ball), which is the error a user sees first.
+/// decks at 128² and 16 rays a pixel of the table, N = 4 (RMSE against
+/// the 1024-ray reference; the share of pixels traced): 0.005 gave
+/// 0.0093–0.0175 and 41–48 %, 0.01 0.0093–0.0195 and 32–46 %, 0.02
+/// 0.0093–0.0238 and 29–44 %, 0.05 0.0098–0.0296 and 23–44 %, 0.1
+/// 0.0109–0.0365 and 17–43 %, 0.2 0.0119–0.0513 and 14–43 %. The larger thresholds lose the checker
+/// floor's squares between two traced pixels on squares of one colour
+/// (fig5_10, the ball); the smaller ones trace the noise of a plain
+/// floor. 0.02 serves the scenes the thesis meant coherence for: on
+/// fig5_3's plain floor it is 0.43 of the plain render's CPU time at the
+/// same error, where 0.01 is 0.47 and 0.005 0.58; on the checker floors
+/// 0.01 would take a fifth off the error (1.75 → 1.43 × the plain
+/// render's on the ball) for 3–7 % more time, and coherence is the wrong
+/// tool there at either.
 pub const THRESHOLD: f64 = 0.02;
 
 /// What is known of a pixel: its colour and the objects its rays met first
@@ -441,7 +448,11 @@ mod tests {
                 // (a multiple, or the last row) at or below its last.
                 let first = band.start / step * step;
                 let last = (0..h).find(|&y| y + 1 >= band.end && (y % step == 0 || y == h - 1));
-                assert_eq!(Some(window.clone()), last.map(|b| first..b + 1), "step {step} band {band:?}");
+                assert_eq!(
+                    Some(window.clone()),
+                    last.map(|b| first..b + 1),
+                    "step {step} band {band:?}"
+                );
                 let mut t = Vec::new();
                 let part = reconstruct(&lattice, window.clone(), picture(f, &mut t, window.start));
                 let cut = (band.start - window.start) * w..(band.end - window.start) * w;
