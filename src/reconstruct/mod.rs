@@ -170,6 +170,24 @@ mod tests {
         assert_eq!(g.n, 2);
     }
 
+    /// The normals' spread: two samples facing opposite ways have a mean
+    /// of zero and a variance of the mean of 1 (Σ|n|² = 2, over 1 × 2).
+    #[test]
+    fn the_normals_spread() {
+        let mut g = Gathered::default();
+        for normal in [DVec3::X, -DVec3::X] {
+            let f = Features {
+                normal,
+                ..features(0.5, Some(0))
+            };
+            g.add(Intensity::splat(0.5), &f);
+        }
+        let m = g.means();
+        assert_eq!(m.normal, DVec3::ZERO);
+        assert!((m.normal_var - 1.0).abs() < 1e-15, "{}", m.normal_var);
+        assert_eq!(m.albedo_var, 0.0);
+    }
+
     /// Objects share a bit only 63 apart.
     #[test]
     fn object_bits() {

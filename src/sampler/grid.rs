@@ -621,6 +621,11 @@ mod tests {
                         assert_eq!((cam.jx, cam.jz), (0.0, 0.0));
                         let tau = s.time();
                         let further: Vec<f64> = (0..4).map(|_| s.get_1d()).collect();
+                        // The adaptive sampler's further dimensions of the pixel.
+                        let j = (sub * m + c) as u32;
+                        for (d, &value) in further.iter().enumerate() {
+                            assert_eq!(value, further_dimension(row * width + x, j, d as u32));
+                        }
                         points.push((u, v, tau, further));
                     }
                 }
