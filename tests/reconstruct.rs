@@ -36,17 +36,21 @@ fn bits(c: &[Intensity]) -> Vec<[u64; 3]> {
 
 /// `--denoise` and `--coherence` give the same colours to the bit on one,
 /// two and three threads, with the grid's samplers and (denoise) the
-/// adaptive one.
+/// adaptive one, on the deforming letter and on Cook's effects (lens,
+/// soft shadows, gloss).
 #[test]
 fn the_same_picture_for_any_number_of_threads() {
     let cases = [
-        (TimeSampler::Table, Reconstruction::Denoise),
-        (TimeSampler::Sobol, Reconstruction::Denoise),
-        (TimeSampler::Adaptive, Reconstruction::Denoise),
-        (TimeSampler::Stratified, Reconstruction::Coherence(3)),
+        ("fig5_10.deck", TimeSampler::Table, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Sobol, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Adaptive, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Stratified, Reconstruction::Coherence(3)),
+        ("cook.deck", TimeSampler::Random, Reconstruction::Denoise),
+        ("cook.deck", TimeSampler::Adaptive, Reconstruction::Denoise),
+        ("cook.deck", TimeSampler::Sobol, Reconstruction::Coherence(2)),
     ];
-    for (sampler, r) in cases {
-        let p = scene("fig5_10.deck", (40, 30, 2), sampler);
+    for (deck, sampler, r) in cases {
+        let p = scene(deck, (40, 30, 2), sampler);
         let runs: Vec<Vec<[u64; 3]>> = [1, 2, 3]
             .iter()
             .map(|&n| {
@@ -54,8 +58,8 @@ fn the_same_picture_for_any_number_of_threads() {
                 bits(&pool.install(|| still(&p, r)).colours)
             })
             .collect();
-        assert_eq!(runs[0], runs[1], "{sampler:?} {r:?}");
-        assert_eq!(runs[0], runs[2], "{sampler:?} {r:?}");
+        assert_eq!(runs[0], runs[1], "{deck} {sampler:?} {r:?}");
+        assert_eq!(runs[0], runs[2], "{deck} {sampler:?} {r:?}");
     }
 }
 
@@ -64,24 +68,25 @@ fn the_same_picture_for_any_number_of_threads() {
 /// the bands at the image's edges, inside it, and one row high.
 #[test]
 fn a_band_is_the_whole_pictures_band() {
-    for (sampler, r) in [
-        (TimeSampler::Table, Reconstruction::Denoise),
-        (TimeSampler::Stratified, Reconstruction::Denoise),
-        (TimeSampler::Sobol, Reconstruction::Denoise),
-        (TimeSampler::Table, Reconstruction::Coherence(4)),
-        (TimeSampler::Sobol, Reconstruction::Coherence(5)),
+    for (deck, sampler, r) in [
+        ("fig5_10.deck", TimeSampler::Table, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Stratified, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Sobol, Reconstruction::Denoise),
+        ("fig5_10.deck", TimeSampler::Table, Reconstruction::Coherence(4)),
+        ("fig5_10.deck", TimeSampler::Sobol, Reconstruction::Coherence(5)),
+        ("cook.deck", TimeSampler::Random, Reconstruction::Denoise),
     ] {
-        let p = scene("fig5_10.deck", (36, 29, 2), sampler);
+        let p = scene(deck, (36, 29, 2), sampler);
         let whole = still(&p, r);
         for rows in [0..7, 7..8, 3..20, 20..29, 0..29] {
             let band = render(&p, &Request::STILL.rows(rows.clone()).reconstruction(r)).unwrap();
             assert_eq!(band.rows, rows);
             let cut = &whole.colours[rows.start * 36..rows.end * 36];
-            assert_eq!(bits(&band.colours), bits(cut), "{sampler:?} {r:?} rows {rows:?}");
+            assert_eq!(bits(&band.colours), bits(cut), "{deck} {sampler:?} {r:?} rows {rows:?}");
             assert_eq!(
                 band.counts,
                 whole.counts[rows.start * 36..rows.end * 36],
-                "{sampler:?} {r:?}"
+                "{deck} {sampler:?} {r:?}"
             );
         }
     }
