@@ -2,7 +2,8 @@
 //! that renders (`raytrace`, the tools, the binaries to come): the choices
 //! of [`Options`] (`--fidelity`, `--solver`, `--sampler`, the library's own
 //! enums), the image's size and the threads (`--mask`, `--size`,
-//! `--threads`), a task of a farm (`--tile`, `--resume`), and the deck a
+//! `--threads`), how pixels are made from samples (`--denoise`,
+//! `--coherence`), a task of a farm (`--tile`, `--resume`), and the deck a
 //! command names (a file, or `-` for standard input). Each flattens into a program's `clap` parser; what goes wrong is
 //! a [`Failure`] whose kind gives the exit status. The port's.
 
@@ -13,9 +14,11 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use crate::accel::Accel;
+use crate::coherence::MAX_STEP;
 use crate::exit::Failure;
 use crate::options::{Fidelity, Options, Solver, TimeSampler};
 use crate::raytrace::Prepared;
+use crate::reconstruct::Reconstruction;
 use crate::scene::Scene;
 use crate::tile::Tile;
 
@@ -97,6 +100,19 @@ pub struct RenderArgs {
     /// (docs/scale.md).
     #[arg(long, value_enum, default_value_t)]
     pub accel: Accel,
+
+    /// Make each pixel from its own and its neighbours' samples, weighted by how alike their
+    /// colours, surface colours and normals are: a smooth picture from few rays (e.g.
+    /// --sampler adaptive --mask 2). Not the thesis's (docs/reconstruction.md).
+    #[arg(long, conflicts_with = "coherence")]
+    pub denoise: bool,
+
+    /// The thesis's coherence (§2.1.2): trace every N-th pixel in each direction (N in
+    /// 1..64) and interpolate the rest, tracing a pixel after all where its traced neighbours
+    /// disagree. Fast on plain scenes, wrong on busy ones (docs/reconstruction.md). Not with
+    /// --sampler adaptive.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_STEP)))]
+    pub coherence: Option<u32>,
 }
 
 /// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
@@ -123,6 +139,23 @@ impl RenderArgs {
             scene.resize(w, h, m);
         }
         Prepared::with_accel(scene, *opts, self.accel).map_err(Failure::input)
+    }
+
+    /// How the pixels are made from their samples (`--denoise`,
+    /// `--coherence N`, or `antialias`'s box), or a usage error for
+    /// coherence with the adaptive sampler.
+    pub fn reconstruction(&self) -> Result<Reconstruction, Failure> {
+        Ok(match (self.denoise, self.coherence) {
+            (_, Some(n)) if self.options.sampler == TimeSampler::Adaptive => {
+                return Err(Failure::usage(format!(
+                    "--coherence {n} traces some pixels whole and interpolates the rest, and --sampler \
+                     adaptive deals its rays over every pixel by need: use one or the other"
+                )))
+            }
+            (_, Some(n)) => Reconstruction::Coherence(n),
+            (true, None) => Reconstruction::Denoise,
+            (false, None) => Reconstruction::Box,
+        })
     }
 
     /// The pool of `--threads` workers (one per core without it, or with 0).
@@ -261,7 +294,9 @@ mod tests {
             (opts.fidelity, opts.solver, opts.sampler),
             (Fidelity::Listing, Solver::Robust, TimeSampler::Stratified)
         );
-        assert!(parse(&["--sampler", "sobol"]).is_err());
+        let sobol = parse(&["--sampler", "sobol"]).unwrap().options.options().unwrap();
+        assert_eq!(sobol.sampler, TimeSampler::Sobol);
+        assert!(parse(&["--sampler", "halton"]).is_err());
         assert_eq!(parse(&["--accel", "octree"]).unwrap().accel, Accel::Octree);
         assert_eq!(parse(&[]).unwrap().accel, Accel::Auto);
     }
@@ -272,6 +307,36 @@ mod tests {
         let e = args.options.options().unwrap_err();
         assert_eq!(e.kind, crate::exit::Kind::Usage);
         assert!(e.message.contains("--sampler adaptive"), "{e}");
+    }
+
+    /// `--denoise` and `--coherence N` (1..=64) make the reconstruction;
+    /// both together, either twice, a step out of range, or coherence
+    /// with the adaptive sampler are usage errors.
+    #[test]
+    fn the_reconstruction_flags() {
+        let r = |args: &[&str]| parse(args).unwrap().reconstruction().unwrap();
+        assert_eq!(r(&[]), Reconstruction::Box);
+        assert_eq!(r(&["--denoise"]), Reconstruction::Denoise);
+        assert_eq!(r(&["--coherence", "1"]), Reconstruction::Coherence(1));
+        assert_eq!(r(&["--coherence", "64"]), Reconstruction::Coherence(64));
+        assert_eq!(r(&["--denoise", "--sampler", "adaptive"]), Reconstruction::Denoise);
+        for bad in [
+            &["--coherence", "0"][..],
+            &["--coherence", "65"],
+            &["--coherence", "x"],
+            &["--denoise", "--denoise"],
+            &["--coherence", "2", "--coherence", "3"],
+            &["--denoise", "--coherence", "2"],
+        ] {
+            let e = parse(bad).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{bad:?}");
+        }
+        let e = parse(&["--coherence", "4", "--sampler", "adaptive"])
+            .unwrap()
+            .reconstruction()
+            .unwrap_err();
+        assert_eq!(e.kind, crate::exit::Kind::Usage);
+        assert!(e.message.contains("--coherence 4"), "{e}");
     }
 
     #[test]

@@ -17,6 +17,7 @@
 pub mod accel;
 pub mod adaptive;
 pub mod cli;
+pub mod coherence;
 pub mod deck;
 pub mod distributed;
 pub mod drt;
@@ -34,6 +35,7 @@ pub mod proc;
 pub mod psout;
 pub mod raster;
 pub mod raytrace;
+pub mod reconstruct;
 pub mod robust;
 pub mod sampler;
 pub mod scene;

@@ -47,6 +47,11 @@ pub enum TimeSampler {
     /// dealt to the subpixels by a permutation of the pixel's own, as
     /// renderers later came to do; not the thesis's.
     Stratified,
+    /// M² rays a pixel, the first M² points of an Owen-scrambled Sobol
+    /// sequence over the place in the pixel, the time and every further
+    /// dimension (lens, light, gloss) together, scrambled pixel by pixel;
+    /// not the thesis's.
+    Sobol,
     /// M² rays a pixel on average, dealt out by each pixel's need, at
     /// scrambled Sobol places and times; not the thesis's.
     ///

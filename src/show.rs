@@ -15,6 +15,7 @@ use std::time::SystemTime;
 use crate::options::TimeSampler;
 use crate::raster::Raster;
 use crate::raytrace::{render, Prepared, Render, RenderError, Request};
+use crate::reconstruct::Reconstruction;
 
 /// Rows of final pixels a band: small enough that the picture fills in
 /// steps a person sees, large enough that each band keeps the threads busy.
@@ -31,7 +32,9 @@ pub fn bands(height: usize, rows: usize) -> Vec<Range<usize>> {
 /// returns `false` to stop, and then the result is `None`. The bands
 /// joined are the render of the whole request: the same raster, colours,
 /// counts and statistics. `--sampler adaptive` deals its rays over the
-/// whole image and renders in one band.
+/// whole image, and `--denoise` and `--coherence` would render the rows
+/// their filter or cells reach again for every band: these render in one
+/// band.
 pub fn render_in_bands(
     prepared: &Prepared,
     request: &Request,
@@ -39,7 +42,7 @@ pub fn render_in_bands(
 ) -> Result<Option<Render>, RenderError> {
     let height = prepared.scene().image.height;
     let whole = request.rows.clone().unwrap_or(0..height);
-    if prepared.options().sampler == TimeSampler::Adaptive {
+    if prepared.options().sampler == TimeSampler::Adaptive || request.reconstruction != Reconstruction::Box {
         let r = render(prepared, request)?;
         return Ok(on_band(&r).then_some(r));
     }

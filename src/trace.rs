@@ -155,11 +155,27 @@ pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRe
 /// inside an object, is not kept: the side a ray meets a surface from is
 /// taken from the normal at the hit.
 pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut Context) -> Intensity {
-    let scene = snap.scene;
     ctx.stats.rays += 1;
-    let Some(hit) = intersect(snap, aray, ctx.stats) else {
-        return scene.backgrnd;
-    };
+    match intersect(snap, aray, ctx.stats) {
+        Some(hit) => shade(snap, aray, &hit, weight, depth, ctx),
+        None => snap.scene.backgrnd,
+    }
+}
+
+/// The rest of `raytrace` once `aray` has met the scene first at `hit`:
+/// the colour seen along it. Apart so that a caller that looks at the
+/// first hit (the features a reconstruction reads,
+/// [`crate::reconstruct::Features`]) shades the same hit without
+/// searching for it twice.
+pub fn shade(
+    snap: &Snapshot,
+    aray: &Ray,
+    hit: &IntersectionRecord,
+    weight: f64,
+    depth: u32,
+    ctx: &mut Context,
+) -> Intensity {
+    let scene = snap.scene;
     let surf = &scene.surfaces[hit.surface];
     match surf.surface {
         SurfaceAttribute::Background => return scene.backgrnd,
@@ -175,7 +191,7 @@ pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut 
     } else {
         (-hit.normal, hit.insidep, hit.p)
     };
-    let color = surface_color(snap, surf, &hit);
+    let color = surface_color(snap, surf, hit);
     let ambient_color = if surf.paint.is_some() || surf.texture.is_some() {
         color
     } else {

@@ -43,9 +43,12 @@ const LAYERS: &[(&str, u32)] = &[
     // Where and when samples fall; what moves over the shutter.
     ("sampler", 6),
     ("motion", 6),
-    // How many samples a pixel gets; which object a ray meets.
+    // How many samples a pixel gets; which object a ray meets; how pixels
+    // are made from samples (`--denoise`), the thesis's coherence.
     ("adaptive", 7),
     ("intersect", 7),
+    ("reconstruct", 7),
+    ("coherence", 7),
     // Cook's soft shadows and blurred reflection (the port's).
     ("distributed", 7),
     // The reconstructed shading.

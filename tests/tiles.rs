@@ -81,6 +81,27 @@ fn joined_bands_are_the_one_process_render_for_every_grid_sampler_and_fidelity()
     }
 }
 
+/// With `--denoise` (the filter's reach rendered in each band and cut)
+/// and with `--coherence N` (the cells a band crosses worked out whole),
+/// the bands joined are still the one-process render byte for byte, and
+/// `--sampler sobol` bands join as the other grid samplers' do.
+#[test]
+fn joined_bands_are_the_one_process_render_with_the_reconstructions() {
+    for extra in [
+        &["--denoise"][..],
+        &["--denoise", "--sampler", "sobol"],
+        &["--coherence", "4"],
+        &["--coherence", "3", "--fidelity", "listing"],
+        &["--sampler", "sobol"],
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut flags = vec!["--size", "40x30", "--mask", "2"];
+        flags.extend(extra);
+        let file = |name: &str| dir.path().join(format!("{name}.ras"));
+        bands_join_to_the_whole(dir.path(), "fig5_10.deck", 4, &flags, &file);
+    }
+}
+
 /// A film's frame in bands: each band file is named as the frame, and the
 /// bands joined are the frame one process renders.
 #[test]

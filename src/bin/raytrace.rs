@@ -14,6 +14,7 @@ use raytrace::options::{Options, TimeSampler};
 use raytrace::output::{is_stream, write_atomically, OutputError, PendingFile, STDOUT};
 use raytrace::raster::{read_raster_file, Format, FormatError, Raster};
 use raytrace::raytrace::{Prepared, Render, Request};
+use raytrace::reconstruct::Reconstruction;
 use raytrace::scene::{FilmRecord, Scene};
 use raytrace::tile::{check_written, write_tile, Tile};
 
@@ -128,6 +129,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     raytrace::output::remove_temp_files_on_signals()
         .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
     let opts = cli.render.options.options()?;
+    cli.render.reconstruction()?;
     // Usage errors of the output names come first, before the deck is read.
     let _ = check_output_names(cli)?;
     let watched = match (&cli.deck, cli.watch) {
@@ -249,7 +251,10 @@ fn render_deck(
         }
         bar.set_message(job.tracing(&deck.name, frame));
         let progress = || bar.inc(1);
-        let request = Request::frame(frame).rows(rows.clone()).progress(&progress);
+        let request = Request::frame(frame)
+            .rows(rows.clone())
+            .reconstruction(cli.render.reconstruction()?)
+            .progress(&progress);
         let result = match screen.as_deref_mut() {
             Some(s) => match s.render(prepared, &request, &pool, &job.tracing(&deck.name, frame)) {
                 show::Shown::Done(r) => r,
@@ -286,7 +291,7 @@ fn render_deck(
             film.as_ref().map(|f| format!("{f}, ")).unwrap_or_default(),
             img.width,
             img.height,
-            sampling(opts, img),
+            sampling(opts, img, cli.render.reconstruction()?),
             film.filter(|_| rendered > 0)
                 .map(|_| format!(", {:.2} s a frame", elapsed / rendered as f64))
                 .unwrap_or_default()
@@ -752,10 +757,16 @@ fn resumable(cli: &Cli) -> bool {
 }
 
 /// The summary line's words for the rays a pixel: M×M subpixels, or the
-/// adaptive sampler's average.
-fn sampling(opts: &Options, img: &raytrace::scene::ImageSpec) -> String {
-    match opts.sampler {
+/// adaptive sampler's average; and how the pixels were made, when not by
+/// `antialias`'s box.
+fn sampling(opts: &Options, img: &raytrace::scene::ImageSpec, reconstruction: Reconstruction) -> String {
+    let rays = match opts.sampler {
         TimeSampler::Adaptive => format!("{} rays a pixel on average, adaptive", img.masksize * img.masksize),
         _ => format!("{}×{} subpixels", img.masksize, img.masksize),
+    };
+    match reconstruction {
+        Reconstruction::Box => rays,
+        Reconstruction::Denoise => format!("{rays}, denoised"),
+        Reconstruction::Coherence(n) => format!("{rays} in the pixels coherence {n} traced"),
     }
 }

@@ -22,9 +22,13 @@
 //!
 //! Reconstructed here, as the thesis does not print them: `getangle`,
 //! `translookpt` ([`camera`]), `antialias`, and where on the screen a
-//! subpixel lies.
+//! subpixel lies. The port's beside them: the pixels made from their
+//! samples otherwise ([`Request::reconstruction`]: `--denoise`, and the
+//! thesis's coherence of §2.1.2, `--coherence N`, which it describes and
+//! does not build).
 
 mod camera;
+mod coherent;
 mod lens;
 mod passes;
 mod prepare;
@@ -40,6 +44,7 @@ pub use prepare::{key_frame_chains, time_table, Prepared};
 use crate::film::Frame;
 use crate::options::TimeSampler;
 use crate::raster::{rgbtochars, Raster};
+use crate::reconstruct::{denoise, Reconstruction};
 use crate::sampler::{GridKind, GridSampler};
 use crate::scene::Pos;
 use crate::trace::TraceStats;
@@ -70,8 +75,8 @@ pub enum RenderError {
     NonFinite { pixels: usize, total: usize },
 }
 
-/// What to render of a prepared scene: which frame, which rows, and whom
-/// to tell as rows finish.
+/// What to render of a prepared scene: which frame, which rows, how its
+/// pixels are made from their samples, and whom to tell as rows finish.
 #[derive(Clone)]
 pub struct Request<'a> {
     /// The film frame the sampler's times τ fall in ([`Frame::STILL`]
@@ -80,6 +85,9 @@ pub struct Request<'a> {
     /// The rows of final pixels to render, row 0 at the top; `None` for
     /// the whole image.
     pub rows: Option<Range<usize>>,
+    /// How the pixels are made from their samples: `antialias`'s box
+    /// (the default), `--denoise`, `--coherence N`.
+    pub reconstruction: Reconstruction,
     /// Called once for each finished row of final pixels (from worker
     /// threads), for a progress bar.
     pub progress: Option<&'a (dyn Fn() + Sync)>,
@@ -96,6 +104,7 @@ impl<'a> Request<'a> {
     pub const STILL: Request<'static> = Request {
         frame: Frame::STILL,
         rows: None,
+        reconstruction: Reconstruction::Box,
         progress: None,
     };
 
@@ -113,6 +122,11 @@ impl<'a> Request<'a> {
             rows: Some(rows),
             ..self
         }
+    }
+
+    /// This request, its pixels made by `reconstruction`.
+    pub fn reconstruction(self, reconstruction: Reconstruction) -> Self {
+        Request { reconstruction, ..self }
     }
 
     /// This request, calling `progress` as rows finish.
@@ -137,7 +151,8 @@ pub struct Render {
     /// The raster `outputframe` writes: the window's rows.
     pub raster: Raster,
     /// The primary rays each pixel got: `masksize`² for the samplers of
-    /// the subpixel grid, the pixel's share for `--sampler adaptive`.
+    /// the subpixel grid, the pixel's share for `--sampler adaptive`; with
+    /// `--coherence`, 0 for a pixel interpolated.
     pub counts: Vec<u32>,
     pub stats: TraceStats,
     /// Pixels whose colour was NaN or infinite before `rgbtochars` (which
@@ -182,14 +197,17 @@ pub fn render(prepared: &Prepared, request: &Request) -> Result<Render, RenderEr
         )));
     }
     let progress = request.progress.unwrap_or(&|| {});
-    let traced = match prepared.options().sampler {
-        TimeSampler::Adaptive if rows != (0..img.height) => {
-            return Err(RenderError::Window(
-                "--sampler adaptive deals its rays over the whole image, so a window of it would be another picture: render the whole image".into(),
-            ))
-        }
-        TimeSampler::Adaptive => passes::render_adaptive(prepared, request.frame, progress),
-        _ => scanline::render_grid(prepared, request.frame, rows.clone(), progress),
+    let adaptive = prepared.options().sampler == TimeSampler::Adaptive;
+    if adaptive && rows != (0..img.height) {
+        return Err(RenderError::Window(
+            "--sampler adaptive deals its rays over the whole image, so a window of it would be another picture: render the whole image".into(),
+        ));
+    }
+    let traced = match request.reconstruction {
+        Reconstruction::Box if adaptive => passes::render_adaptive(prepared, request.frame, progress),
+        Reconstruction::Box => scanline::render_grid(prepared, request.frame, rows.clone(), progress),
+        Reconstruction::Denoise => denoised(prepared, request.frame, rows.clone(), progress),
+        Reconstruction::Coherence(step) => coherent::render(prepared, request.frame, rows.clone(), step, progress)?,
     };
     let nonfinite = traced.colours.iter().filter(|c| !c.is_finite()).count();
     let raster = Raster {
@@ -205,6 +223,34 @@ pub fn render(prepared: &Prepared, request: &Request) -> Result<Render, RenderEr
         stats: traced.stats,
         nonfinite,
     })
+}
+
+/// The rows `rows` of frame `frame`, each pixel from its own samples and
+/// its neighbours' ([`denoise`]): the rows within the filter's reach
+/// ([`denoise::REACH`]) above and below are rendered too and cut, so a
+/// band is the whole image's band.
+fn denoised(prepared: &Prepared, frame: Frame, rows: Range<usize>, progress: &(dyn Fn() + Sync)) -> Traced {
+    let img = &prepared.scene().image;
+    let w = img.width;
+    let (gathered, stats, window) = match prepared.options().sampler {
+        TimeSampler::Adaptive => {
+            let (gathered, traced) = passes::gather_adaptive(prepared, frame, progress);
+            (gathered, traced.stats, 0..img.height)
+        }
+        _ => {
+            let reach = denoise::REACH;
+            let window = rows.start.saturating_sub(reach)..(rows.end + reach).min(img.height);
+            let (gathered, stats) = scanline::gather_grid(prepared, frame, window.clone(), rows.clone(), progress);
+            (gathered, stats, window)
+        }
+    };
+    let cut = (rows.start - window.start) * w..(rows.end - window.start) * w;
+    let colours = denoise::denoise(&gathered, w);
+    Traced {
+        colours: colours[cut.clone()].to_vec(),
+        counts: gathered[cut].iter().map(|g| g.n).collect(),
+        stats,
+    }
 }
 
 /// `raytrace` of one primary ray `aray` with the scene at film time `time`

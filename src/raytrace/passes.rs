@@ -5,10 +5,11 @@
 
 use rayon::prelude::*;
 
-use super::tracer::Tracer;
+use super::tracer::{Shot, Tracer};
 use super::{Prepared, Traced};
 use crate::adaptive::{self, PixelSum};
 use crate::film::Frame;
+use crate::reconstruct::Gathered;
 use crate::sampler::{PixelSampler, PixelSamples, Sampler, SHIFT_BLOCK};
 use crate::trace::TraceStats;
 
@@ -19,6 +20,23 @@ use crate::trace::TraceStats;
 /// of its samples (the box filter of `antialias`). `progress` is called for
 /// each row of the last pass.
 pub(super) fn render_adaptive(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Sync)) -> Traced {
+    passes::<()>(prepared, frame, progress).0
+}
+
+/// As [`render_adaptive`], each pixel's samples also gathered with their
+/// features ([`Gathered`]) for a reconstruction that reads them.
+pub(super) fn gather_adaptive(
+    prepared: &Prepared,
+    frame: Frame,
+    progress: &(dyn Fn() + Sync),
+) -> (Vec<Gathered>, Traced) {
+    let (traced, gathered) = passes::<Gathered>(prepared, frame, progress);
+    (gathered, traced)
+}
+
+/// The passes of [`render_adaptive`], each sample shot by `S` (into a
+/// pixel's `S` beside its sum).
+fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Sync)) -> (Traced, Vec<S>) {
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let budget = (m * m) as u32;
@@ -34,6 +52,7 @@ pub(super) fn render_adaptive(prepared: &Prepared, frame: Frame, progress: &(dyn
             .filter(|&e| e > 0),
     );
     let samples: Vec<_> = (0..sums.len()).map(|i| PixelSamples::new(i, w)).collect();
+    let mut shots = vec![S::default(); sums.len()];
     let mut stats = TraceStats::default();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
@@ -42,11 +61,18 @@ pub(super) fn render_adaptive(prepared: &Prepared, frame: Frame, progress: &(dyn
         let last = pass + 1 == passes.len();
         let rows: Vec<TraceStats> = sums
             .par_chunks_mut(w)
+            .zip(shots.par_chunks_mut(w))
             .zip(counts.par_chunks(w))
             .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, ((sums, counts), samples))| {
-                let stats = trace_row(prepared, frame, row, sums, counts, samples);
+            .map(|(row, (((sums, shots), counts), samples))| {
+                let pixels = Pixels {
+                    sums,
+                    shots,
+                    counts,
+                    samples,
+                };
+                let stats = trace_row(prepared, frame, row, pixels);
                 if last {
                     progress();
                 }
@@ -57,25 +83,34 @@ pub(super) fn render_adaptive(prepared: &Prepared, frame: Frame, progress: &(dyn
             stats += s;
         }
     }
-    Traced {
+    let traced = Traced {
         colours: sums.iter().map(PixelSum::mean).collect(),
         counts,
         stats,
-    }
+    };
+    (traced, shots)
+}
+
+/// A row's pixels in a pass: their sums, what `S` keeps of their
+/// samples, their counts due by the pass's end, and their samples.
+struct Pixels<'a, S> {
+    sums: &'a mut [PixelSum],
+    shots: &'a mut [S],
+    counts: &'a [u32],
+    samples: &'a [PixelSamples],
 }
 
 /// One pass over row `row`: the row's instants k in the blocks its samples
 /// reach, and at each every pixel whose sample k ⊕ c is due, with the
 /// scene posed once ([`adaptive::blocks_due`]). Each pixel's sum gets its
 /// samples' colours and the polynomial searches they made (their cost).
-fn trace_row(
-    prepared: &Prepared,
-    frame: Frame,
-    row: usize,
-    sums: &mut [PixelSum],
-    counts: &[u32],
-    samples: &[PixelSamples],
-) -> TraceStats {
+fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pixels<S>) -> TraceStats {
+    let Pixels {
+        sums,
+        shots,
+        counts,
+        samples,
+    } = pixels;
     let img = &prepared.scene().image;
     let camera = prepared.camera();
     let timed = prepared.timed();
@@ -99,7 +134,7 @@ fn trace_row(
                 let c = sampler.camera();
                 let aray = camera.ray_of(c, &mut sampler);
                 let before = tracer.stats.searched;
-                sums[x].add(tracer.shoot(&aray, &mut sampler));
+                sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
                 sums[x].add_searched(tracer.stats.searched - before);
             }
         }

@@ -11,24 +11,106 @@ use super::tracer::Tracer;
 use super::{Prepared, Traced};
 use crate::film::Frame;
 use crate::options::Fidelity;
+use crate::reconstruct::Gathered;
 use crate::sampler::{GridKind, GridSampler, Sampler};
 use crate::trace::TraceStats;
-use crate::types::Intensity;
+use crate::types::{Intensity, Ray};
 
 /// The rows `rows` of final pixels, each from its `masksize` scanlines of
-/// subpixels. `progress` is called once per finished row (from worker
-/// threads).
-///
-/// Erratum 13: the listing's column loop runs `for scancol := quickx to
-/// quickx2` with `quickx = 0`, tracing one column more than the raster
-/// has; `listing` fidelity traces it (and `antialias` never reads it),
-/// `thesis` fidelity starts at 1.
+/// subpixels ([`scan_row`]). `progress` is called once per finished row
+/// (from worker threads).
 pub(super) fn render_grid(
     prepared: &Prepared,
     frame: Frame,
     rows: Range<usize>,
     progress: &(dyn Fn() + Sync),
 ) -> Traced {
+    let img = &prepared.scene().image;
+    let (w, m) = (img.width, img.masksize);
+    let mut pixels = vec![Intensity::ZERO; w * rows.len()];
+    let stats = by_rows(&mut pixels, w, rows, |out, row| {
+        let mut virtual_rows = vec![Intensity::ZERO; m * w];
+        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, sub, scancol| {
+            let acolor = tracer.shoot(aray, sampler);
+            if scancol >= 1 {
+                virtual_rows[sub * w + (scancol - 1) / m] += acolor;
+            }
+        });
+        antialias(&virtual_rows, m, out);
+        progress();
+        stats
+    });
+    Traced {
+        counts: vec![(m * m) as u32; pixels.len()],
+        colours: pixels,
+        stats,
+    }
+}
+
+/// As [`render_grid`], each pixel's samples gathered with their features
+/// ([`Gathered`]) for a reconstruction that reads them, not averaged.
+/// `progress` is called for each finished row in `told`.
+pub(super) fn gather_grid(
+    prepared: &Prepared,
+    frame: Frame,
+    rows: Range<usize>,
+    told: Range<usize>,
+    progress: &(dyn Fn() + Sync),
+) -> (Vec<Gathered>, TraceStats) {
+    let img = &prepared.scene().image;
+    let (w, m) = (img.width, img.masksize);
+    let mut pixels = vec![Gathered::default(); w * rows.len()];
+    let stats = by_rows(&mut pixels, w, rows, |out, row| {
+        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, _, scancol| {
+            let (colour, features) = tracer.shoot_features(aray, sampler);
+            if scancol >= 1 {
+                out[(scancol - 1) / m].add(colour, &features);
+            }
+        });
+        if told.contains(&row) {
+            progress();
+        }
+        stats
+    });
+    (pixels, stats)
+}
+
+/// `row` for each row of `rows` (its `width` pixels in `pixels`, which
+/// holds the rows in order), the rows in parallel; their counts summed.
+fn by_rows<T: Send>(
+    pixels: &mut [T],
+    width: usize,
+    rows: Range<usize>,
+    row: impl Fn(&mut [T], usize) -> TraceStats + Sync,
+) -> TraceStats {
+    let per_row: Vec<TraceStats> = pixels
+        .par_chunks_mut(width)
+        .zip(rows)
+        .map(|(out, r)| row(out, r))
+        .collect();
+    let mut stats = TraceStats::default();
+    for s in per_row {
+        stats += s;
+    }
+    stats
+}
+
+/// Traces the subpixels of row `row` of final pixels in the listing's
+/// order (its `masksize` scanlines, each from the first column), posing
+/// the scene at each one's time: `shoot` traces each primary ray, given
+/// the subpixel's scanline within the row and its column (0: erratum
+/// 13's extra one). The row's counts.
+///
+/// Erratum 13: the listing's column loop runs `for scancol := quickx to
+/// quickx2` with `quickx = 0`, tracing one column more than the raster
+/// has; `listing` fidelity traces it (and `antialias` never reads it),
+/// `thesis` fidelity starts at 1.
+fn scan_row(
+    prepared: &Prepared,
+    frame: Frame,
+    row: usize,
+    mut shoot: impl FnMut(&mut Tracer, &Ray, &mut GridSampler, usize, usize),
+) -> TraceStats {
     let opts = prepared.options();
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
@@ -40,44 +122,22 @@ pub(super) fn render_grid(
         Fidelity::Thesis => 1,
     };
     let timed = prepared.timed();
-    let mut pixels = vec![Intensity::ZERO; w * rows.len()];
-    let per_row: Vec<TraceStats> = pixels
-        .par_chunks_mut(w)
-        .zip(rows.clone())
-        .map(|(out, row)| {
-            let mut tracer = Tracer::new(prepared);
-            let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
-            sampler.start_row(row);
-            let mut virtual_rows = vec![Intensity::ZERO; m * w];
-            for sub in 0..m {
-                let scanline = row * m + sub + 1;
-                for scancol in first_col..=w * m {
-                    sampler.start(scanline, scancol);
-                    let c = sampler.camera();
-                    let aray = camera.ray_of(c, &mut sampler);
-                    if timed {
-                        tracer.at(frame.time(sampler.time()));
-                    }
-                    let acolor = tracer.shoot(&aray, &mut sampler);
-                    if scancol >= 1 {
-                        virtual_rows[sub * w + (scancol - 1) / m] += acolor;
-                    }
-                }
+    let mut tracer = Tracer::new(prepared);
+    let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
+    sampler.start_row(row);
+    for sub in 0..m {
+        let scanline = row * m + sub + 1;
+        for scancol in first_col..=w * m {
+            sampler.start(scanline, scancol);
+            let c = sampler.camera();
+            let aray = camera.ray_of(c, &mut sampler);
+            if timed {
+                tracer.at(frame.time(sampler.time()));
             }
-            antialias(&virtual_rows, m, out);
-            progress();
-            tracer.stats
-        })
-        .collect();
-    let mut stats = TraceStats::default();
-    for s in per_row {
-        stats += s;
+            shoot(&mut tracer, &aray, &mut sampler, sub, scancol);
+        }
     }
-    Traced {
-        counts: vec![(m * m) as u32; pixels.len()],
-        colours: pixels,
-        stats,
-    }
+    tracer.stats
 }
 
 /// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the

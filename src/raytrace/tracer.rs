@@ -5,9 +5,10 @@
 
 use super::Prepared;
 use crate::intersect::{Deforming, Poses, Scratch, Snapshot};
+use crate::reconstruct::{Features, Gathered};
 use crate::sampler::Sampler;
-use crate::trace::{intersect, raytrace, Context, TraceStats};
-use crate::types::{Intensity, IntersectionRecord, Ray};
+use crate::trace::{intersect, raytrace, shade, surface_color, Context, TraceStats};
+use crate::types::{Intensity, IntersectionRecord, Ray, SurfaceAttribute};
 
 pub(super) struct Tracer<'p> {
     prepared: &'p Prepared,
@@ -70,11 +71,72 @@ impl<'p> Tracer<'p> {
         raytrace(&snap, aray, 1.0, 1, &mut ctx)
     }
 
+    /// As [`Tracer::shoot`], and what the first hit tells besides the
+    /// colour, for a reconstruction that reads it: the same colour, from
+    /// the same one search for the first hit.
+    pub(super) fn shoot_features(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> (Intensity, Features) {
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
+        self.stats.primary += 1;
+        self.stats.rays += 1;
+        let Some(hit) = intersect(&snap, aray, &mut self.stats) else {
+            let background = snap.scene.backgrnd;
+            let f = Features {
+                albedo: background,
+                ..Features::default()
+            };
+            return (background, f);
+        };
+        let mut ctx = Context {
+            stats: &mut self.stats,
+            sampler,
+        };
+        let colour = shade(&snap, aray, &hit, 1.0, 1, &mut ctx);
+        let surf = &snap.scene.surfaces[hit.surface];
+        let albedo = match surf.surface {
+            SurfaceAttribute::Background | SurfaceAttribute::Light => colour,
+            _ => surface_color(&snap, surf, &hit),
+        };
+        let normal = if hit.normal.dot(aray.dir) < 0.0 {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        let f = Features {
+            albedo,
+            normal,
+            object: Some(hit.object),
+        };
+        (colour, f)
+    }
+
     /// The object `ray` meets first with the scene as the last
     /// [`Tracer::at`] left it, and the hit.
     pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
         let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         intersect(&snap, ray, &mut self.stats)
+    }
+}
+
+/// How a render loop shoots a sample's primary ray: for its colour alone
+/// (`()`, the box of `antialias`) or also gathering its features into
+/// the pixel's [`Gathered`], for a reconstruction that reads them.
+pub(super) trait Shot: Clone + Default + Send + Sync {
+    /// The sample's colour, the ray `aray` shot by `tracer`.
+    fn shoot(&mut self, tracer: &mut Tracer, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity;
+}
+
+impl Shot for () {
+    #[inline]
+    fn shoot(&mut self, tracer: &mut Tracer, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
+        tracer.shoot(aray, sampler)
+    }
+}
+
+impl Shot for Gathered {
+    fn shoot(&mut self, tracer: &mut Tracer, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
+        let (colour, features) = tracer.shoot_features(aray, sampler);
+        self.add(colour, &features);
+        colour
     }
 }
 

@@ -1,6 +1,7 @@
 //! The samplers of the listing's scanline loop (`--sampler table`,
-//! `random`, `stratified`): one sample a subpixel (`scanline`, `scancol`),
-//! `masksize`² a pixel, in the order the main program traces them.
+//! `random`, `stratified`, `sobol`): one sample a subpixel (`scanline`,
+//! `scancol`), `masksize`² a pixel, in the order the main program traces
+//! them.
 //!
 //! Every value is a function of the subpixel, never of how many were taken
 //! before it: where the listing keeps a cursor that it advances once a
@@ -11,6 +12,7 @@
 
 use super::array::Field;
 use super::keys::{dimension_key, dimension_uniform, random_time, shuffled, strata, stratified_time, Stream};
+use super::pixel::{further_dimension, PixelSamples};
 use super::{CameraSample, Sampler};
 use crate::drt::{noise2_table, noise_table, MinimalStandard, TimeTable, MAXINDEX};
 use crate::options::{Fidelity, TimeSampler};
@@ -61,6 +63,11 @@ pub enum GridKind {
     /// pair of further dimensions drawn together, one point in each of
     /// the unit square's M×M cells.
     Stratified,
+    /// Subpixel j of a pixel (row by row) takes point j of the pixel's
+    /// Owen-scrambled Sobol sequence ([`PixelSamples::of_pixel`]) for its
+    /// place in the pixel, its time and its further dimensions: all of
+    /// them stratified together, not only each alone.
+    Sobol,
 }
 
 impl GridKind {
@@ -71,6 +78,7 @@ impl GridKind {
             TimeSampler::Table => Some(GridKind::Table),
             TimeSampler::Random => Some(GridKind::Random),
             TimeSampler::Stratified => Some(GridKind::Stratified),
+            TimeSampler::Sobol => Some(GridKind::Sobol),
             TimeSampler::Adaptive => None,
         }
     }
@@ -105,6 +113,9 @@ pub struct GridSampler<'a> {
     /// the shuffles that deal each pixel of the row its M×M cells and
     /// sub-cells (table, stratified), each made when first asked.
     cell_strata: Vec<Vec<Option<Vec<u32>>>>,
+    /// The Sobol samples of each pixel of the row (`sobol`), made when the
+    /// row's first sample asks.
+    row_sobol: Vec<PixelSamples>,
     scanline: usize,
     scancol: usize,
     dim: u32,
@@ -127,6 +138,7 @@ impl<'a> GridSampler<'a> {
             row_strata: Vec::new(),
             dimension_strata: Vec::new(),
             cell_strata: Vec::new(),
+            row_sobol: Vec::new(),
             scanline: 1,
             scancol: 1,
             dim: 0,
@@ -139,6 +151,7 @@ impl<'a> GridSampler<'a> {
         self.row_strata.clear();
         self.dimension_strata.clear();
         self.cell_strata.clear();
+        self.row_sobol.clear();
     }
 
     /// Starts the sample of subpixel (`scanline`, `scancol`), 1-based as in
@@ -162,6 +175,17 @@ impl<'a> GridSampler<'a> {
         let sub = self.scanline - 1 - self.row * self.m;
         (c / self.m, sub * self.m + c % self.m)
     }
+
+    /// `sobol`: the subpixel's pixel in the row, its Sobol samples, and
+    /// its index among them.
+    fn sobol(&mut self) -> (usize, PixelSamples, u32) {
+        let (x, j) = self.pixel_and_index();
+        if self.row_sobol.is_empty() {
+            let first = self.row * self.width;
+            self.row_sobol = (0..self.width).map(|x| PixelSamples::of_pixel(first + x)).collect();
+        }
+        (x, self.row_sobol[x], j as u32)
+    }
 }
 
 impl Sampler for GridSampler<'_> {
@@ -184,6 +208,10 @@ impl Sampler for GridSampler<'_> {
                 }
                 stratified_time(self.row * self.width + x, j, self.row_strata[x][j], n)
             }
+            GridKind::Sobol => {
+                let (_, samples, j) = self.sobol();
+                samples.tau(j)
+            }
         }
     }
 
@@ -194,8 +222,17 @@ impl Sampler for GridSampler<'_> {
     /// `noise2[aindex]*aliasing`, in x and z alike; `thesis` fidelity
     /// (§2.1.3 (4), stochastic sampling) advances the cursor: subpixel k of
     /// the scan order takes entries 2k and 2k+1 (mod `maxindex`) for x and z.
+    ///
+    /// `sobol`: the sample's own place in the pixel, as the adaptive
+    /// sampler's ([`PixelSamples::camera`]), for either fidelity.
     #[inline]
     fn camera(&self) -> CameraSample {
+        if self.kind == GridKind::Sobol {
+            let (x, j) = self.pixel_and_index();
+            let samples =
+                (self.row_sobol.get(x).copied()).unwrap_or_else(|| PixelSamples::of_pixel(self.row * self.width + x));
+            return samples.camera(x, self.row, self.m, j as u32);
+        }
         let noise2 = &self.tables.noise2;
         let (jx, jz) = match self.fidelity {
             Fidelity::Listing => {
@@ -222,7 +259,10 @@ impl Sampler for GridSampler<'_> {
     /// `noise[dindex]` (the port's reading of its cursor: one entry a
     /// subpixel); `random`: an independent uniform; `stratified`: a place
     /// in the stratum a permutation of the pixel's, one a dimension, deals
-    /// the subpixel. Past the table's dimensions, independent uniforms.
+    /// the subpixel; `sobol`: the pixel's scrambled Sobol dimension 3 + d
+    /// at the subpixel's index, as the adaptive sampler's
+    /// ([`further_dimension`]). Past the table's (or the Sobol
+    /// sequence's) dimensions, independent uniforms.
     fn get_1d(&mut self) -> f64 {
         let d = self.dim;
         self.dim += 1;
@@ -233,6 +273,10 @@ impl Sampler for GridSampler<'_> {
                 None => dimension_uniform(Stream::Uniform, d, k),
             },
             GridKind::Random => dimension_uniform(Stream::Uniform, d, k),
+            GridKind::Sobol => {
+                let (x, _, j) = self.sobol();
+                further_dimension(self.row * self.width + x, j, d)
+            }
             GridKind::Stratified => {
                 let (x, j) = self.pixel_and_index();
                 let pixel = (self.row * self.width + x) as u64;
@@ -252,7 +296,8 @@ impl Sampler for GridSampler<'_> {
     }
 
     /// Further dimensions d and d + 1 together. `random`: two independent
-    /// uniforms, as [`GridSampler::get_1d`] twice. `table` and
+    /// uniforms, as [`GridSampler::get_1d`] twice; `sobol`: the sample's
+    /// Sobol dimensions d and d + 1, as `get_1d` twice. `table` and
     /// `stratified` (the port's, D48): the pixel's M² subpixels take the
     /// unit square's M×M cells once each, dealt by the pixel's own
     /// shuffle for the pair, never the time's (a ray's time does not
@@ -269,7 +314,7 @@ impl Sampler for GridSampler<'_> {
     /// from the tables d and d + 1 at the subpixel's cursor (`table`, as
     /// `get_1d`) or a uniform (`stratified`).
     fn get_2d(&mut self) -> [f64; 2] {
-        if self.kind == GridKind::Random {
+        if matches!(self.kind, GridKind::Random | GridKind::Sobol) {
             let a = self.get_1d();
             return [a, self.get_1d()];
         }
@@ -547,6 +592,70 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// Sobol: a pixel's M² = 16 subpixels take its first 16 scrambled
+    /// Sobol points: their places a (0, 4, 2)-net over the pixel (one in
+    /// each elementary box of area 1/16, whatever its shape), their times
+    /// and each further dimension one in each of 16 strata; in both
+    /// fidelities (the place is the Sobol point's, not the listing's
+    /// jitter); the points differ from pixel to pixel, the time too.
+    #[test]
+    fn sobol_subpixels_are_a_pixels_net() {
+        let t = tables();
+        for fidelity in [Fidelity::Thesis, Fidelity::Listing] {
+            let (m, width) = (4usize, 5);
+            let mut s = GridSampler::new(&t, GridKind::Sobol, fidelity, width, m, 0.5);
+            let mut firsts = Vec::new();
+            for (x, row) in [(0, 0), (3, 2), (4, 7)] {
+                s.start_row(row);
+                let mut points = Vec::new();
+                for sub in 0..m {
+                    for c in 0..m {
+                        s.start(row * m + sub + 1, x * m + c + 1);
+                        let cam = s.camera();
+                        let u = (cam.scancol - 0.5) / m as f64 - x as f64;
+                        let v = (cam.scanline - 0.5) / m as f64 - row as f64;
+                        assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v), "{u} {v}");
+                        assert_eq!((cam.jx, cam.jz), (0.0, 0.0));
+                        let tau = s.time();
+                        let further: Vec<f64> = (0..4).map(|_| s.get_1d()).collect();
+                        // The adaptive sampler's further dimensions of the pixel.
+                        let j = (sub * m + c) as u32;
+                        for (d, &value) in further.iter().enumerate() {
+                            assert_eq!(value, further_dimension(row * width + x, j, d as u32));
+                        }
+                        points.push((u, v, tau, further));
+                    }
+                }
+                for k in 0..=4u32 {
+                    let (a, b) = (1usize << k, 1usize << (4 - k));
+                    let mut cells: Vec<usize> = points
+                        .iter()
+                        .map(|p| (p.0 * a as f64) as usize * b + (p.1 * b as f64) as usize)
+                        .collect();
+                    cells.sort_unstable();
+                    assert_eq!(
+                        cells,
+                        (0..16).collect::<Vec<_>>(),
+                        "{fidelity:?} ({x}, {row}) boxes {a}×{b}"
+                    );
+                }
+                for d in 0..5 {
+                    let value = |p: &(f64, f64, f64, Vec<f64>)| if d == 0 { p.2 } else { p.3[d - 1] };
+                    let mut strata: Vec<usize> = points.iter().map(|p| (value(p) * 16.0) as usize).collect();
+                    strata.sort_unstable();
+                    assert_eq!(
+                        strata,
+                        (0..16).collect::<Vec<_>>(),
+                        "{fidelity:?} ({x}, {row}) dimension {d}"
+                    );
+                }
+                firsts.push((points[0].0, points[0].2));
+            }
+            assert!(firsts[0].0 != firsts[1].0 && firsts[1].0 != firsts[2].0);
+            assert!(firsts[0].1 != firsts[1].1 && firsts[1].1 != firsts[2].1);
         }
     }
 

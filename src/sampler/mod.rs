@@ -18,15 +18,18 @@
 //!   point, a light point or a gloss turn would draw them.
 //!
 //! Two families, by how samples are laid out:
-//! - [`GridSampler`] (`--sampler table|random|stratified`): one sample a
+//! - [`GridSampler`] (`--sampler table|random|stratified|sobol`): one sample a
 //!   subpixel of the listing's scanline loop, `masksize`² a pixel. Its
 //!   place is the listing's `noise2[aindex]` jitter of the subpixel; its
 //!   time the thesis's table (`mindex`), an independent uniform, or one
 //!   time in each stratum of the shutter; its further dimensions the
 //!   table's own cursors (`dindex` into `noise`, as `depthoffield` reads
-//!   it), independent uniforms, or strata.
+//!   it), independent uniforms, or strata. `sobol` takes place, time and
+//!   further dimensions from one point of the pixel's Sobol sequence.
 //! - [`PixelSampler`] (`--sampler adaptive`): sample j of a pixel, any
-//!   number a pixel, from a scrambled Sobol sequence ([`sobol`]).
+//!   number a pixel, from a scrambled Sobol sequence ([`sobol`]); the
+//!   grid's `--sampler sobol` takes a pixel's first M² points of such a
+//!   sequence for its M² subpixels.
 //!
 //! Every value depends on the sample's pixel and index only, never on the
 //! thread or the order samples are taken in: an image is the same for any
@@ -41,7 +44,7 @@ mod warp;
 
 pub use grid::{GridKind, GridSampler, Tables, TABLE_DIMENSIONS};
 pub use keys::{random_time, strata, stratified_time};
-pub use pixel::{sample, PixelSampler, PixelSamples, Sample, SHIFT_BLOCK};
+pub use pixel::{further_dimension, sample, PixelSampler, PixelSamples, Sample, SHIFT_BLOCK};
 pub use warp::{concentric_disk, uniform_cone};
 
 /// Where a primary ray crosses the screen, in the units the camera takes

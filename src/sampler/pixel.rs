@@ -64,6 +64,34 @@ impl PixelSamples {
         }
     }
 
+    /// The samples of pixel `pixel` (its index in the image, row by row)
+    /// for `--sampler sobol`: the time scrambled by a seed of the pixel's
+    /// own and not shifted, so that neighbouring pixels' times are not
+    /// alike (the grid's loop poses the scene for every sample; there is
+    /// no instant for a row to share).
+    pub fn of_pixel(pixel: usize) -> Self {
+        let pixel = pixel as u64;
+        PixelSamples {
+            seeds: [sobol_seed(pixel, 0), sobol_seed(pixel, 1), sobol_seed(pixel, 2)],
+            shift: 0,
+        }
+    }
+
+    /// Where sample `j` of pixel `x` of row `row` crosses the screen, in
+    /// subpixel units of `masksize` `m`: pixel x spans scancol − ½ in
+    /// [x·M, (x+1)·M), and the sample lies at its place (u, v) in the
+    /// pixel, unjittered.
+    pub fn camera(&self, x: usize, row: usize, m: usize, j: u32) -> CameraSample {
+        let (u, v) = self.place(j);
+        let m = m as f64;
+        CameraSample {
+            scancol: (x as f64 + u) * m + 0.5,
+            scanline: (row as f64 + v) * m + 0.5,
+            jx: 0.0,
+            jz: 0.0,
+        }
+    }
+
     /// The sample the pixel takes at its row's instant `k`.
     pub fn at_instant(&self, k: u32) -> u32 {
         k ^ self.shift
@@ -106,7 +134,7 @@ pub struct PixelSampler<'a> {
     /// The pixel's index in the image (the key of its further dimensions).
     first: usize,
     /// `masksize`: the subpixels a pixel spans on the camera's raster.
-    m: f64,
+    m: usize,
     row: usize,
     x: usize,
     j: u32,
@@ -121,7 +149,7 @@ impl<'a> PixelSampler<'a> {
         PixelSampler {
             samples,
             first: row * width,
-            m: m as f64,
+            m,
             row,
             x: 0,
             j: 0,
@@ -141,31 +169,30 @@ impl Sampler for PixelSampler<'_> {
         self.samples[self.x].tau(self.j)
     }
 
-    /// Subpixel units: pixel x spans scancol − ½ in [x·M, (x+1)·M), and
-    /// the sample lies at its place (u, v) in the pixel, unjittered.
+    /// The sample's place in its pixel ([`PixelSamples::camera`]).
     fn camera(&self) -> CameraSample {
-        let (u, v) = self.samples[self.x].place(self.j);
-        CameraSample {
-            scancol: (self.x as f64 + u) * self.m + 0.5,
-            scanline: (self.row as f64 + v) * self.m + 0.5,
-            jx: 0.0,
-            jz: 0.0,
-        }
+        self.samples[self.x].camera(self.x, self.row, self.m, self.j)
     }
 
-    /// Sobol dimension 3 + d, scrambled by a seed of the pixel and the
-    /// dimension; past the last one, an independent uniform.
+    /// [`further_dimension`] d of the pixel's sample.
     fn get_1d(&mut self) -> f64 {
         let d = self.dim;
         self.dim += 1;
-        let pixel = (self.first + self.x) as u64;
-        let sobol = 3 + d as usize;
-        if sobol < SOBOL_DIMENSIONS {
-            let seed = (dimension_uniform(Stream::Scramble, d, pixel) * 4_294_967_296.0) as u32;
-            unit(owen_scramble_reversed(sobol_reversed(self.j, sobol), seed))
-        } else {
-            dimension_uniform(Stream::Uniform, d, pixel << 20 | u64::from(self.j))
-        }
+        further_dimension(self.first + self.x, self.j, d)
+    }
+}
+
+/// Further dimension `d` of sample `j` of pixel `pixel` (its index in the
+/// image, row by row): Sobol dimension 3 + d, scrambled by a seed of the
+/// pixel and the dimension; past the last one, an independent uniform.
+pub fn further_dimension(pixel: usize, j: u32, d: u32) -> f64 {
+    let pixel = pixel as u64;
+    let sobol = 3 + d as usize;
+    if sobol < SOBOL_DIMENSIONS {
+        let seed = (dimension_uniform(Stream::Scramble, d, pixel) * 4_294_967_296.0) as u32;
+        unit(owen_scramble_reversed(sobol_reversed(j, sobol), seed))
+    } else {
+        dimension_uniform(Stream::Uniform, d, pixel << 20 | u64::from(j))
     }
 }
 

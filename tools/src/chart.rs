@@ -26,7 +26,9 @@ use raytrace::options::{Fidelity, Options, Solver, TimeSampler};
 use raytrace::raytrace::Prepared;
 use raytrace::scene::Scene;
 
+use crate::chart_reconstructions::{draw_reconstructions, measure_reconstructions, recon_table};
 use crate::decks::{prepared, still, BLUR_DECKS, SOLVER_DECKS};
+use crate::frontier::Point;
 use crate::measure::{differing, interleaved_medians, is_sweep, probe_objects, rmse, silhouette};
 
 /// One way of choosing the subpixel times.
@@ -37,12 +39,13 @@ pub struct Sampling {
     pub sampler: TimeSampler,
 }
 
-/// The five samplers of panels 1 and 2: the listing's table (times
+/// The six samplers of panels 1 and 2: the listing's table (times
 /// `pattern·0.1`, up to 6.3 at mask 8: erratum 2, so its error is large by
 /// design), the thesis's table with the CLT jitter of the deck's `blur`,
-/// plain random times, stratified times, and the adaptive sampler (the
-/// port's extension, `raytrace::adaptive`).
-pub const SAMPLINGS: [Sampling; 5] = [
+/// plain random times, stratified times, scrambled Sobol points and the
+/// adaptive sampler (the last two the port's extensions,
+/// `raytrace::sampler`, `raytrace::adaptive`).
+pub const SAMPLINGS: [Sampling; 6] = [
     Sampling {
         label: "listing table",
         fidelity: Fidelity::Listing,
@@ -62,6 +65,11 @@ pub const SAMPLINGS: [Sampling; 5] = [
         label: "stratified",
         fidelity: Fidelity::Thesis,
         sampler: TimeSampler::Stratified,
+    },
+    Sampling {
+        label: "sobol",
+        fidelity: Fidelity::Thesis,
+        sampler: TimeSampler::Sobol,
     },
     Sampling {
         label: "adaptive",
@@ -125,14 +133,11 @@ fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
 
 /// Panels 1 and 2's measurements: the error of each render, then the times,
 /// `runs` interleaved rounds over every render.
-pub fn measure_blur(size: usize, runs: usize) -> Result<Vec<BlurPoint>, String> {
+pub fn measure_blur(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<BlurPoint>, String> {
     let mut out = Vec::new();
     let mut jobs: Vec<Prepared> = Vec::new();
     for &deck in BLUR_DECKS {
-        let ref_opts = opts(Fidelity::Thesis, Solver::Laguerre, TimeSampler::Stratified);
-        let ref_scene = prepared(deck, &ref_opts, Some((size, size, BLUR_REFERENCE_MASK)))?;
-        eprintln!("{deck}: reference, {BLUR_REFERENCE_MASK}×{BLUR_REFERENCE_MASK} stratified");
-        let reference = still(&ref_scene).colours;
+        let reference = crate::goal::reference(deck, size, cache)?;
         for (si, s) in SAMPLINGS.iter().enumerate() {
             let o = opts(s.fidelity, Solver::Laguerre, s.sampler);
             for mask in BLUR_MASKS {
@@ -242,13 +247,15 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
 
 /// The chart's size in pixels.
 const WIDTH: u32 = 2100;
-const HEIGHT: u32 = 700;
+const HEIGHT: u32 = 1400;
 
-const SAMPLING_COLOURS: [RGBColor; 5] = [
+/// Each sampler's colour, by its place in [`SAMPLINGS`].
+pub(crate) const SAMPLING_COLOURS: [RGBColor; 6] = [
     RGBColor(200, 40, 40),
     RGBColor(40, 90, 200),
     RGBColor(230, 140, 20),
     RGBColor(30, 150, 60),
+    RGBColor(0, 170, 190),
     RGBColor(140, 50, 170),
 ];
 const SOLVER_COLOURS: [RGBColor; 2] = [RGBColor(200, 40, 40), RGBColor(40, 90, 200)];
@@ -346,14 +353,16 @@ pub(crate) fn panel<DB: DrawingBackend>(
         let line = chart
             .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
             .map_err(err)?;
-        // Only a panel with a legend labels its series.
-        if legend.is_some() {
+        // Only a panel with a legend labels its series, and only those
+        // with a label.
+        if legend.is_some() && !s.label.is_empty() {
             line.label(s.label.clone()).legend(move |(x, y)| {
                 EmptyElement::at((x, y))
                     + PathElement::new(vec![(-6, 0), (14, 0)], colour.stroke_width(2))
                     + Circle::new((4, 0), if m == 0 { 4 } else { 0 }, colour.filled())
                     + TriangleMarker::new((4, 0), if m == 1 { 6 } else { 0 }, colour.filled())
                     + Cross::new((4, 0), if m == 2 { 5 } else { 0 }, colour.stroke_width(2))
+                    + Circle::new((4, 0), if m == 4 { 4 } else { 0 }, colour.stroke_width(2))
                     + Rectangle::new(
                         [(0, -4), (8, 4)],
                         if m == 3 {
@@ -364,10 +373,10 @@ pub(crate) fn panel<DB: DrawingBackend>(
                     )
             });
         }
-        // The markers: filled circle, triangle, cross, square, by deck.
+        // The markers: filled circle, triangle, cross, square, ring, by deck.
         let fill = colour.filled();
         let at = pts.iter().copied();
-        match m % 4 {
+        match m % 5 {
             0 => chart.draw_series(at.map(|p| Circle::new(p, 5, fill))).map(|_| ()),
             1 => chart
                 .draw_series(at.map(|p| TriangleMarker::new(p, 7, fill)))
@@ -375,8 +384,11 @@ pub(crate) fn panel<DB: DrawingBackend>(
             2 => chart
                 .draw_series(at.map(|p| Cross::new(p, 6, colour.stroke_width(2))))
                 .map(|_| ()),
-            _ => chart
+            3 => chart
                 .draw_series(at.map(|p| EmptyElement::at(p) + Rectangle::new([(-5, -5), (5, 5)], fill)))
+                .map(|_| ()),
+            _ => chart
+                .draw_series(at.map(|p| Circle::new(p, 6, colour.stroke_width(2))))
                 .map(|_| ()),
         }
         .map_err(err)?;
@@ -401,15 +413,19 @@ pub(crate) fn panel<DB: DrawingBackend>(
     Ok(())
 }
 
-/// Draws the three panels on `root`.
+/// Draws the five panels on `root`: the time samplers and the root
+/// solvers above, the reconstructions below.
 pub fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     blur: &[BlurPoint],
     solvers: &[SolverPoint],
+    recon: &[Point],
     size: usize,
 ) -> Result<(), String> {
     root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
-    let (left, rest) = root.split_horizontally(WIDTH / 3);
+    let (top, bottom) = root.split_vertically(HEIGHT / 2);
+    draw_reconstructions(&bottom, recon, size)?;
+    let (left, rest) = top.split_horizontally(WIDTH / 3);
     let (middle, right) = rest.split_horizontally(WIDTH / 3);
     let blur_series = |x: &dyn Fn(&BlurPoint) -> f64| {
         let mut series = Vec::new();
@@ -501,25 +517,28 @@ pub fn draw<DB: DrawingBackend>(
     root.present().map_err(|e| format!("{e:?}"))
 }
 
-/// Measures, prints the figures, and writes `dir`/speed_accuracy.png and .svg.
-pub fn run(dir: &Path, size: usize, runs: usize) -> Result<(), String> {
+/// Measures, prints the figures, and writes `dir`/speed_accuracy.png and
+/// .svg; `cache` keeps the blur decks' references between runs.
+pub fn run(dir: &Path, size: usize, runs: usize, cache: Option<&Path>) -> Result<(), String> {
     crate::fonts::register()?;
-    let blur = measure_blur(size, runs)?;
+    let blur = measure_blur(size, runs, cache)?;
     let solvers = measure_solvers(size, runs)?;
+    let recon = measure_reconstructions(size, runs, cache)?;
     print!("{}", tables(&blur, &solvers, size));
+    print!("{}", recon_table(&recon, size));
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let png = dir.join("speed_accuracy.png");
     let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(&root, &blur, &solvers, size)?;
+        draw(&root, &blur, &solvers, &recon, size)?;
     }
     image::save_buffer(&png, &buf, WIDTH, HEIGHT, image::ExtendedColorType::Rgb8)
         .map_err(|e| format!("{}: {e}", png.display()))?;
     let svg = dir.join("speed_accuracy.svg");
     {
         let root = SVGBackend::new(&svg, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(&root, &blur, &solvers, size)?;
+        draw(&root, &blur, &solvers, &recon, size)?;
     }
     println!("wrote {} and {}", png.display(), svg.display());
     Ok(())
@@ -618,7 +637,18 @@ mod tests {
             .collect();
         let mut buf = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
         let root = BitMapBackend::with_buffer(&mut buf, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(&root, &blur, &solvers, 96).unwrap();
+        let recon: Vec<Point> = BLUR_MASKS
+            .map(|mask| Point {
+                deck: "cook".into(),
+                way: crate::frontier::Way {
+                    mask,
+                    ..crate::chart_reconstructions::WAYS[2]
+                },
+                rmse: 0.05 / mask as f64,
+                secs: 0.002 * (mask * mask) as f64,
+            })
+            .to_vec();
+        draw(&root, &blur, &solvers, &recon, 96).unwrap();
         drop(root);
         // Something other than white was drawn: the axes, text, lines.
         assert!(buf.iter().any(|&b| b < 128));

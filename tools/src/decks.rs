@@ -21,6 +21,37 @@ pub const CHAPTER5: &[&str] = &[
 /// and a deforming rotation sweep.
 pub const BLUR_DECKS: &[&str] = &["fig5_3", "fig5_9", "fig5_10", "fig5_12"];
 
+/// The motion scenes of `tools frontier` (the reconstructions' goals):
+/// the moving textured cube and the deforming letter of Chapter 5, and
+/// two made here ([`generated`]): many moving spheres, and the small ball
+/// of Fig. 5.1 on its path over the checker floor, blurred.
+pub const FRONTIER_DECKS: &[&str] = &["fig5_3", "fig5_10", "spheres", "ball"];
+
+/// The decks made here rather than shipped, by name: `spheres`, the
+/// scene of `tools scale` of 1000 spheres each moving two radii across
+/// (as the peers were measured on, issue 34); `ball`, fig5_1.deck with
+/// `blur 1` in place of `blur 0` (jittered times: a streak, not four
+/// copies).
+pub fn generated(name: &str) -> Option<Result<String, String>> {
+    match name {
+        "spheres" => Some(crate::scale::scenes::deck(
+            crate::scale::scenes::Kind::Sphere,
+            1000,
+            crate::scale::scenes::Frame {
+                size: 128,
+                mask: 1,
+                moving: true,
+            },
+        )),
+        "ball" => Some(
+            std::fs::read_to_string(deck_path("fig5_1"))
+                .map(|text| text.replace("\nblur 0", "\nblur 1"))
+                .map_err(|e| format!("fig5_1: {e}")),
+        ),
+        _ => None,
+    }
+}
+
 /// The sweep decks of the chart's second panel (root solvers): one of each
 /// kind of sweep (translation, conic, rotation) and the deliberately hard
 /// view of a rotation sweep seen edge-on.
@@ -46,8 +77,12 @@ pub fn deck_path(name: &str) -> PathBuf {
     }
 }
 
-/// Reads a deck (a shipped deck's name or a path) for a fidelity.
+/// Reads a deck (a shipped deck's name, a [`generated`] one's, or a
+/// path) for a fidelity.
 pub fn load(name: &str, fidelity: Fidelity) -> Result<Scene, String> {
+    if let Some(text) = generated(name) {
+        return load_source(&text?, name, &deck_dir(), fidelity);
+    }
     let path = deck_path(name);
     let source = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
     load_source(
@@ -120,9 +155,24 @@ mod tests {
         let mut names: Vec<&str> = CHAPTER5.to_vec();
         names.extend(BLUR_DECKS);
         names.extend(SOLVER_DECKS);
+        names.extend(FRONTIER_DECKS);
         for name in names {
             prepared(name, &Options::default(), Some((8, 8, 1))).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
+    }
+
+    /// The generated decks: a thousand moving spheres; the ball of Fig.
+    /// 5.1 blurred.
+    #[test]
+    fn generated_decks_move() {
+        let spheres = load("spheres", Fidelity::Thesis).unwrap();
+        assert_eq!(spheres.objects.len(), 1000);
+        assert_eq!(spheres.motions.len(), 1000);
+        let ball = load("ball", Fidelity::Thesis).unwrap();
+        let fig5_1 = load("fig5_1", Fidelity::Thesis).unwrap();
+        assert_eq!(ball.objects.len(), fig5_1.objects.len());
+        let n = |s: &Scene| s.blur.as_ref().map(|b| b.n);
+        assert_eq!((n(&fig5_1), n(&ball)), (Some(0), Some(1)));
     }
 
     /// The generated circle deck has n segments, for each count the bench uses.

@@ -16,6 +16,9 @@ use std::path::{Path, PathBuf};
 use raytrace::options::{Fidelity, Options, Solver};
 use raytrace::psout;
 use raytrace::raster::Raster;
+use raytrace::reconstruct::Reconstruction;
+
+use crate::compare::{Look, Panel, THESIS};
 
 /// How a picture is drawn from its deck.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,6 +52,9 @@ pub enum Drawing {
         script: &'static str,
         time: Option<f64>,
     },
+    /// The deck's renders with other flags, the pixels a render traced,
+    /// and where two differ, side by side ([`crate::compare`]).
+    Compare { panels: &'static [Panel] },
 }
 
 /// One picture of the docs.
@@ -96,6 +102,26 @@ const fn frames(image: &'static str, deck: &'static str, times: &'static [f64], 
         drawing: Drawing::Frames { times, size },
     }
 }
+
+/// `--denoise` on the adaptive sampler's 4 rays a pixel.
+const DENOISED: Look = Look {
+    sampler: Some(raytrace::options::TimeSampler::Adaptive),
+    mask: Some(2),
+    reconstruction: Reconstruction::Denoise,
+};
+
+/// The reference of the failure pictures: 64 stratified rays a pixel.
+const SMOOTH: Look = Look {
+    sampler: Some(raytrace::options::TimeSampler::Stratified),
+    mask: Some(8),
+    reconstruction: Reconstruction::Box,
+};
+
+/// `--coherence 8` at the deck's settings.
+const COHERENT: Look = Look {
+    reconstruction: Reconstruction::Coherence(8),
+    ..THESIS
+};
 
 /// Every picture of the docs that is drawn from a deck. A new picture gets
 /// a line here, and `tools gallery` draws it from then on.
@@ -199,6 +225,31 @@ pub const GALLERY: &[Picture] = &[
             time: Some(0.5),
         },
     },
+    Picture {
+        image: "docs/img/denoise_pair.png",
+        deck: "legacy_pascal/decks/fig5_10.deck",
+        drawing: Drawing::Compare {
+            panels: &[Panel::Render(THESIS), Panel::Render(DENOISED)],
+        },
+    },
+    Picture {
+        image: "docs/img/denoise_fails.png",
+        deck: "legacy_pascal/decks/fig5_10.deck",
+        drawing: Drawing::Compare {
+            panels: &[
+                Panel::Render(SMOOTH),
+                Panel::Render(DENOISED),
+                Panel::Difference { a: 0, b: 1, gain: 8.0 },
+            ],
+        },
+    },
+    Picture {
+        image: "docs/img/coherence_fails.png",
+        deck: "legacy_pascal/decks/fig5_1.deck",
+        drawing: Drawing::Compare {
+            panels: &[Panel::Render(THESIS), Panel::Render(COHERENT), Panel::Traced(COHERENT)],
+        },
+    },
     editor(
         "docs/img/editor_tutorial.png",
         "legacy_pascal/tutorial/2_sweep.deck",
@@ -237,6 +288,10 @@ impl Picture {
             Drawing::Heatmap { size, mask } => {
                 format!("cargo run -p tools --release -- heatmap {deck} --size {size} --mask {mask} --out {image}")
             }
+            Drawing::Compare { panels } => {
+                let shown: Vec<String> = panels.iter().map(Panel::describe).collect();
+                format!("{deck} rendered as {}, side by side", shown.join(" "))
+            }
             Drawing::Editor { sweep, script, time } => {
                 let time = time.map(|t| format!(" --time {t}")).unwrap_or_default();
                 let edits = match script {
@@ -268,6 +323,7 @@ impl Picture {
             }
             Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, size, mask)?.0),
             Drawing::Editor { sweep, script, time } => editor_screen(&deck, sweep, script, time),
+            Drawing::Compare { panels } => crate::compare::draw(&deck.display().to_string(), panels),
         }
     }
 }

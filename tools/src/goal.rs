@@ -36,7 +36,8 @@ pub struct GoalRow {
     pub secs_adaptive: f64,
 }
 
-fn opts(sampler: TimeSampler) -> Options {
+/// Thesis fidelity, `laguerre`, and `sampler`: the goals' options.
+pub fn opts(sampler: TimeSampler) -> Options {
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Laguerre,
@@ -46,7 +47,7 @@ fn opts(sampler: TimeSampler) -> Options {
 
 /// The chart's reference of `deck` at `size`², read from `cache` when it
 /// holds one, else rendered (and written there).
-fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<Intensity>, String> {
+pub fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<Intensity>, String> {
     let file = cache.map(|d| d.join(format!("{deck}_{size}_{BLUR_REFERENCE_MASK}.f64")));
     if let Some(bytes) = file.as_ref().and_then(|f| std::fs::read(f).ok()) {
         if bytes.len() == size * size * 24 {

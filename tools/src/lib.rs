@@ -3,10 +3,13 @@
 
 pub mod bench;
 pub mod chart;
+pub mod chart_reconstructions;
+pub mod compare;
 pub mod deck_misses;
 pub mod decks;
 pub mod fonts;
 pub mod frames;
+pub mod frontier;
 pub mod fuzz;
 pub mod gallery;
 pub mod goal;

@@ -108,6 +108,9 @@ enum Command {
         /// Timed renders a point (the median is plotted).
         #[arg(long, default_value_t = 5)]
         runs: usize,
+        /// A folder to keep the references in between runs (as `tools goal`'s).
+        #[arg(long)]
+        cache: Option<PathBuf>,
     },
     /// The adaptive sampler's goal: RMSE and one-thread CPU time of `--sampler adaptive`
     /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
@@ -116,6 +119,23 @@ enum Command {
         #[arg(long, default_value_t = 96)]
         size: usize,
         /// Timed rounds (the medians are compared).
+        #[arg(long, default_value_t = 5)]
+        runs: usize,
+        /// A folder to keep the references in between runs.
+        #[arg(long)]
+        cache: Option<PathBuf>,
+    },
+    /// The reconstructions' goals: RMSE against a 1024-ray reference and one-thread CPU time
+    /// of `--denoise`, `--sampler sobol` and `--coherence N` on motion scenes, each over the
+    /// best 16-ray render before them (`--sampler adaptive --mask 4`).
+    Frontier {
+        /// The decks (shipped names, `spheres`, `ball`, or paths) [default: fig5_3, fig5_10,
+        /// spheres, ball].
+        decks: Vec<String>,
+        /// The width and height of every render, in pixels.
+        #[arg(long, default_value_t = 128)]
+        size: usize,
+        /// Timed rounds (the medians are compared); 0 for the errors alone.
         #[arg(long, default_value_t = 5)]
         runs: usize,
         /// A folder to keep the references in between runs.
@@ -274,10 +294,11 @@ fn main() -> ExitCode {
 /// (their errors exit 2), then the timed renders.
 fn bench(deck: &std::path::Path, runs: usize, render: &RenderArgs) -> Result<(), Failure> {
     let opts = render.options.options()?;
+    let reconstruction = render.reconstruction()?;
     let deck = DeckInput::read(deck)?;
     let scene = render.scene(&deck, &opts)?;
     let pool = render.thread_pool()?;
-    tools::bench::bench(&deck.name, &scene, runs.max(1), &pool).map_err(Failure::other)
+    tools::bench::bench(&deck.name, &scene, reconstruction, runs.max(1), &pool).map_err(Failure::other)
 }
 
 /// A deck a tool reads (a path, or a shipped deck's name), read first so
@@ -318,8 +339,16 @@ fn run(command: Command) -> Result<(), Failure> {
             }
             tools::gallery::run(&tools::gallery::checkout(), &only, check)
         }
-        Command::Chart { dir, size, runs } => tools::chart::run(&dir, size.max(8), runs.max(1)),
+        Command::Chart { dir, size, runs, cache } => {
+            tools::chart::run(&dir, size.max(8), runs.max(1), cache.as_deref())
+        }
         Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
+        Command::Frontier {
+            decks,
+            size,
+            runs,
+            cache,
+        } => tools::frontier::run(&decks, size.max(8), runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             readable(&deck, Default::default())?;
             tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))

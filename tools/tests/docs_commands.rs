@@ -241,7 +241,7 @@ fn skip(n: &Named, words: &[String]) -> Option<(String, bool)> {
         (Some("raytrace"), _) if has("--show") || has("--watch") => {
             parse("opens a window that waits for a key (or for the deck to change)")
         }
-        (Some("tools"), Some("chart" | "goal")) => parse("times renders for minutes"),
+        (Some("tools"), Some("chart" | "goal" | "frontier")) => parse("times renders for minutes"),
         (Some("tools"), Some("stability")) => parse("solves hard cases for minutes"),
         (Some("tools"), Some("vs-povray")) => parse("times POV-Ray against the port for minutes"),
         (Some("tools"), Some("scale")) if !has("--quick") && !has("--decks") => {
