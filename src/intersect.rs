@@ -19,7 +19,7 @@ use std::sync::Arc;
 use crate::accel::{Structure, WalkStack};
 use crate::motion::Moving;
 use crate::options::Options;
-use crate::paper::PaperChain;
+use crate::paper::{KeyChain, PaperChain};
 use crate::scene::Scene;
 use crate::shapes::{Posed, SweepCache};
 use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
@@ -181,7 +181,7 @@ pub struct Scratch {
 }
 
 /// An in-between object of a key-frame chain (§3.2): its contour at the
-/// snapshot's time. `motionblur` computed it for every ray (`do34` or
+/// snapshot's time (or its blob or patch, the port's extension). `motionblur` computed it for every ray (`do34` or
 /// `Hermite`); here it is computed the first time a ray of the instant
 /// reaches the object's bounding sphere, and kept for the instant's other
 /// rays, since most rays never come near the object (DEVIATIONS D19).
@@ -189,21 +189,29 @@ pub struct Scratch {
 pub struct Deforming<'a> {
     /// Index into `scene.objects`.
     pub object: usize,
-    chain: &'a PaperChain,
+    chain: KeyChain<'a>,
     time: Cell<f64>,
     ready: Cell<bool>,
     contour: RefCell<Shape>,
 }
 
+impl<'a> From<&'a PaperChain> for KeyChain<'a> {
+    fn from(chain: &'a PaperChain) -> Self {
+        KeyChain::Sweep(chain)
+    }
+}
+
 impl<'a> Deforming<'a> {
-    /// Scratch for the in-between object `object` of `chain`.
-    pub fn new(object: usize, chain: &'a PaperChain) -> Self {
+    /// Scratch for the in-between object `object` of `chain` (a
+    /// [`PaperChain`] of sweeps, or any [`KeyChain`]).
+    pub fn new(object: usize, chain: impl Into<KeyChain<'a>>) -> Self {
+        let chain = chain.into();
         Deforming {
             object,
             chain,
             time: Cell::new(0.0),
             ready: Cell::new(false),
-            contour: RefCell::new(Shape::Sweep(chain.scratch())),
+            contour: RefCell::new(chain.scratch()),
         }
     }
 
@@ -214,12 +222,10 @@ impl<'a> Deforming<'a> {
     }
 
     /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
-    /// (`PaperChain::inbetween`), on first use.
+    /// (`PaperChain::inbetween`, or `PointChain::inbetween`), on first use.
     pub fn contour(&self) -> Ref<'_, Shape> {
         if !self.ready.get() {
-            if let Shape::Sweep(sw) = &mut *self.contour.borrow_mut() {
-                self.chain.inbetween(self.time.get(), sw);
-            }
+            self.chain.inbetween(self.time.get(), &mut self.contour.borrow_mut());
             self.ready.set(true);
         }
         self.contour.borrow()

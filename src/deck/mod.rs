@@ -191,6 +191,7 @@
 //! message is cut after 40 characters, its control characters escaped.
 //! A missing `view` or `image` is reported at the end of the deck.
 
+mod blob_patch;
 mod film;
 mod lens;
 mod lex;
@@ -267,6 +268,8 @@ pub const RECORDS: &[&str] = &[
     "cylinder",
     "prism",
     "sweep",
+    "blob",
+    "patch",
     "rotate",
     "translate",
     "delete",
@@ -300,6 +303,8 @@ pub const FIELDS: &[(&str, &[&str])] = &[
     ("cylinder", &["at", "radius", "bottom", "top", "axis"]),
     ("prism", &["at", "height", "axis"]),
     ("sweep", &["at", "length", "scale", "axis"]),
+    ("blob", &["at", "threshold"]),
+    ("patch", &["at"]),
     ("motion", &["to", "turn", "via", "law"]),
     ("motion", &["path"]),
     ("keyframe", &["expander"]),
@@ -506,6 +511,8 @@ impl Builder<'_> {
             "cylinder" => self.cylinder(pos),
             "prism" => self.prism(pos),
             "sweep" => self.sweep(pos),
+            "blob" => self.blob(pos),
+            "patch" => self.patch(pos),
             "rotate" => self.rotate(),
             "translate" => self.translate(),
             "delete" => self.delete(),

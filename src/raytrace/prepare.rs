@@ -9,9 +9,9 @@ use crate::drt::TimeTable;
 use crate::intersect::{rest_poses, Aggregate, Deforming, Poses};
 use crate::motion::{object_boxes, paths, Motion, Moving};
 use crate::options::{Fidelity, Options, TimeSampler};
-use crate::paper::PaperChain;
+use crate::paper::{PaperChain, PointChain};
 use crate::sampler::Tables;
-use crate::scene::Scene;
+use crate::scene::{KeyframeRecord, Scene};
 use crate::shapes::SweepCache;
 use crate::types::{DVec3, Pose, Shape};
 
@@ -77,11 +77,18 @@ impl Prepared {
                 scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
             }
         }
+        let points = point_chains(&scene, fidelity)?;
+        let span = film_span(&scene, &times);
+        widen_to_hold(&mut scene, &points, span);
         let caches = crate::shapes::prepare_caches(&scene);
         let mut moving = paths(&scene);
         moving.extend(chains.into_iter().map(|(record, chain)| Moving {
             object: scene.keyframes[record].first,
             motion: Motion::Chain { record, chain },
+        }));
+        moving.extend(points.into_iter().map(|(record, chain)| Moving {
+            object: scene.keyframes[record].first,
+            motion: Motion::Points { record, chain },
         }));
         Ok(Prepared::assemble(
             scene,
@@ -104,7 +111,7 @@ impl Prepared {
         accel: Accel,
     ) -> Prepared {
         let mut deforming_of = vec![None; scene.objects.len()];
-        let chains = moving.iter().enumerate().filter(|(_, m)| m.chain().is_some());
+        let chains = moving.iter().enumerate().filter(|(_, m)| m.key_chain().is_some());
         for (d, (_, m)) in chains.enumerate() {
             deforming_of[m.object] = Some(d);
         }
@@ -202,7 +209,7 @@ impl Prepared {
     pub fn deforming(&self) -> Vec<Deforming<'_>> {
         self.moving
             .iter()
-            .filter_map(|m| m.chain().map(|chain| Deforming::new(m.object, chain)))
+            .filter_map(|m| m.key_chain().map(|chain| Deforming::new(m.object, chain)))
             .collect()
     }
 
@@ -237,10 +244,10 @@ impl Prepared {
         let mut caches = self.caches.clone();
         for m in &self.moving {
             let obj = &mut still.objects[m.object];
-            if let Some(chain) = m.chain() {
+            if let Some(chain) = m.key_chain() {
                 let mut contour = chain.scratch();
                 chain.inbetween(time, &mut contour);
-                obj.shape = Shape::Sweep(contour);
+                obj.shape = contour;
                 // A contour of the moment: nothing was prepared for it.
                 caches[m.object] = None;
             }
@@ -289,14 +296,24 @@ pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, Render
     })
 }
 
+/// Is `record` a chain of blobs or of patches (the port's extension)?
+fn of_points(scene: &Scene, record: &KeyframeRecord) -> bool {
+    scene
+        .objects
+        .get(record.first)
+        .is_some_and(|o| matches!(o.shape, Shape::Blob(_) | Shape::Patch(_)))
+}
+
 /// `goahead(i2, …)` for every key-frame pair of the main program
-/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record,
-/// with the record's index.
+/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record of
+/// sweeps, with the record's index (the chains of blobs and patches are
+/// [`point_chains`]).
 pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
     scene
         .keyframes
         .iter()
         .enumerate()
+        .filter(|(_, record)| !of_points(scene, record))
         .map(|(k, record)| {
             PaperChain::from_keyframe(scene, record, fidelity)
                 .map(|chain| (k, chain))
@@ -307,4 +324,45 @@ pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize,
                 })
         })
         .collect()
+}
+
+/// The chains of the `keyframe` records of blobs or of patches (the port's
+/// extension, §6.2: `PointChain`), with each record's index.
+pub fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
+    scene
+        .keyframes
+        .iter()
+        .enumerate()
+        .filter(|(_, record)| of_points(scene, record))
+        .map(|(k, record)| {
+            PointChain::from_keyframe(scene, record, fidelity)
+                .map(|chain| (k, chain))
+                .map_err(|e| RenderError::Misfit {
+                    pos: record.pos.clone(),
+                    record: "keyframe",
+                    message: e.to_string(),
+                })
+        })
+        .collect()
+}
+
+/// Each chain's in-between object's bounding-sphere `radius` widened to
+/// hold its surface at every film time of `span` (the local box of the
+/// in-between over those times, `PointChain::local_bounds`), as the
+/// sweeps' chains are widened to their boxes.
+fn widen_to_hold(scene: &mut Scene, chains: &[(usize, PointChain)], span: (f64, f64)) {
+    for (k, chain) in chains {
+        let Some(b) = chain.local_bounds(span.0, span.1) else {
+            continue;
+        };
+        let corner = DVec3::new(
+            b.xmin.abs().max(b.xmax.abs()),
+            b.ymin.abs().max(b.ymax.abs()),
+            b.zmin.abs().max(b.zmax.abs()),
+        );
+        let first = scene.keyframes[*k].first;
+        if corner.is_finite() {
+            scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
+        }
+    }
 }

@@ -18,9 +18,13 @@
 //! away is intersected as exactly as from 10 (the port's extension; the
 //! thesis's eye is never far, DEVIATIONS D20).
 
+pub mod blob;
+pub mod patch;
 mod posed;
 pub mod sweep;
 
+pub use blob::{blob_box, blob_reach};
+pub use patch::{patch_box, patch_reach};
 pub use posed::Posed;
 pub use sweep::{prepare_caches, SweepCache};
 
@@ -436,8 +440,10 @@ pub fn bounding_radius(radius: f64) -> f64 {
 /// prism's extent; a sweep's from its `bbox` (its own, or in `listing`
 /// fidelity its class's, which holds it, erratum 9), for a rotation sweep
 /// ±its greatest radius across (the listing's `rbox` keeps the radius
-/// range min U … max U in x and y). `None` for a sphere (its sphere is its
-/// bound) and a sweep without segments.
+/// range min U … max U in x and y); a blob's from its components' spheres
+/// ([`blob_box`]), a patch's from its control points ([`patch_box`]).
+/// `None` for a sphere (its sphere is its bound), a sweep without segments
+/// and a blob without a component of positive strength.
 pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
     let b = |lo: DVec3, hi: DVec3| BoundingBox {
         xmin: lo.x,
@@ -468,6 +474,8 @@ pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
             Some(b(DVec3::new(-r, -r, sw.bbox.zmin), DVec3::new(r, r, sw.bbox.zmax)))
         }
         Shape::Sweep(sw) => Some(sw.bbox),
+        Shape::Blob(b) => blob_box(b),
+        Shape::Patch(p) => Some(patch_box(p)),
     }
 }
 

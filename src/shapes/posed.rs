@@ -1,6 +1,8 @@
 //! An object as a ray meets it at one instant: the dispatch from the
 //! object's shape to its intersection.
 
+use super::blob::{blob_blocks, intersect_blob};
+use super::patch::{intersect_patch, patch_blocks};
 use super::sweep::{Sweep, SweepCache};
 use super::{
     block_blocks, bounding_sphere_hit, intersect_block, intersect_cylinder, intersect_prism, intersect_sphere,
@@ -44,13 +46,16 @@ impl Posed<'_> {
             } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
             Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
             Shape::Sweep(sw) => self.sweep(sw).intersect(&local, tmin, opts, searched),
+            Shape::Blob(b) => intersect_blob(b, self.obj.radius, &local, tmin, opts, searched),
+            Shape::Patch(p) => intersect_patch(p, self.obj.radius, &local, tmin, searched),
         }
     }
 
     /// Does the shape (as in [`Posed::intersect`]) stand on the ray at
     /// some t with `tmin` < t < `tmax`? The shadow ray's question: a sweep
-    /// answers it at its first hit before `tmax` ([`Sweep::blocks`]), a
-    /// block by its slabs, the other shapes by their nearest hit. The same
+    /// answers it at its first hit before `tmax` ([`Sweep::blocks`]), as
+    /// blobs and patches do, a block by its slabs, the other shapes by
+    /// their nearest hit. The same
     /// answer as `intersect(..).is_some_and(|h| h.t < tmax)`.
     pub fn blocks(&self, ray: &Ray, tmin: f64, tmax: f64, opts: &Options, searched: &mut u64) -> bool {
         match self.shape {
@@ -59,6 +64,18 @@ impl Posed<'_> {
                 self.sweep(sw).blocks(&local, tmin, tmax, opts, searched)
             }
             Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
+            Shape::Blob(b) => {
+                let local = ray.transformed(&self.pose.inverse);
+                blob_blocks(b, self.obj.radius, &local, tmin, tmax, opts, searched)
+            }
+            Shape::Patch(p) => patch_blocks(
+                p,
+                self.obj.radius,
+                &ray.transformed(&self.pose.inverse),
+                tmin,
+                tmax,
+                searched,
+            ),
             _ => self.intersect(ray, tmin, opts, searched).is_some_and(|h| h.t < tmax),
         }
     }
