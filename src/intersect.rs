@@ -21,7 +21,7 @@ use crate::motion::Moving;
 use crate::options::Options;
 use crate::paper::{KeyChain, PaperChain};
 use crate::scene::Scene;
-use crate::shapes::{Posed, SweepCache};
+use crate::shapes::{Posed, ShapeCache};
 use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SurfaceAttribute};
 
 /// The scene at one instant of the shutter: the read-only scene and what
@@ -40,7 +40,7 @@ pub struct Snapshot<'a> {
     /// For each object, its index in `deforming` if it deforms.
     pub deforming_of: &'a [Option<usize>],
     /// What `shapes` prepared for each object's own shape.
-    pub caches: &'a [Option<Arc<SweepCache>>],
+    pub caches: &'a [Option<Arc<ShapeCache>>],
     pub aggregate: &'a Aggregate,
     /// The structure to search, or `None` for the loop (also when the
     /// instant lies outside the times the structure bounds).
@@ -193,6 +193,9 @@ pub struct Deforming<'a> {
     time: Cell<f64>,
     ready: Cell<bool>,
     contour: RefCell<Shape>,
+    /// What is made for the contour of the instant (a blob's hierarchy, a
+    /// patch's pieces).
+    cache: RefCell<Option<ShapeCache>>,
 }
 
 impl<'a> From<&'a PaperChain> for KeyChain<'a> {
@@ -212,6 +215,7 @@ impl<'a> Deforming<'a> {
             time: Cell::new(0.0),
             ready: Cell::new(false),
             contour: RefCell::new(chain.scratch()),
+            cache: RefCell::new(None),
         }
     }
 
@@ -224,11 +228,20 @@ impl<'a> Deforming<'a> {
     /// The contour at the instant: `do34` at time 0 or 1, else `Hermite`
     /// (`PaperChain::inbetween`, or `PointChain::inbetween`), on first use.
     pub fn contour(&self) -> Ref<'_, Shape> {
+        self.shape().0
+    }
+
+    /// The contour at the instant ([`Deforming::contour`]) and what is
+    /// made for it then ([`ShapeCache::of_moment`]: a blob's hierarchy, a
+    /// patch's pieces).
+    pub fn shape(&self) -> (Ref<'_, Shape>, Ref<'_, Option<ShapeCache>>) {
         if !self.ready.get() {
-            self.chain.inbetween(self.time.get(), &mut self.contour.borrow_mut());
+            let mut contour = self.contour.borrow_mut();
+            self.chain.inbetween(self.time.get(), &mut contour);
+            *self.cache.borrow_mut() = ShapeCache::of_moment(&contour);
             self.ready.set(true);
         }
-        self.contour.borrow()
+        (self.contour.borrow(), self.cache.borrow())
     }
 }
 
@@ -262,7 +275,7 @@ impl Snapshot<'_> {
         i: usize,
         obj: &'s ObjectRecord,
         pose: &'s Pose,
-        cache: impl FnOnce() -> Option<&'s SweepCache>,
+        cache: impl FnOnce() -> Option<&'s ShapeCache>,
         ray: &Ray,
         tmin: f64,
         f: impl FnOnce(&Posed) -> Option<R>,
@@ -276,8 +289,9 @@ impl Snapshot<'_> {
         if !at_rest.meets_bounding_sphere(ray, tmin) {
             return None;
         }
-        // Only a sweep has a cache: the others need not look.
-        if matches!(obj.shape, Shape::Sweep(_)) {
+        // Only a sweep, a blob or a patch has a cache: the others need not
+        // look.
+        if matches!(obj.shape, Shape::Sweep(_) | Shape::Blob(_) | Shape::Patch(_)) {
             at_rest.cache = cache();
         }
         // A scene with nothing deforming need not look (most of them).
@@ -289,10 +303,10 @@ impl Snapshot<'_> {
         match deforms {
             None => f(&at_rest),
             Some(d) => {
-                let contour = self.deforming[d].contour();
+                let (contour, cache) = self.deforming[d].shape();
                 f(&Posed {
                     shape: &contour,
-                    cache: None,
+                    cache: cache.as_ref(),
                     ..at_rest
                 })
             }

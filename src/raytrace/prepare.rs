@@ -12,7 +12,7 @@ use crate::options::{Fidelity, Options, TimeSampler};
 use crate::paper::{PaperChain, PointChain};
 use crate::sampler::Tables;
 use crate::scene::{KeyframeRecord, Scene};
-use crate::shapes::SweepCache;
+use crate::shapes::ShapeCache;
 use crate::types::{DVec3, Pose, Shape};
 
 /// A scene ready to render with its options: made once by
@@ -37,7 +37,7 @@ pub struct Prepared {
     /// Every object at rest.
     rest: Vec<Pose>,
     /// What `shapes` prepared for each object's own shape.
-    caches: Vec<Option<Arc<SweepCache>>>,
+    caches: Vec<Option<Arc<ShapeCache>>>,
     aggregate: Aggregate,
     /// The film times the aggregate's structure bounds the objects over:
     /// every time a sample can have.
@@ -107,7 +107,7 @@ impl Prepared {
         opts: Options,
         tables: Tables,
         moving: Vec<Moving>,
-        caches: Vec<Option<Arc<SweepCache>>>,
+        caches: Vec<Option<Arc<ShapeCache>>>,
         accel: Accel,
     ) -> Prepared {
         let mut deforming_of = vec![None; scene.objects.len()];
@@ -172,7 +172,7 @@ impl Prepared {
         &self.deforming_of
     }
 
-    pub fn caches(&self) -> &[Option<Arc<SweepCache>>] {
+    pub fn caches(&self) -> &[Option<Arc<ShapeCache>>] {
         &self.caches
     }
 

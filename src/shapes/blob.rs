@@ -33,6 +33,7 @@
 use super::sweep::{polish, solve, JOINT_SLACK, RESIDUAL_TOL};
 use super::Near;
 use crate::options::Options;
+use crate::accel::{Aabb, BoxRay};
 use crate::types::{BlobComponent, BlobShape, BoundingBox, DVec3, LocalHit, Ray, MAXCOMPONENTS};
 
 /// A component adds to the field only where it has a sphere and a
@@ -89,15 +90,37 @@ pub fn field(shape: &BlobShape, p: DVec3) -> (f64, DVec3) {
 }
 
 /// A component's chord: where the ray enters and leaves its sphere, and
-/// which component it is.
+/// its field along the ray: q(t) = 1 − |p(t) − c|²/R² = `peak_q` −
+/// `curve`·(t − `peak_t`)², the component adding `strength`·q² where q > 0.
 #[derive(Clone, Copy, Default)]
 struct Chord {
     enter: f64,
     leave: f64,
+    peak_t: f64,
+    peak_q: f64,
+    curve: f64,
+    strength: f64,
+    /// The component's index in the blob.
     k: u8,
 }
 
-// A component's index fits the byte its chord keeps it in.
+impl Chord {
+    /// The most q reaches on [a, b] (within the chord).
+    fn most(&self, a: f64, b: f64) -> f64 {
+        let e = self.peak_t.clamp(a, b) - self.peak_t;
+        self.peak_q - self.curve * e * e
+    }
+}
+
+/// An end of a chord: where, which chord, and whether it begins there.
+#[derive(Clone, Copy, Default)]
+struct End {
+    t: f64,
+    chord: u8,
+    enter: bool,
+}
+
+// A component's index fits the byte its chord's end keeps it in.
 const _: () = assert!(MAXCOMPONENTS <= u8::MAX as usize + 1);
 
 /// The nearest hit of a ray with the blob beyond `tmin`, in its local
@@ -107,21 +130,24 @@ const _: () = assert!(MAXCOMPONENTS <= u8::MAX as usize + 1);
 /// quartics the solvers searched past their pre-tests.
 pub fn intersect_blob(
     shape: &BlobShape,
+    cache: Option<&BlobCache>,
     reach: f64,
     ray: &Ray,
     tmin: f64,
     opts: &Options,
     searched: &mut u64,
 ) -> Option<LocalHit> {
-    query(shape, reach, ray, tmin, f64::INFINITY, opts, searched)
+    query(shape, cache, reach, ray, tmin, f64::INFINITY, opts, searched)
 }
 
 /// Does the blob stand on the ray at some t with `tmin` < t < `tmax`?
 /// The shadow ray's question: the answer of [`intersect_blob`] (its
 /// nearest hit lies before `tmax`), its intervals searched no further
 /// than `tmax`.
+#[allow(clippy::too_many_arguments)]
 pub fn blob_blocks(
     shape: &BlobShape,
+    cache: Option<&BlobCache>,
     reach: f64,
     ray: &Ray,
     tmin: f64,
@@ -129,13 +155,19 @@ pub fn blob_blocks(
     opts: &Options,
     searched: &mut u64,
 ) -> bool {
-    query(shape, reach, ray, tmin, tmax, opts, searched).is_some_and(|h| h.t < tmax)
+    query(shape, cache, reach, ray, tmin, tmax, opts, searched).is_some_and(|h| h.t < tmax)
 }
 
 /// The first hit beyond `tmin`, its intervals searched while they begin
-/// before `tmax` (the caller's t).
+/// before `tmax` (the caller's t). The chords' ends are taken in order,
+/// the components whose chords span the interval up to the next end kept
+/// as they come and go; an interval on which no component of positive
+/// strength is active, or on which those cannot reach T even at their
+/// most, is passed without a polynomial.
+#[allow(clippy::too_many_arguments)]
 fn query(
     shape: &BlobShape,
+    cache: Option<&BlobCache>,
     reach: f64,
     ray: &Ray,
     tmin: f64,
@@ -149,99 +181,287 @@ fn query(
     let near = Near::of(ray, tmin, DVec3::ZERO, reach * reach);
     let (o, d, tmin) = (near.ray.origin, near.ray.dir, near.tmin);
     let limit = tmax - near.shift;
-    let (chords, count) = chords(shape, o, d, tmin)?;
+    // Most rays cross few components: their arrays are made that small,
+    // and made again full size for a ray that crosses more.
+    let found = match search::<SOME, { 2 * SOME }>(shape, cache, o, d, tmin, limit, opts, searched) {
+        Ok(found) => found,
+        Err(Crowded) => search::<MAXCOMPONENTS, { 2 * MAXCOMPONENTS }>(shape, cache, o, d, tmin, limit, opts, searched)
+            .unwrap_or(None),
+    };
+    near.back(found)
+}
+
+/// The chords a ray's first arrays hold ([`search`]).
+const SOME: usize = 12;
+
+/// More chords than the arrays hold.
+struct Crowded;
+
+/// [`query`]'s search, on the ray `o + t·d` near the blob, with room for
+/// `N` chords and `E` = 2·`N` ends: the hit, or `Crowded` if the ray
+/// crosses more than `N` components.
+#[allow(clippy::too_many_arguments)]
+fn search<const N: usize, const E: usize>(
+    shape: &BlobShape,
+    cache: Option<&BlobCache>,
+    o: DVec3,
+    d: DVec3,
+    tmin: f64,
+    limit: f64,
+    opts: &Options,
+    searched: &mut u64,
+) -> Result<Option<LocalHit>, Crowded> {
+    let mut chords = [Chord::default(); N];
+    let Some(count) = chords_of(shape, cache, o, d, tmin, &mut chords)? else {
+        return Ok(None);
+    };
     let chords = &chords[..count];
-    // The intervals' ends: every chord's ends, sorted.
-    let mut ends = [0.0f64; 2 * MAXCOMPONENTS];
+    let mut ends = [End::default(); E];
     for (k, c) in chords.iter().enumerate() {
-        ends[2 * k] = c.enter;
-        ends[2 * k + 1] = c.leave;
+        ends[2 * k] = End {
+            t: c.enter,
+            chord: k as u8,
+            enter: true,
+        };
+        ends[2 * k + 1] = End {
+            t: c.leave,
+            chord: k as u8,
+            enter: false,
+        };
     }
     let ends = &mut ends[..2 * count];
-    ends.sort_unstable_by(f64::total_cmp);
+    ends.sort_unstable_by(|x, y| x.t.total_cmp(&y.t));
+    let mut active = [0u8; N];
+    let mut live = 0;
     for w in ends.windows(2) {
-        let (a, b) = (w[0].max(tmin), w[1]);
+        let end = w[0];
+        if end.enter {
+            active[live] = end.chord;
+            live += 1;
+        } else if let Some(i) = active[..live].iter().position(|&c| c == end.chord) {
+            live -= 1;
+            active[i] = active[live];
+        }
+        let (a, b) = (end.t.max(tmin), w[1].t);
         if a >= limit {
             break;
         }
         if !(b > a) {
             continue;
         }
-        // The components whose chords span the interval.
-        let active = chords.iter().filter(|c| c.enter <= w[0] && c.leave >= b);
-        let mut raised = false;
+        let on = || active[..live].iter().map(|&c| &chords[c as usize]);
+        let most: f64 = on()
+            .filter(|c| c.strength > 0.0)
+            .map(|c| {
+                let q = c.most(a, b).max(0.0);
+                c.strength * q * q
+            })
+            .sum();
+        if !(most >= shape.threshold) {
+            continue;
+        }
+        // The quartic in s ∈ [0, 1], t = a + s·(b − a): each component's
+        // q = γ + β s + α s², squared and weighed.
+        let len = b - a;
         let mut poly = [0.0f64; 7];
         poly[0] = -shape.threshold;
-        let (start, step) = (o + a * d, d * (b - a));
-        let dd = step.length_squared();
-        for c in active {
-            let comp = &shape.components[c.k as usize];
-            raised |= comp.strength > 0.0;
-            let inv = 1.0 / (comp.radius * comp.radius);
-            let w = start - comp.centre;
-            // q(s) = 1 − |w + s·step|²/R² = γ + β s + α s².
-            let (g, be, al) = (1.0 - w.length_squared() * inv, -2.0 * w.dot(step) * inv, -dd * inv);
-            let st = comp.strength;
+        for c in on() {
+            let e = a - c.peak_t;
+            let (g, be, al) = (c.peak_q - c.curve * e * e, -2.0 * c.curve * e * len, -c.curve * len * len);
+            let st = c.strength;
             poly[0] += st * g * g;
             poly[1] += st * 2.0 * g * be;
             poly[2] += st * (be * be + 2.0 * al * g);
             poly[3] += st * 2.0 * al * be;
             poly[4] += st * al * al;
         }
-        if !raised {
-            continue;
-        }
         if let Some(s) = first_root(&poly, opts, searched) {
-            let t = a + s * (b - a);
+            let t = a + s * len;
             if t > tmin {
                 let point = o + t * d;
-                return near.back(Some(LocalHit {
+                return Ok(Some(LocalHit {
                     t,
                     point,
-                    normal: outward(shape, point, d),
+                    normal: outward(shape, chords, point, d),
                 }));
             }
         }
     }
-    None
+    Ok(None)
 }
 
-/// The chords of the components that count ([`counts`]) and that the ray
-/// meets beyond `tmin`; `None` when none of them raises the field.
-fn chords(shape: &BlobShape, o: DVec3, d: DVec3, tmin: f64) -> Option<([Chord; MAXCOMPONENTS], usize)> {
+/// The chords, into `out`, of the components that count ([`counts`]) and
+/// that the ray meets beyond `tmin`, and how many; `None` when none of
+/// them raises the field; `Crowded` when `out` cannot hold them. The components are those of the leaves of
+/// `cache` whose boxes the ray meets, or (without one) all of them.
+fn chords_of(
+    shape: &BlobShape,
+    cache: Option<&BlobCache>,
+    o: DVec3,
+    d: DVec3,
+    tmin: f64,
+    out: &mut [Chord],
+) -> Result<Option<usize>, Crowded> {
     let a = d.length_squared();
-    let mut out = [Chord::default(); MAXCOMPONENTS];
-    let (mut count, mut raised) = (0, false);
-    for (k, c) in shape.components.iter().enumerate().take(MAXCOMPONENTS) {
+    let (mut count, mut raised, mut crowded) = (0, false, false);
+    let mut chord = |k: usize| {
+        let c = &shape.components[k];
         if !counts(c) {
-            continue;
+            return;
         }
         let oc = o - c.centre;
         let half_b = oc.dot(d);
-        let cc = oc.length_squared() - c.radius * c.radius;
+        let r2 = c.radius * c.radius;
+        let cc = oc.length_squared() - r2;
         let disc = half_b * half_b - a * cc;
         if !(disc > 0.0) {
-            continue;
+            return;
         }
         // The numerically stable pair of roots (as the sphere's).
         let q = -(half_b + half_b.signum() * disc.sqrt());
         if q == 0.0 {
-            continue;
+            return;
         }
         let (t0, t1) = (q / a, cc / q);
         let (enter, leave) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
         if leave <= tmin {
-            continue;
+            return;
+        }
+        if count == out.len() {
+            crowded = true;
+            return;
         }
         raised |= c.strength > 0.0;
         out[count] = Chord {
             enter,
             leave,
+            peak_t: -half_b / a,
+            peak_q: disc / (a * r2),
+            curve: a / r2,
+            strength: c.strength,
             k: k as u8,
         };
         count += 1;
+    };
+    match cache {
+        Some(cache) => {
+            cache.visit(&Ray::new(o, d), tmin, &mut chord);
+            // In the components' order, as the loop over all finds them:
+            // the sums below are then the same to the bit.
+            out[..count].sort_unstable_by_key(|c| c.k);
+        }
+        None => (0..shape.components.len().min(MAXCOMPONENTS)).for_each(chord),
     }
-    raised.then_some((out, count))
+    if crowded {
+        return Err(Crowded);
+    }
+    Ok(raised.then_some(count))
+}
+
+/// The most components a leaf of a [`BlobCache`] holds.
+const LEAF: usize = 4;
+
+/// A node of a [`BlobCache`]: its box, and its components (a leaf: `len`
+/// of them from `start` in the cache's order) or its children (the next
+/// node and node `right`).
+#[derive(Clone, Debug, PartialEq)]
+struct BlobNode {
+    bounds: Aabb,
+    right: u32,
+    start: u8,
+    len: u8,
+}
+
+/// What is prepared for a blob before any ray: its components gathered in
+/// a hierarchy of boxes (§2.1.2's clusters of bounding volumes, Fig.
+/// 2.12, within one object), so that a ray tests the spheres of the
+/// components near it and not all 60: halved at the median of their
+/// centres along the widest axis down to leaves of at most [`LEAF`]; each
+/// node's box holds its components' spheres. Made for a blob at rest
+/// once, for a deforming one at each instant a ray first reaches it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlobCache {
+    nodes: Vec<BlobNode>,
+    /// The components that count ([`counts`]), in the leaves' order.
+    order: Vec<u8>,
+}
+
+impl BlobCache {
+    /// The hierarchy of `shape`'s components (see the type's doc).
+    pub fn new(shape: &BlobShape) -> BlobCache {
+        let mut order: Vec<u8> = (0..shape.components.len().min(MAXCOMPONENTS))
+            .filter(|&k| counts(&shape.components[k]))
+            .map(|k| k as u8)
+            .collect();
+        let mut nodes = Vec::new();
+        let len = order.len();
+        build(shape, &mut order, 0, len, &mut nodes);
+        BlobCache { nodes, order }
+    }
+
+    /// Calls `f` with each component in a leaf whose box the ray meets
+    /// beyond `tmin`.
+    fn visit(&self, ray: &Ray, tmin: f64, f: &mut impl FnMut(usize)) {
+        let boxes = BoxRay::new(ray);
+        // A node's right child waits while its left is taken: one a level.
+        let mut stack = [0u32; 2 * MAXCOMPONENTS];
+        let mut len = usize::from(!self.nodes.is_empty());
+        while len > 0 {
+            len -= 1;
+            let at = stack[len] as usize;
+            let node = &self.nodes[at];
+            if boxes.span(&node.bounds, tmin, f64::INFINITY).is_none() {
+                continue;
+            }
+            if node.len > 0 {
+                let (start, end) = (node.start as usize, node.start as usize + node.len as usize);
+                self.order[start..end].iter().for_each(|&k| f(k as usize));
+            } else {
+                stack[len] = node.right;
+                stack[len + 1] = at as u32 + 1;
+                len += 2;
+            }
+        }
+    }
+}
+
+/// The node over `order[start..end]` and those under it, into `nodes`.
+fn build(shape: &BlobShape, order: &mut [u8], start: usize, end: usize, nodes: &mut Vec<BlobNode>) {
+    let c = |k: u8| &shape.components[k as usize];
+    let bounds = order[start..end].iter().fold(Aabb::EMPTY, |b, &k| {
+        let r = DVec3::splat(c(k).radius);
+        b.union(&Aabb {
+            lo: c(k).centre - r,
+            hi: c(k).centre + r,
+        })
+    });
+    let at = nodes.len();
+    nodes.push(BlobNode {
+        bounds,
+        right: 0,
+        start: start as u8,
+        len: (end - start) as u8,
+    });
+    if end - start <= LEAF {
+        return;
+    }
+    let centres = order[start..end]
+        .iter()
+        .fold(Aabb::EMPTY, |b, &k| b.union(&Aabb { lo: c(k).centre, hi: c(k).centre }));
+    let extent = centres.hi - centres.lo;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    order[start..end].sort_unstable_by(|&a, &b| c(a).centre[axis].total_cmp(&c(b).centre[axis]));
+    let mid = (start + end) / 2;
+    nodes[at].len = 0;
+    build(shape, order, start, mid, nodes);
+    nodes[at].right = nodes.len() as u32;
+    build(shape, order, mid, end, nodes);
 }
 
 /// The least root in [−δ, 1 + δ] (δ the solvers' slack) of the quartic
@@ -263,12 +483,22 @@ fn first_root(poly: &[f64; 7], opts: &Options, searched: &mut u64) -> Option<f64
     best
 }
 
-/// The unit outward normal at `p` on the surface: −∇F, normalised; where
-/// the gradient vanishes (a point of the surface where it has no tangent
-/// plane, as where two equal components just touch), the ray's reverse.
-fn outward(shape: &BlobShape, p: DVec3, d: DVec3) -> DVec3 {
-    let (_, grad) = field(shape, p);
-    let n = -grad;
+/// The unit outward normal at `p` on the surface: −∇F over the components
+/// of `chords` (those the ray meets, which hold every one whose sphere
+/// holds `p`), normalised; where the gradient vanishes (a point of the
+/// surface where it has no tangent plane, as where two equal components
+/// just touch), the ray's reverse.
+fn outward(shape: &BlobShape, chords: &[Chord], p: DVec3, d: DVec3) -> DVec3 {
+    let mut n = DVec3::ZERO;
+    for ch in chords {
+        let c = &shape.components[ch.k as usize];
+        let w = p - c.centre;
+        let r2 = c.radius * c.radius;
+        let q = 1.0 - w.length_squared() / r2;
+        if q > 0.0 {
+            n += 4.0 * c.strength * q / r2 * w;
+        }
+    }
     let len = n.length();
     if len > 0.0 && len.is_finite() {
         n / len
@@ -307,22 +537,22 @@ mod tests {
         let r = 2.0 * (1.0f64 - 0.5).sqrt();
         for solver in [Solver::Laguerre, Solver::Robust] {
             let ray = Ray::new(DVec3::new(0.0, -10.0, 0.0), DVec3::Y);
-            let h = intersect_blob(&b, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).unwrap();
+            let h = intersect_blob(&b, None, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).unwrap();
             assert!((h.t - (10.0 - r)).abs() < 1e-9, "{solver:?}: {}", h.t);
             assert!((h.normal - DVec3::NEG_Y).length() < 1e-9);
             // From inside: the far side, the normal outward.
             let ray = Ray::new(DVec3::ZERO, DVec3::Z);
-            let h = intersect_blob(&b, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).unwrap();
+            let h = intersect_blob(&b, None, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).unwrap();
             assert!((h.t - r).abs() < 1e-9, "{solver:?}: {}", h.t);
             assert!((h.normal - DVec3::Z).length() < 1e-9);
             // Passing outside the surface but through the sphere: a miss.
             let ray = Ray::new(DVec3::new(1.6, -10.0, 0.0), DVec3::Y);
-            assert!(intersect_blob(&b, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).is_none());
+            assert!(intersect_blob(&b, None, blob_reach(&b), &ray, 1e-9, &opts(solver), &mut 0).is_none());
         }
         // A component weaker than the threshold has no surface.
         let weak = one(2.0, 0.2, 0.25);
         let ray = Ray::new(DVec3::new(0.0, -10.0, 0.0), DVec3::Y);
-        assert!(intersect_blob(&weak, 2.0, &ray, 1e-9, &opts(Solver::Robust), &mut 0).is_none());
+        assert!(intersect_blob(&weak, None, 2.0, &ray, 1e-9, &opts(Solver::Robust), &mut 0).is_none());
     }
 
     /// Two components: the surface between them bridges (the field is the
@@ -342,7 +572,7 @@ mod tests {
         // at x = 0, the two 0.82 > T: a hit.
         let down = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::NEG_Z);
         for solver in [Solver::Laguerre, Solver::Robust] {
-            let h = intersect_blob(&pair, blob_reach(&pair), &down, 1e-9, &opts(solver), &mut 0).unwrap();
+            let h = intersect_blob(&pair, None, blob_reach(&pair), &down, 1e-9, &opts(solver), &mut 0).unwrap();
             let (f, _) = field(&pair, h.point);
             assert!(f.abs() < 1e-9, "{solver:?}: {f}");
             assert!((h.normal - DVec3::Z).length() < 1e-9, "{}", h.normal);
@@ -351,7 +581,7 @@ mod tests {
             threshold: 0.5,
             components: vec![c(-0.6, 1.0), c(0.6, 1.0), c(0.0, -2.0)],
         };
-        assert!(intersect_blob(&carved, 2.0, &down, 1e-9, &opts(Solver::Robust), &mut 0).is_none());
+        assert!(intersect_blob(&carved, None, 2.0, &down, 1e-9, &opts(Solver::Robust), &mut 0).is_none());
     }
 
     /// The shadow question answers as the nearest hit before `tmax`.
@@ -360,10 +590,44 @@ mod tests {
         let b = one(2.0, 1.0, 0.25);
         let ray = Ray::new(DVec3::new(0.0, -10.0, 0.0), DVec3::Y);
         let o = opts(Solver::Robust);
-        let at = intersect_blob(&b, 2.0, &ray, 1e-9, &o, &mut 0).unwrap().t;
+        let at = intersect_blob(&b, None, 2.0, &ray, 1e-9, &o, &mut 0).unwrap().t;
         for tmax in [at - 1e-6, at + 1e-6, 5.0, 20.0, f64::INFINITY] {
-            assert_eq!(blob_blocks(&b, 2.0, &ray, 1e-9, tmax, &o, &mut 0), at < tmax, "{tmax}");
+            assert_eq!(blob_blocks(&b, None, 2.0, &ray, 1e-9, tmax, &o, &mut 0), at < tmax, "{tmax}");
         }
+    }
+
+    /// The hierarchy of components finds the hits the loop over all of
+    /// them finds, to the bit: a blob of 60 components on a ring, one in
+    /// four of negative strength, rays from all around.
+    #[test]
+    fn the_hierarchy_meets_what_the_loop_meets() {
+        let b = BlobShape {
+            threshold: 0.4,
+            components: (0..60)
+                .map(|k| {
+                    let a = k as f64 * std::f64::consts::TAU / 60.0;
+                    BlobComponent {
+                        centre: DVec3::new(2.0 * a.cos(), 2.0 * a.sin(), 0.3 * (3.0 * a).sin()),
+                        radius: 0.5 + 0.1 * (k % 3) as f64,
+                        strength: if k % 4 == 3 { -0.5 } else { 1.0 },
+                    }
+                })
+                .collect(),
+        };
+        let cache = BlobCache::new(&b);
+        let o = opts(Solver::Robust);
+        let mut hits = 0;
+        for k in 0..3000u64 {
+            let r = |j: u64| 2.0 * crate::hash::hashed_uniform(4 * k + j) - 1.0;
+            let from = DVec3::new(r(0), r(1), r(2)).normalize() * 6.0;
+            let to = DVec3::new(2.5 * r(3), 2.5 * r(1) * r(2), 0.5 * r(0));
+            let ray = Ray::new(from, (to - from).normalize());
+            let loose = intersect_blob(&b, None, blob_reach(&b), &ray, 1e-9, &o, &mut 0);
+            let kept = intersect_blob(&b, Some(&cache), blob_reach(&b), &ray, 1e-9, &o, &mut 0);
+            assert_eq!(loose, kept, "ray {k}");
+            hits += kept.is_some() as usize;
+        }
+        assert!(hits > 500, "{hits}");
     }
 
     #[test]

@@ -23,12 +23,76 @@ pub mod patch;
 mod posed;
 pub mod sweep;
 
-pub use blob::{blob_box, blob_reach};
-pub use patch::{patch_box, patch_reach};
+pub use blob::{blob_box, blob_reach, BlobCache};
+pub use patch::{patch_box, patch_reach, PatchCache};
 pub use posed::Posed;
-pub use sweep::{prepare_caches, SweepCache};
+pub use sweep::SweepCache;
 
+use std::sync::Arc;
+
+use crate::scene::Scene;
 use crate::types::{BoundingBox, DVec3, LocalHit, ObjectRecord, PrimitiveClass, Ray, Shape};
+
+/// What is prepared for an object's own shape before any ray, owned by
+/// the render: a sweep's ([`SweepCache`]), a blob's hierarchy of
+/// components ([`BlobCache`]), a patch's pieces ([`PatchCache`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShapeCache {
+    Sweep(SweepCache),
+    Blob(BlobCache),
+    Patch(PatchCache),
+}
+
+impl ShapeCache {
+    /// A sweep's cache.
+    pub fn sweep(&self) -> Option<&SweepCache> {
+        match self {
+            ShapeCache::Sweep(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// A blob's hierarchy.
+    pub fn blob(&self) -> Option<&BlobCache> {
+        match self {
+            ShapeCache::Blob(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// A patch's pieces.
+    pub fn patch(&self) -> Option<&PatchCache> {
+        match self {
+            ShapeCache::Patch(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The cache of a blob or a patch: made for one at rest once, for an
+    /// in-between at each instant (a sweep's contour of the moment takes
+    /// none).
+    pub fn of_moment(shape: &Shape) -> Option<ShapeCache> {
+        match shape {
+            Shape::Blob(b) => Some(ShapeCache::Blob(BlobCache::new(b))),
+            Shape::Patch(p) => Some(ShapeCache::Patch(PatchCache::new(p))),
+            _ => None,
+        }
+    }
+}
+
+/// The caches of `scene.objects[i]`, in their order: the sweeps' (made
+/// after their boxes are final, `prepare_sweeps` then `widen_tbox`;
+/// objects of one contour, box and class share one), the blobs' and
+/// patches' ([`ShapeCache::of_moment`]); `None` for the other objects.
+pub fn prepare_caches(scene: &Scene) -> Vec<Option<Arc<ShapeCache>>> {
+    let sweeps = sweep::prepare_caches(scene);
+    scene
+        .objects
+        .iter()
+        .zip(sweeps)
+        .map(|(obj, sweep)| sweep.or_else(|| ShapeCache::of_moment(&obj.shape).map(Arc::new)))
+        .collect()
+}
 
 /// A ray taken near an object: the same line from another origin,
 /// `ray.origin = original.at(shift)`, and `tmin` measured from there.

@@ -3,7 +3,8 @@
 
 use super::blob::{blob_blocks, intersect_blob};
 use super::patch::{intersect_patch, patch_blocks};
-use super::sweep::{Sweep, SweepCache};
+use super::sweep::Sweep;
+use super::ShapeCache;
 use super::{
     block_blocks, bounding_sphere_hit, intersect_block, intersect_cylinder, intersect_prism, intersect_sphere,
 };
@@ -12,14 +13,15 @@ use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SweepShape};
 
 /// An object as a ray meets it at one instant: its record, the shape it
 /// has then (its own, or its contour of the moment when it deforms), the
-/// cache made with that shape ([`SweepCache`]; `None` for a contour of the
-/// moment, whose caps are then solved and whose bounds are made per ray)
-/// and where it stands then.
+/// cache made with that shape ([`ShapeCache`]; `None` for a contour of the
+/// moment, whose caps are then solved and whose bounds are made per ray;
+/// a patch of the moment's pieces made at the instant) and where it
+/// stands then.
 #[derive(Clone, Copy, Debug)]
 pub struct Posed<'a> {
     pub obj: &'a ObjectRecord,
     pub shape: &'a Shape,
-    pub cache: Option<&'a SweepCache>,
+    pub cache: Option<&'a ShapeCache>,
     pub pose: &'a Pose,
 }
 
@@ -46,8 +48,8 @@ impl Posed<'_> {
             } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
             Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
             Shape::Sweep(sw) => self.sweep(sw).intersect(&local, tmin, opts, searched),
-            Shape::Blob(b) => intersect_blob(b, self.obj.radius, &local, tmin, opts, searched),
-            Shape::Patch(p) => intersect_patch(p, self.obj.radius, &local, tmin, searched),
+            Shape::Blob(b) => intersect_blob(b, self.blob_cache(), self.obj.radius, &local, tmin, opts, searched),
+            Shape::Patch(p) => intersect_patch(p, self.patch_cache(), self.obj.radius, &local, tmin, searched),
         }
     }
 
@@ -66,16 +68,12 @@ impl Posed<'_> {
             Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
             Shape::Blob(b) => {
                 let local = ray.transformed(&self.pose.inverse);
-                blob_blocks(b, self.obj.radius, &local, tmin, tmax, opts, searched)
+                blob_blocks(b, self.blob_cache(), self.obj.radius, &local, tmin, tmax, opts, searched)
             }
-            Shape::Patch(p) => patch_blocks(
-                p,
-                self.obj.radius,
-                &ray.transformed(&self.pose.inverse),
-                tmin,
-                tmax,
-                searched,
-            ),
+            Shape::Patch(p) => {
+                let local = ray.transformed(&self.pose.inverse);
+                patch_blocks(p, self.patch_cache(), self.obj.radius, &local, tmin, tmax, searched)
+            }
             _ => self.intersect(ray, tmin, opts, searched).is_some_and(|h| h.t < tmax),
         }
     }
@@ -86,7 +84,19 @@ impl Posed<'_> {
         Sweep {
             class: self.obj.class,
             shape: sw,
-            cache: self.cache,
+            cache: self.cache.and_then(ShapeCache::sweep),
         }
+    }
+
+    /// The blob's hierarchy, when prepared.
+    #[inline]
+    fn blob_cache(&self) -> Option<&super::BlobCache> {
+        self.cache.and_then(ShapeCache::blob)
+    }
+
+    /// The patch's pieces, when prepared.
+    #[inline]
+    fn patch_cache(&self) -> Option<&super::PatchCache> {
+        self.cache.and_then(ShapeCache::patch)
     }
 }
