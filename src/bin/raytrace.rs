@@ -108,7 +108,6 @@ struct Cli {
 mod show;
 
 fn main() -> ExitCode {
-    struct D; impl Drop for D { fn drop(&mut self) { eprintln!("DBG {:?}", raytrace::shapes::patch::DBG); } } let _d = D;
     let cli = Cli::parse();
     exit_code("raytrace", run(&cli))
 }

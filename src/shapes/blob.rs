@@ -32,8 +32,8 @@
 
 use super::sweep::{polish, solve, JOINT_SLACK, RESIDUAL_TOL};
 use super::Near;
-use crate::options::Options;
 use crate::accel::{Aabb, BoxRay};
+use crate::options::Options;
 use crate::types::{BlobComponent, BlobShape, BoundingBox, DVec3, LocalHit, Ray, MAXCOMPONENTS};
 
 /// A component adds to the field only where it has a sphere and a
@@ -267,7 +267,11 @@ fn search<const N: usize, const E: usize>(
         poly[0] = -shape.threshold;
         for c in on() {
             let e = a - c.peak_t;
-            let (g, be, al) = (c.peak_q - c.curve * e * e, -2.0 * c.curve * e * len, -c.curve * len * len);
+            let (g, be, al) = (
+                c.peak_q - c.curve * e * e,
+                -2.0 * c.curve * e * len,
+                -c.curve * len * len,
+            );
             let st = c.strength;
             poly[0] += st * g * g;
             poly[1] += st * 2.0 * g * be;
@@ -445,9 +449,12 @@ fn build(shape: &BlobShape, order: &mut [u8], start: usize, end: usize, nodes: &
     if end - start <= LEAF {
         return;
     }
-    let centres = order[start..end]
-        .iter()
-        .fold(Aabb::EMPTY, |b, &k| b.union(&Aabb { lo: c(k).centre, hi: c(k).centre }));
+    let centres = order[start..end].iter().fold(Aabb::EMPTY, |b, &k| {
+        b.union(&Aabb {
+            lo: c(k).centre,
+            hi: c(k).centre,
+        })
+    });
     let extent = centres.hi - centres.lo;
     let axis = if extent.x >= extent.y && extent.x >= extent.z {
         0
@@ -592,7 +599,11 @@ mod tests {
         let o = opts(Solver::Robust);
         let at = intersect_blob(&b, None, 2.0, &ray, 1e-9, &o, &mut 0).unwrap().t;
         for tmax in [at - 1e-6, at + 1e-6, 5.0, 20.0, f64::INFINITY] {
-            assert_eq!(blob_blocks(&b, None, 2.0, &ray, 1e-9, tmax, &o, &mut 0), at < tmax, "{tmax}");
+            assert_eq!(
+                blob_blocks(&b, None, 2.0, &ray, 1e-9, tmax, &o, &mut 0),
+                at < tmax,
+                "{tmax}"
+            );
         }
     }
 

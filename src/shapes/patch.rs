@@ -86,7 +86,12 @@ fn bernstein3(x: f64) -> ([f64; 4], [f64; 4]) {
     let y = 1.0 - x;
     (
         [y * y * y, 3.0 * x * y * y, 3.0 * x * x * y, x * x * x],
-        [-3.0 * y * y, 3.0 * y * (y - 2.0 * x), 3.0 * x * (2.0 * y - x), 3.0 * x * x],
+        [
+            -3.0 * y * y,
+            3.0 * y * (y - 2.0 * x),
+            3.0 * x * (2.0 * y - x),
+            3.0 * x * x,
+        ],
     )
 }
 
@@ -592,7 +597,11 @@ impl Search<'_> {
                 Dir::V
             };
             let (h0, h1) = (part.cut(dir, 0.0, 0.5), part.cut(dir, 0.5, 1.0));
-            let (near, far) = if h1.t_range().0 < h0.t_range().0 { (h1, h0) } else { (h0, h1) };
+            let (near, far) = if h1.t_range().0 < h0.t_range().0 {
+                (h1, h0)
+            } else {
+                (h0, h1)
+            };
             if self.clip(near, net, piece, halvings + 1) {
                 return true;
             }
@@ -683,9 +692,9 @@ impl Part {
     /// The least and greatest ray parameter of the net, which hold the
     /// part's (convex hull).
     fn t_range(&self) -> (f64, f64) {
-        self.net
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)))
+        self.net.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.z), hi.max(p.z))
+        })
     }
 
     /// The part of the part's own range in `dir` where a zero of D can
@@ -855,10 +864,11 @@ mod tests {
         for (a, b) in [(0.0, 1.0), (0.2, 0.7), (0.0, 0.4), (0.6, 1.0), (0.5, 0.5)] {
             let q = part(p, a, b);
             for x in [0.0, 0.3, 1.0] {
-                assert!((at(&q, x) - at(&p, a + x * (b - a))).length() < 1e-14, "[{a}, {b}] at {x}");
+                assert!(
+                    (at(&q, x) - at(&p, a + x * (b - a))).length() < 1e-14,
+                    "[{a}, {b}] at {x}"
+                );
             }
         }
     }
 }
-
-pub static DBG: [std::sync::atomic::AtomicUsize; 4] = [const { std::sync::atomic::AtomicUsize::new(0) }; 4];

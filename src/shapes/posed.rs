@@ -68,7 +68,16 @@ impl Posed<'_> {
             Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
             Shape::Blob(b) => {
                 let local = ray.transformed(&self.pose.inverse);
-                blob_blocks(b, self.blob_cache(), self.obj.radius, &local, tmin, tmax, opts, searched)
+                blob_blocks(
+                    b,
+                    self.blob_cache(),
+                    self.obj.radius,
+                    &local,
+                    tmin,
+                    tmax,
+                    opts,
+                    searched,
+                )
             }
             Shape::Patch(p) => {
                 let local = ray.transformed(&self.pose.inverse);

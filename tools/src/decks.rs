@@ -38,7 +38,9 @@ pub const SHAPE_DECKS: &[&str] = &["blob", "patches", "blob_patches"];
 
 /// The path of a deck of tools/decks by name.
 pub fn tools_deck(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("decks").join(format!("{name}.deck"))
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("decks")
+        .join(format!("{name}.deck"))
 }
 
 /// The folder of the shipped decks, legacy_pascal/decks.

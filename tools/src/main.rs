@@ -401,7 +401,10 @@ fn run(command: Command) -> Result<(), Failure> {
                 return tools::vs_povray::depth_of_field(&set, &samplers).map_err(Failure::other);
             }
             let decks: Vec<PathBuf> = if shapes {
-                tools::decks::SHAPE_DECKS.iter().map(|d| tools::decks::tools_deck(d)).collect()
+                tools::decks::SHAPE_DECKS
+                    .iter()
+                    .map(|d| tools::decks::tools_deck(d))
+                    .collect()
             } else {
                 decks.iter().map(PathBuf::from).collect()
             };
