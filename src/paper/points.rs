@@ -527,3 +527,215 @@ impl KeyChain<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::{blob_box, patch_box};
+    use crate::types::{DMat4, PatchShape};
+
+    fn object(name: &str, at: DVec3, shape: Shape) -> ObjectRecord {
+        ObjectRecord {
+            name: name.into(),
+            class: match shape {
+                Shape::Blob(_) => PrimitiveClass::Blob,
+                _ => PrimitiveClass::Patch,
+            },
+            surface: 0,
+            transfm: DMat4::from_translation(at),
+            inverse: DMat4::from_translation(-at),
+            sphereo: at,
+            angle: DVec3::ZERO,
+            radius: 3.0,
+            shape,
+        }
+    }
+
+    fn blob(components: &[(f64, f64, f64, f64, f64)], threshold: f64) -> Shape {
+        Shape::Blob(BlobShape {
+            threshold,
+            components: components
+                .iter()
+                .map(|&(x, y, z, radius, strength)| BlobComponent {
+                    centre: DVec3::new(x, y, z),
+                    radius,
+                    strength,
+                })
+                .collect(),
+        })
+    }
+
+    fn patch(bend: f64) -> Shape {
+        Shape::Patch(Box::new(PatchShape {
+            points: std::array::from_fn(|k| {
+                let (r, c) = ((k / 4) as f64, (k % 4) as f64);
+                DVec3::new(
+                    c - 1.5,
+                    r - 1.5,
+                    bend * (1.5 - (c - 1.5).abs()) * (1.5 - (r - 1.5).abs()),
+                )
+            }),
+        }))
+    }
+
+    /// FIRST's two components meet LAST's four: FIRST gains LAST's third
+    /// and fourth at strength 0, and the in-between is FIRST so padded at
+    /// t = 0 and LAST at t = 1 (`do34`); the threshold goes linearly.
+    #[test]
+    fn the_fewer_components_fade_in() {
+        let a = object(
+            "a",
+            DVec3::ZERO,
+            blob(&[(0.0, 0.0, 0.0, 1.0, 1.0), (1.0, 0.0, 0.0, 1.0, 1.0)], 0.5),
+        );
+        let b = object(
+            "b",
+            DVec3::X,
+            blob(
+                &[
+                    (0.0, 0.5, 0.0, 0.8, 1.0),
+                    (1.0, 0.5, 0.0, 0.8, 2.0),
+                    (2.0, 0.0, 1.0, 0.7, 1.5),
+                    (0.0, 0.0, 2.0, 0.6, -1.0),
+                ],
+                0.7,
+            ),
+        );
+        let pair = PointPair::new(1, &a, &b, Fidelity::Thesis).unwrap();
+        assert_eq!((pair.count, pair.mid), (4, 2));
+        assert_eq!(pair.first[2], [2.0, 0.0, 1.0, 0.7, 0.0]);
+        assert_eq!(pair.first[3], [0.0, 0.0, 2.0, 0.6, 0.0]);
+        let mut out = pair.scratch();
+        pair.inbetween(0.0, &mut out);
+        let Shape::Blob(at0) = &out else { panic!() };
+        assert_eq!(at0.components.len(), 4);
+        assert_eq!(at0.components[3].strength, 0.0);
+        assert_eq!(at0.threshold, 0.5);
+        pair.inbetween(1.0, &mut out);
+        assert!(out == b.shape, "LAST at t = 1");
+        pair.inbetween(0.5, &mut out);
+        let Shape::Blob(half) = &out else { panic!() };
+        assert!((half.threshold - 0.6).abs() < 1e-15);
+        // The same the other way: LAST the fewer.
+        let back = PointPair::new(1, &b, &a, Fidelity::Thesis).unwrap();
+        assert_eq!(back.last[2], [2.0, 0.0, 1.0, 0.7, 0.0]);
+    }
+
+    /// Key shapes that are one shape give every point a path of tangent 0
+    /// (`getpath` from reference lines of length 0): each curve is its
+    /// point, a, b, c exactly 0, wherever the two stand.
+    #[test]
+    fn one_shape_twice_stands_still() {
+        for shape in [
+            blob(
+                &[
+                    (0.0, 0.0, 0.0, 1.0, 1.0),
+                    (1.0, 2.0, 0.0, 0.5, -1.0),
+                    (2.0, 1.0, 1.0, 0.7, 2.0),
+                ],
+                0.4,
+            ),
+            patch(1.0),
+        ] {
+            let a = object("a", DVec3::ZERO, shape.clone());
+            let b = object("b", DVec3::new(3.0, -1.0, 2.0), shape);
+            let pair = PointPair::new(1, &a, &b, Fidelity::Thesis).unwrap();
+            for curve in pair.curves.iter().flatten() {
+                assert_eq!((curve.a, curve.b, curve.c), (0.0, 0.0, 0.0));
+            }
+            let mut out = pair.scratch();
+            pair.inbetween(0.3, &mut out);
+            assert!(out == a.shape);
+        }
+    }
+
+    /// The first point's path is its own straight line (the reference of
+    /// §3.2.3 (b), D56): Hermite with both tangents B − A is A + (B − A)t;
+    /// the others take `getpath`'s tangents and end at their key places.
+    #[test]
+    fn the_reference_point_goes_straight_and_all_reach_last() {
+        let a = object("a", DVec3::ZERO, patch(0.0));
+        let b = object("b", DVec3::ZERO, patch(2.0));
+        let pair = PointPair::new(1, &a, &b, Fidelity::Thesis).unwrap();
+        for k in 0..3 {
+            for t in [0.25, 0.5, 0.8] {
+                let (p, q) = (pair.first[0][k], pair.last[0][k]);
+                assert!((pair.curves[k][0].value(t) - (p + (q - p) * t)).abs() < 1e-14);
+            }
+            for i in 0..16 {
+                assert!((pair.curves[k][i].value(1.0) - pair.last[i][k]).abs() < 1e-14);
+                assert_eq!(pair.curves[k][i].value(0.0), pair.first[i][k]);
+            }
+        }
+        // An inner point rises on the path of the reference points' tangents
+        // (0 here: the corners stay), not a straight line: (3t² − 2t³)·Δ.
+        let z = pair.curves[2][5].value(0.25);
+        assert!(
+            (z - (3.0 * 0.0625 - 2.0 * 0.015625) * pair.last[5][2]).abs() < 1e-14,
+            "{z}"
+        );
+    }
+
+    /// The bounds over an interval of the shutter hold the in-between at
+    /// every time in it (the local box its components' spheres or control
+    /// points; in the world, the surface's points carried by the pose), and
+    /// the bounds of a part of the shutter lie within the whole's: a chain
+    /// of three blobs and one of three patches, turning and not.
+    #[test]
+    fn the_bounds_hold_the_inbetween_over_each_interval() {
+        let blobs = [
+            blob(&[(0.0, 0.0, 0.0, 1.0, 1.0), (1.0, 0.0, 0.0, 1.0, 1.0)], 0.5),
+            blob(
+                &[
+                    (0.0, 1.0, 0.0, 0.8, 1.0),
+                    (2.0, 0.0, 0.5, 1.2, 1.0),
+                    (0.0, 0.0, 2.0, 0.5, 1.0),
+                ],
+                0.5,
+            ),
+            blob(&[(-1.0, 0.0, 0.0, 1.0, 2.0)], 0.9),
+        ];
+        let patches = [patch(0.0), patch(3.0), patch(-1.0)];
+        for (shapes, turn) in [(blobs, 0.0), (patches.clone(), 0.0), (patches, 40.0)] {
+            let at = [DVec3::ZERO, DVec3::new(2.0, 1.0, -1.0), DVec3::new(-3.0, 0.5, 2.0)];
+            let mut objects: Vec<ObjectRecord> =
+                shapes.iter().zip(at).map(|(s, p)| object("k", p, s.clone())).collect();
+            objects[2].angle = DVec3::new(turn, 0.0, 0.0);
+            let chain = PointChain::new(&objects[0], &objects[1..], Fidelity::Thesis).unwrap();
+            let whole = chain.world_bounds(0.0, 1.0).unwrap();
+            for (t0, t1) in [(0.0, 1.0), (0.0, 0.3), (0.2, 0.7), (0.5, 0.5), (0.9, 1.0)] {
+                let local = chain.local_bounds(t0, t1).unwrap();
+                let world = chain.world_bounds(t0, t1).unwrap();
+                let inside = |b: &BoundingBox, p: DVec3| b.widened(1e-9).holds(p);
+                for c in [
+                    DVec3::new(world.xmin, world.ymin, world.zmin),
+                    DVec3::new(world.xmax, world.ymax, world.zmax),
+                ] {
+                    assert!(inside(&whole, c), "[{t0}, {t1}] within the whole shutter's");
+                }
+                let mut out = chain.scratch();
+                for j in 0..=20 {
+                    let t = t0 + (t1 - t0) * j as f64 / 20.0;
+                    chain.inbetween(t, &mut out);
+                    let pose = chain.pose(t);
+                    let b = match &out {
+                        Shape::Blob(b) => blob_box(b).unwrap(),
+                        Shape::Patch(p) => patch_box(p),
+                        _ => unreachable!(),
+                    };
+                    for c in 0..8 {
+                        let p = DVec3::new(
+                            if c & 1 == 0 { b.xmin } else { b.xmax },
+                            if c & 2 == 0 { b.ymin } else { b.ymax },
+                            if c & 4 == 0 { b.zmin } else { b.zmax },
+                        );
+                        assert!(inside(&local, p), "local at {t}");
+                        // The box's corners are not the surface, but a box
+                        // turned with the pose lies within the turned hull.
+                        assert!(inside(&world, pose.transfm.transform_point3(p)), "world at {t}");
+                    }
+                }
+            }
+        }
+    }
+}

@@ -180,7 +180,9 @@ fn query(
     }
     let near = Near::of(ray, tmin, DVec3::ZERO, reach * reach);
     let (o, d, tmin) = (near.ray.origin, near.ray.dir, near.tmin);
-    let limit = tmax - near.shift;
+    // An interval from t on holds no hit before `tmax` once t, the shift
+    // added back, is past it (as the caller will compare the hit).
+    let limit = (tmax, near.shift);
     // Most rays cross few components: their arrays are made that small,
     // and made again full size for a ray that crosses more.
     let found = match search::<SOME, { 2 * SOME }>(shape, cache, o, d, tmin, limit, opts, searched) {
@@ -207,7 +209,7 @@ fn search<const N: usize, const E: usize>(
     o: DVec3,
     d: DVec3,
     tmin: f64,
-    limit: f64,
+    limit: (f64, f64),
     opts: &Options,
     searched: &mut u64,
 ) -> Result<Option<LocalHit>, Crowded> {
@@ -243,7 +245,7 @@ fn search<const N: usize, const E: usize>(
             active[i] = active[live];
         }
         let (a, b) = (end.t.max(tmin), w[1].t);
-        if a >= limit {
+        if a + limit.1 >= limit.0 {
             break;
         }
         if !(b > a) {

@@ -287,13 +287,16 @@ impl PatchCache {
     }
 }
 
-/// What a query asks, in the frame of the ray near the patch.
+/// What a query asks, in the frame of the ray near the patch (whose t is
+/// the caller's less `shift`).
 #[derive(Clone, Copy)]
 struct Ask {
     tmin: f64,
-    /// No hit at or past it matters.
-    limit: f64,
-    /// Stop at the first hit before `limit`.
+    /// The caller's `tmax`: no hit whose t (the caller's) is at or past it
+    /// matters.
+    tmax: f64,
+    shift: f64,
+    /// Stop at the first hit before `tmax`.
     first: bool,
 }
 
@@ -404,7 +407,8 @@ fn query(
         cache,
         ask: Ask {
             tmin: near.tmin,
-            limit: tmax - near.shift,
+            tmax,
+            shift: near.shift,
             first,
         },
         best: None,
@@ -418,9 +422,19 @@ fn query(
 }
 
 impl Search<'_> {
-    /// No hit at or beyond this t matters.
-    fn bound(&self) -> f64 {
-        self.best.map_or(self.ask.limit, |b| b.0.min(self.ask.limit))
+    /// Can no hit at t ≥ `t` (near frame) matter? Beyond the nearest hit
+    /// so far, or at or past the caller's `tmax`, compared as the caller
+    /// compares the hit it gets back (rounding is monotone: a t past the
+    /// limit stays past it once `shift` is added back).
+    fn past(&self, t: f64) -> bool {
+        self.best.is_some_and(|b| t >= b.0) || t + self.ask.shift >= self.ask.tmax
+    }
+
+    /// The far end of the span the boxes are tested over: the nearest hit
+    /// so far (the caller's `tmax` is asked of each entry by
+    /// [`Search::past`]).
+    fn reach(&self) -> f64 {
+        self.best.map_or(f64::INFINITY, |b| b.0)
     }
 
     /// The quadtree's boxes the ray meets, nearest first, and the pieces
@@ -430,7 +444,7 @@ impl Search<'_> {
         let boxes = BoxRay::new(ray);
         let frame = Frame::new(ray);
         let nodes = &self.cache.nodes;
-        let Some((enter, _)) = boxes.span(&nodes[0].bounds, self.ask.tmin, self.bound()) else {
+        let Some((enter, _)) = boxes.span(&nodes[0].bounds, self.ask.tmin, self.reach()) else {
             return;
         };
         // At most three children a level wait while the nearest is taken.
@@ -440,7 +454,7 @@ impl Search<'_> {
         while len > 0 {
             len -= 1;
             let (at, enter) = stack[len];
-            if enter >= self.bound() {
+            if self.past(enter) {
                 continue;
             }
             let node = &nodes[at as usize];
@@ -454,7 +468,7 @@ impl Search<'_> {
             let mut met = 0;
             for k in 0..4 {
                 let child = node.first + k;
-                if let Some((e, _)) = boxes.span(&nodes[child as usize].bounds, self.ask.tmin, self.bound()) {
+                if let Some((e, _)) = boxes.span(&nodes[child as usize].bounds, self.ask.tmin, self.reach()) {
                     kids[met] = (child, e);
                     met += 1;
                 }
@@ -481,14 +495,14 @@ impl Search<'_> {
             t_lo = t_lo.min(q.z);
             t_hi = t_hi.max(q.z);
         }
-        if t_hi <= self.ask.tmin || t_lo >= self.bound() {
+        if t_hi <= self.ask.tmin || self.past(t_lo) {
             return false;
         }
         *searched += 1;
         if let Some(root) = self.certified(&net, piece) {
             // The piece's one root: nearer than the nearest so far, or
             // nothing in this piece is.
-            if let Some(hit) = root.filter(|h| h.0 < self.bound()) {
+            if let Some(hit) = root.filter(|h| !self.past(h.0)) {
                 self.best = Some(hit);
                 return self.ask.first;
             }
@@ -568,12 +582,12 @@ impl Search<'_> {
                 return true;
             }
             let (t_lo, t_hi) = part.t_range();
-            if t_hi <= self.ask.tmin || t_lo >= self.bound() {
+            if t_hi <= self.ask.tmin || self.past(t_lo) {
                 return false;
             }
             if part.u.1 - part.u.0 < CONVERGED && part.v.1 - part.v.0 < CONVERGED {
                 if let Some(hit) = self.finish(net, piece, &part) {
-                    if hit.0 < self.bound() {
+                    if !self.past(hit.0) {
                         self.best = Some(hit);
                         return self.ask.first;
                     }
