@@ -165,7 +165,7 @@ pub fn blob_blocks(
 /// strength is active, or on which those cannot reach T even at their
 /// most, is passed without a polynomial.
 #[allow(clippy::too_many_arguments)]
-fn query(
+pub(super) fn query(
     shape: &BlobShape,
     cache: Option<&BlobCache>,
     reach: f64,

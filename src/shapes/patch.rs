@@ -381,7 +381,7 @@ pub fn patch_blocks(
 }
 
 #[allow(clippy::too_many_arguments)]
-fn query(
+pub(super) fn query(
     shape: &PatchShape,
     cache: Option<&PatchCache>,
     reach: f64,

@@ -1,8 +1,8 @@
 //! An object as a ray meets it at one instant: the dispatch from the
 //! object's shape to its intersection.
 
-use super::blob::{blob_blocks, intersect_blob};
-use super::patch::{intersect_patch, patch_blocks};
+use super::blob::query as blob_query;
+use super::patch::query as patch_query;
 use super::sweep::Sweep;
 use super::ShapeCache;
 use super::{
@@ -48,8 +48,7 @@ impl Posed<'_> {
             } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
             Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
             Shape::Sweep(sw) => self.sweep(sw).intersect(&local, tmin, opts, searched),
-            Shape::Blob(b) => intersect_blob(b, self.blob_cache(), self.obj.radius, &local, tmin, opts, searched),
-            Shape::Patch(p) => intersect_patch(p, self.patch_cache(), self.obj.radius, &local, tmin, searched),
+            Shape::Blob(_) | Shape::Patch(_) => self.of_points(&local, tmin, f64::INFINITY, false, opts, searched),
         }
     }
 
@@ -66,22 +65,10 @@ impl Posed<'_> {
                 self.sweep(sw).blocks(&local, tmin, tmax, opts, searched)
             }
             Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
-            Shape::Blob(b) => {
+            Shape::Blob(_) | Shape::Patch(_) => {
                 let local = ray.transformed(&self.pose.inverse);
-                blob_blocks(
-                    b,
-                    self.blob_cache(),
-                    self.obj.radius,
-                    &local,
-                    tmin,
-                    tmax,
-                    opts,
-                    searched,
-                )
-            }
-            Shape::Patch(p) => {
-                let local = ray.transformed(&self.pose.inverse);
-                patch_blocks(p, self.patch_cache(), self.obj.radius, &local, tmin, tmax, searched)
+                self.of_points(&local, tmin, tmax, true, opts, searched)
+                    .is_some_and(|h| h.t < tmax)
             }
             _ => self.intersect(ray, tmin, opts, searched).is_some_and(|h| h.t < tmax),
         }
@@ -97,15 +84,37 @@ impl Posed<'_> {
         }
     }
 
-    /// The blob's hierarchy, when prepared.
-    #[inline]
-    fn blob_cache(&self) -> Option<&super::BlobCache> {
-        self.cache.and_then(ShapeCache::blob)
-    }
-
-    /// The patch's pieces, when prepared.
-    #[inline]
-    fn patch_cache(&self) -> Option<&super::PatchCache> {
-        self.cache.and_then(ShapeCache::patch)
+    /// A blob's or a patch's hit with the ray `local` in its frame: the
+    /// nearest beyond `tmin`, or (`first`) the first found before `tmax`.
+    /// Out of line, so that the dispatch of the thesis's shapes stays the
+    /// size it was where it is inlined (the shadow rays' loop).
+    #[inline(never)]
+    fn of_points(
+        &self,
+        local: &Ray,
+        tmin: f64,
+        tmax: f64,
+        first: bool,
+        opts: &Options,
+        searched: &mut u64,
+    ) -> Option<LocalHit> {
+        let (radius, cache) = (self.obj.radius, self.cache);
+        match self.shape {
+            Shape::Blob(b) => blob_query(
+                b,
+                cache.and_then(ShapeCache::blob),
+                radius,
+                local,
+                tmin,
+                tmax,
+                opts,
+                searched,
+            ),
+            Shape::Patch(p) => {
+                let cache = cache.and_then(ShapeCache::patch);
+                patch_query(p, cache, radius, local, tmin, tmax, first, searched)
+            }
+            _ => None,
+        }
     }
 }
