@@ -21,8 +21,10 @@
 //! so its zeros lie where the convex hull of the points (c/3, distance)
 //! meets the axis: the u range outside that is cut away; then v alike. A
 //! part that shrinks by less than a fifth is halved; a part narrower than
-//! [`CONVERGED`] of its piece in both directions gives its centre to
-//! Newton's method on D, and the hit is checked on the patch.
+//! [`CONVERGED`] of its piece in both directions (or whose net lies within
+//! the hit's tolerance of the ray, as where a collapsed edge keeps u from
+//! narrowing) gives its centre to Newton's method on D, and the hit is
+//! checked on the patch.
 //!
 //! Why no root is missed: a range is cut only where the convex hull of
 //! Bernstein coefficients keeps from 0 a function that vanishes at every
@@ -585,7 +587,8 @@ impl Search<'_> {
             if t_hi <= self.ask.tmin || self.past(t_lo) {
                 return false;
             }
-            if part.u.1 - part.u.0 < CONVERGED && part.v.1 - part.v.0 < CONVERGED {
+            let narrow = part.u.1 - part.u.0 < CONVERGED && part.v.1 - part.v.0 < CONVERGED;
+            if narrow || part.span() <= RESIDUAL_TOL * self.cache.size {
                 if let Some(hit) = self.finish(net, piece, &part) {
                     if !self.past(hit.0) {
                         self.best = Some(hit);
@@ -625,11 +628,15 @@ impl Search<'_> {
 
     /// A converged part's root: Newton's method on D (the piece's net
     /// `net` in the ray's frame) from the part's centre; the hit if it ends
-    /// within the part's width of it ([`Search::hit_at`]).
+    /// within the part's width (at least [`CONVERGED`]) of it
+    /// ([`Search::hit_at`]).
     fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
         let centre = (0.5 * (part.u.0 + part.u.1), 0.5 * (part.v.0 + part.v.1));
         let (u, v, p) = newton(&net.xy, centre, eval(&net.xy, centre.0, centre.1));
-        let within = |x: f64, (a, b): (f64, f64)| x >= a - (b - a) && x <= b + (b - a);
+        let within = |x: f64, (a, b): (f64, f64)| {
+            let margin = (b - a).max(CONVERGED);
+            x >= a - margin && x <= b + margin
+        };
         (within(u, part.u) && within(v, part.v) && p.length() <= RESIDUAL_TOL * self.cache.size)
             .then(|| self.hit_at(piece, net, u, v))
             .flatten()
@@ -655,12 +662,13 @@ struct Net {
 }
 
 /// Newton's method on D, the net `xy`, from `start` = (u, v) where D and
-/// its derivatives are `at`: each step kept while |D| falls (at most
-/// four, none after one at rounding's size); the (u, v) it ends at and D
-/// there.
+/// its derivatives are `at`: each step kept while |D| falls, none after
+/// one at rounding's size (most roots take two or three; a grazing ray's
+/// double root, where the steps halve the error, up to sixteen); the
+/// (u, v) it ends at and D there.
 fn newton(xy: &[DVec2; 16], start: (f64, f64), at: (DVec2, DVec2, DVec2)) -> (f64, f64, DVec2) {
     let ((mut u, mut v), (mut p, mut pu, mut pv)) = (start, at);
-    for _ in 0..4 {
+    for _ in 0..16 {
         let det = pu.perp_dot(pv);
         if det == 0.0 || !det.is_finite() {
             break;
@@ -701,6 +709,13 @@ impl Part {
             u,
             v,
         }
+    }
+
+    /// The largest distance of the net's points from the ray, twice over
+    /// (the part lies within it of the ray): where a collapsed edge keeps
+    /// a range from narrowing, the part has still met the ray.
+    fn span(&self) -> f64 {
+        self.net.iter().fold(0.0f64, |m, p| m.max(p.x.abs().max(p.y.abs()))) * 2.0
     }
 
     /// The least and greatest ray parameter of the net, which hold the
