@@ -23,7 +23,10 @@
 //! The procedures are here in the listing's order, in three files by
 //! line range: [`goahead`](self::goahead()) and what it calls first (OCR
 //! 2270–2552), the Hermite patches (2554–2877), the arc-length method
-//! (2879–3011). All are re-exported from this module.
+//! (2879–3011). All are re-exported from this module. A fourth file,
+//! `points`, is the port's: the key-frame chains of blobs and patches
+//! (§6.2), whose points take the same procedures ([`PointChain`]).
+
 //!
 //! # State
 //! The Pascal kept each pair's state in global arrays indexed by the pair

@@ -12,7 +12,7 @@
 //! cut the ray into intervals, and on each the quartic less T is written
 //! over s ∈ [0, 1] and solved by the solver of the sweeps (`laguerre`
 //! behind its Bernstein pre-test, or `--solver robust`: the sweep module's
-//! [`solve`]); the first root beyond `tmin` is the hit. An interval where
+//! `solve`); the first root beyond `tmin` is the hit. An interval where
 //! no component of positive strength is active holds no surface (the field
 //! is ≤ 0 < T there) and is skipped. The normal is the field's gradient,
 //! exact: −∇F = 4 Σ S·(1 − r²/R²)·(p − c)/R² over the components whose
@@ -382,7 +382,7 @@ struct BlobNode {
 /// a hierarchy of boxes (§2.1.2's clusters of bounding volumes, Fig.
 /// 2.12, within one object), so that a ray tests the spheres of the
 /// components near it and not all 60: halved at the median of their
-/// centres along the widest axis down to leaves of at most [`LEAF`]; each
+/// centres along the widest axis down to leaves of at most four (`LEAF`); each
 /// node's box holds its components' spheres. Made for a blob at rest
 /// once, for a deforming one at each instant a ray first reaches it.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,5 +1,7 @@
 //! Reconstructed base: the primitive intersections of the base program
-//! `Raytrace` (Ch. 4 (e): sphere, block, cylinder, prism, sweep object).
+//! `Raytrace` (Ch. 4 (e): sphere, block, cylinder, prism, sweep object);
+//! and the port's extension, the objects §6.2 names next ([`blob`],
+//! [`patch`]).
 //! The thesis does not print them; they follow the usual closed forms
 //! (Rogers 1985, the thesis's reference for the static program), in each
 //! object's local frame: the ray is carried by the object's `inverse`, the

@@ -144,6 +144,13 @@ pub const GALLERY: &[Picture] = &[
         FIVE,
         96,
     ),
+    render("docs/img/sec6_2.png", "legacy_pascal/decks/sec6_2.deck"),
+    frames(
+        "docs/img/sec6_2_frames.png",
+        "legacy_pascal/decks/sec6_2.deck",
+        FIVE,
+        128,
+    ),
     Picture {
         image: "docs/img/stress_edge_on.png",
         deck: "legacy_pascal/decks/stress_edge_on.deck",
