@@ -248,7 +248,7 @@ fn search<const N: usize, const E: usize>(
         if a + limit.1 >= limit.0 {
             break;
         }
-        if !(b > a) {
+        if b <= a {
             continue;
         }
         let on = || active[..live].iter().map(|&c| &chords[c as usize]);
@@ -259,7 +259,7 @@ fn search<const N: usize, const E: usize>(
                 c.strength * q * q
             })
             .sum();
-        if !(most >= shape.threshold) {
+        if most < shape.threshold || most.is_nan() {
             continue;
         }
         // The quartic in s ∈ [0, 1], t = a + s·(b − a): each component's
@@ -320,7 +320,7 @@ fn chords_of(
         let r2 = c.radius * c.radius;
         let cc = oc.length_squared() - r2;
         let disc = half_b * half_b - a * cc;
-        if !(disc > 0.0) {
+        if disc <= 0.0 || disc.is_nan() {
             return;
         }
         // The numerically stable pair of roots (as the sphere's).

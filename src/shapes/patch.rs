@@ -258,7 +258,7 @@ impl PatchCache {
 
     /// Node `at` (its box made) as a leaf of `net`, or cut in four.
     fn split(&mut self, at: usize, net: [DVec3; 16], u: (f64, f64), v: (f64, f64), depth: usize) {
-        if depth == MAX_DEPTH || !(unflatness(&net) > FLAT) {
+        if depth == MAX_DEPTH || unflatness(&net) <= FLAT {
             self.nodes[at].piece = Some(self.pieces.len() as u32);
             self.pieces.push(Piece { net, u, v });
             return;
@@ -489,13 +489,16 @@ impl Search<'_> {
             xy: [DVec2::ZERO; 16],
             t: [0.0; 16],
         };
+        // (Plain comparisons: `f64::min` and `max`, which pass NaN over,
+        // were a tenth of the patches' time; a NaN t here fails both tests
+        // below as it would theirs.)
         let (mut t_lo, mut t_hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for (k, p) in piece.net.iter().enumerate() {
             let q = frame.of(*p);
             net.xy[k] = q.truncate();
             net.t[k] = q.z;
-            t_lo = t_lo.min(q.z);
-            t_hi = t_hi.max(q.z);
+            t_lo = if q.z < t_lo { q.z } else { t_lo };
+            t_hi = if q.z > t_hi { q.z } else { t_hi };
         }
         if t_hi <= self.ask.tmin || self.past(t_lo) {
             return false;
@@ -540,19 +543,25 @@ impl Search<'_> {
     /// |z − x₀| takes in each parameter.
     fn certified(&self, net: &Net, piece: &Piece) -> Option<Option<Hit>> {
         let d = |r: usize, c: usize| net.xy[4 * r + c];
+        // The largest squares first, one root each (a NaN is kept: it
+        // fails the test of q below).
+        let most = |m: f64, x: f64| if x > m || x.is_nan() { x } else { m };
         let (mut uu, mut vv, mut uv) = (0.0f64, 0.0f64, 0.0f64);
         for a in 0..4 {
             for b in 0..2 {
-                uu = uu.max((d(a, b + 2) - 2.0 * d(a, b + 1) + d(a, b)).length());
-                vv = vv.max((d(b + 2, a) - 2.0 * d(b + 1, a) + d(b, a)).length());
+                uu = most(uu, (d(a, b + 2) - 2.0 * d(a, b + 1) + d(a, b)).length_squared());
+                vv = most(vv, (d(b + 2, a) - 2.0 * d(b + 1, a) + d(b, a)).length_squared());
             }
         }
         for r in 0..3 {
             for c in 0..3 {
-                uv = uv.max((d(r + 1, c + 1) - d(r + 1, c) - d(r, c + 1) + d(r, c)).length());
+                uv = most(
+                    uv,
+                    (d(r + 1, c + 1) - d(r + 1, c) - d(r, c + 1) + d(r, c)).length_squared(),
+                );
             }
         }
-        let (uu, vv, uv) = (6.0 * uu, 6.0 * vv, 9.0 * uv);
+        let (uu, vv, uv) = (6.0 * uu.sqrt(), 6.0 * vv.sqrt(), 9.0 * uv.sqrt());
         let change = 0.5 * ((uu + uv) * (uu + uv) + (uv + vv) * (uv + vv)).sqrt();
         let start = eval(&net.xy, 0.5, 0.5);
         let (p0, ju, jv) = start;
@@ -561,7 +570,7 @@ impl Search<'_> {
         let f2 = ju.length_squared() + jv.length_squared();
         let smallest2 = 0.5 * (f2 - (f2 * f2 - 4.0 * det * det).max(0.0).sqrt());
         let q = change / smallest2.sqrt();
-        if !(q < 1.0) || det == 0.0 {
+        if q >= 1.0 || q.is_nan() || det == 0.0 {
             return None;
         }
         let x1 = DVec2::new(0.5 - p0.perp_dot(jv) / det, 0.5 - ju.perp_dot(p0) / det);
@@ -676,7 +685,7 @@ fn newton(xy: &[DVec2; 16], start: (f64, f64), at: (DVec2, DVec2, DVec2)) -> (f6
         let (du, dv) = (p.perp_dot(pv) / det, pu.perp_dot(p) / det);
         let (nu, nv) = (u - du, v - dv);
         let (q, qu, qv) = eval(xy, nu, nv);
-        if !(q.length() < p.length()) {
+        if q.length() >= p.length() || q.is_nan() {
             break;
         }
         (u, v, p, pu, pv) = (nu, nv, q, qu, qv);
