@@ -440,26 +440,14 @@ impl PaperChain {
         expander: Expander,
         fidelity: Fidelity,
     ) -> Result<PaperChain, PaperError> {
-        if rest.is_empty() {
-            return Err(PaperError::EmptyChain);
-        }
-        let mut pairs = Vec::with_capacity(rest.len());
-        let mut from = first;
-        for (k, to) in rest.iter().enumerate() {
-            pairs.push(goahead(k + 1, from, to, expander, fidelity)?);
-            from = to;
-        }
+        let pairs = chain_pairs(first, rest, |int, from, to| goahead(int, from, to, expander, fidelity))?;
         Ok(PaperChain { pairs })
     }
 
     /// The chain of a deck's `keyframe` record: FIRST from `scene.objects`,
     /// the later shapes from the record.
     pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PaperChain, PaperError> {
-        let first = scene
-            .objects
-            .get(record.first)
-            .ok_or(PaperError::NoSuchObject { index: record.first })?;
-        PaperChain::new(first, &record.rest, record.expander, fidelity)
+        PaperChain::new(keyframe_first(scene, record)?, &record.rest, record.expander, fidelity)
     }
 
     /// The pairs, pair k (from 1) at index k − 1.
@@ -517,6 +505,33 @@ impl PaperChain {
             .skip(1)
             .fold(self.pairs[0].bbox, |b, p| b.union(&p.bbox))
     }
+}
+
+/// `goahead` (`make`) for pair k (from 1) of every consecutive couple of
+/// `first, rest[0], rest[1], …`: a chain's pairs, at least one.
+pub(crate) fn chain_pairs<P>(
+    first: &ObjectRecord,
+    rest: &[ObjectRecord],
+    make: impl Fn(usize, &ObjectRecord, &ObjectRecord) -> Result<P, PaperError>,
+) -> Result<Vec<P>, PaperError> {
+    if rest.is_empty() {
+        return Err(PaperError::EmptyChain);
+    }
+    let mut pairs = Vec::with_capacity(rest.len());
+    let mut from = first;
+    for (k, to) in rest.iter().enumerate() {
+        pairs.push(make(k + 1, from, to)?);
+        from = to;
+    }
+    Ok(pairs)
+}
+
+/// FIRST of a deck's `keyframe` record, from `scene.objects`.
+pub(crate) fn keyframe_first<'a>(scene: &'a Scene, record: &KeyframeRecord) -> Result<&'a ObjectRecord, PaperError> {
+    scene
+        .objects
+        .get(record.first)
+        .ok_or(PaperError::NoSuchObject { index: record.first })
 }
 
 /// The box the in-between object's origin stays in over the shutter times

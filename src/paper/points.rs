@@ -37,8 +37,8 @@
 //! and the in-between is that shape, to the bit, moving from pose to pose.
 
 use super::{
-    chain_centre_bounds, chain_time, cubic_range, difference, getmatrix, getpath, keyed_pose, reparam, Distarray,
-    PaperError, Sdirection,
+    chain_centre_bounds, chain_pairs, chain_time, cubic_range, difference, getmatrix, getpath, keyed_pose,
+    keyframe_first, reparam, Distarray, PaperError, Sdirection,
 };
 use crate::options::Fidelity;
 use crate::scene::{KeyframeRecord, Scene};
@@ -373,25 +373,13 @@ pub struct PointChain {
 impl PointChain {
     /// `goahead` for every consecutive couple of `first, rest[0], …`.
     pub fn new(first: &ObjectRecord, rest: &[ObjectRecord], fidelity: Fidelity) -> Result<PointChain, PaperError> {
-        if rest.is_empty() {
-            return Err(PaperError::EmptyChain);
-        }
-        let mut pairs = Vec::with_capacity(rest.len());
-        let mut from = first;
-        for (k, to) in rest.iter().enumerate() {
-            pairs.push(PointPair::new(k + 1, from, to, fidelity)?);
-            from = to;
-        }
+        let pairs = chain_pairs(first, rest, |int, from, to| PointPair::new(int, from, to, fidelity))?;
         Ok(PointChain { pairs })
     }
 
     /// The chain of a deck's `keyframe` record of blobs or patches.
     pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PointChain, PaperError> {
-        let first = scene
-            .objects
-            .get(record.first)
-            .ok_or(PaperError::NoSuchObject { index: record.first })?;
-        PointChain::new(first, &record.rest, fidelity)
+        PointChain::new(keyframe_first(scene, record)?, &record.rest, fidelity)
     }
 
     /// The pairs, pair k (from 1) at index k − 1.

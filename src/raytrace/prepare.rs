@@ -13,7 +13,7 @@ use crate::paper::{PaperChain, PointChain};
 use crate::sampler::Tables;
 use crate::scene::{KeyframeRecord, Scene};
 use crate::shapes::ShapeCache;
-use crate::types::{DVec3, Pose, Shape};
+use crate::types::{BoundingBox, DVec3, Pose, Shape};
 
 /// A scene ready to render with its options: made once by
 /// [`Prepared::new`], then read by every render of it (a still, each
@@ -66,20 +66,17 @@ impl Prepared {
         crate::paper::widen_tbox(&mut scene, fidelity);
         let chains = key_frame_chains(&scene, fidelity)?;
         for (k, chain) in &chains {
-            let b = chain.bbox();
-            let corner = DVec3::new(
-                b.xmin.abs().max(b.xmax.abs()),
-                b.ymin.abs().max(b.ymax.abs()),
-                b.zmin.abs().max(b.zmax.abs()),
-            );
-            let first = scene.keyframes[*k].first;
-            if corner.is_finite() {
-                scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
-            }
+            widen_to_hold(&mut scene, *k, &chain.bbox());
         }
         let points = point_chains(&scene, fidelity)?;
+        // A chain of blobs or patches over the times the render's samples
+        // take.
         let span = film_span(&scene, &times);
-        widen_to_hold(&mut scene, &points, span);
+        for (k, chain) in &points {
+            if let Some(b) = chain.local_bounds(span.0, span.1) {
+                widen_to_hold(&mut scene, *k, &b);
+            }
+        }
         let caches = crate::shapes::prepare_caches(&scene);
         let mut moving = paths(&scene);
         moving.extend(chains.into_iter().map(|(record, chain)| Moving {
@@ -304,65 +301,56 @@ fn of_points(scene: &Scene, record: &KeyframeRecord) -> bool {
         .is_some_and(|o| matches!(o.shape, Shape::Blob(_) | Shape::Patch(_)))
 }
 
+/// The chains `make` makes of the `keyframe` records of blobs or patches
+/// (`points`) or of the others, with each record's index; a record it
+/// cannot make is an error at the record.
+fn chains<C, E: std::fmt::Display>(
+    scene: &Scene,
+    points: bool,
+    make: impl Fn(&KeyframeRecord) -> Result<C, E>,
+) -> Result<Vec<(usize, C)>, RenderError> {
+    scene
+        .keyframes
+        .iter()
+        .enumerate()
+        .filter(|(_, record)| of_points(scene, record) == points)
+        .map(|(k, record)| {
+            make(record).map(|chain| (k, chain)).map_err(|e| RenderError::Misfit {
+                pos: record.pos.clone(),
+                record: "keyframe",
+                message: e.to_string(),
+            })
+        })
+        .collect()
+}
+
 /// `goahead(i2, …)` for every key-frame pair of the main program
 /// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record of
 /// sweeps, with the record's index (the chains of blobs and patches are
 /// [`point_chains`]).
 pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
-    scene
-        .keyframes
-        .iter()
-        .enumerate()
-        .filter(|(_, record)| !of_points(scene, record))
-        .map(|(k, record)| {
-            PaperChain::from_keyframe(scene, record, fidelity)
-                .map(|chain| (k, chain))
-                .map_err(|e| RenderError::Misfit {
-                    pos: record.pos.clone(),
-                    record: "keyframe",
-                    message: e.to_string(),
-                })
-        })
-        .collect()
+    chains(scene, false, |record| {
+        PaperChain::from_keyframe(scene, record, fidelity)
+    })
 }
 
 /// The chains of the `keyframe` records of blobs or of patches (the port's
 /// extension, §6.2: `PointChain`), with each record's index.
 pub fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
-    scene
-        .keyframes
-        .iter()
-        .enumerate()
-        .filter(|(_, record)| of_points(scene, record))
-        .map(|(k, record)| {
-            PointChain::from_keyframe(scene, record, fidelity)
-                .map(|chain| (k, chain))
-                .map_err(|e| RenderError::Misfit {
-                    pos: record.pos.clone(),
-                    record: "keyframe",
-                    message: e.to_string(),
-                })
-        })
-        .collect()
+    chains(scene, true, |record| PointChain::from_keyframe(scene, record, fidelity))
 }
 
-/// Each chain's in-between object's bounding-sphere `radius` widened to
-/// hold its surface at every film time of `span` (the local box of the
-/// in-between over those times, `PointChain::local_bounds`), as the
-/// sweeps' chains are widened to their boxes.
-fn widen_to_hold(scene: &mut Scene, chains: &[(usize, PointChain)], span: (f64, f64)) {
-    for (k, chain) in chains {
-        let Some(b) = chain.local_bounds(span.0, span.1) else {
-            continue;
-        };
-        let corner = DVec3::new(
-            b.xmin.abs().max(b.xmax.abs()),
-            b.ymin.abs().max(b.ymax.abs()),
-            b.zmin.abs().max(b.zmax.abs()),
-        );
-        let first = scene.keyframes[*k].first;
-        if corner.is_finite() {
-            scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
-        }
+/// The bounding-sphere `radius` of keyframe record `k`'s in-between object
+/// widened to hold its local box `b` at every time (a sweep chain's
+/// `bbox`, a blob or patch chain's box over the render's times).
+fn widen_to_hold(scene: &mut Scene, k: usize, b: &BoundingBox) {
+    let corner = DVec3::new(
+        b.xmin.abs().max(b.xmax.abs()),
+        b.ymin.abs().max(b.ymax.abs()),
+        b.zmin.abs().max(b.zmax.abs()),
+    );
+    let first = scene.keyframes[k].first;
+    if corner.is_finite() {
+        scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
     }
 }

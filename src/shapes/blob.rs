@@ -140,32 +140,16 @@ pub fn intersect_blob(
     query(shape, cache, reach, ray, tmin, f64::INFINITY, opts, searched)
 }
 
-/// Does the blob stand on the ray at some t with `tmin` < t < `tmax`?
-/// The shadow ray's question: the answer of [`intersect_blob`] (its
-/// nearest hit lies before `tmax`), its intervals searched no further
-/// than `tmax`.
-#[allow(clippy::too_many_arguments)]
-pub fn blob_blocks(
-    shape: &BlobShape,
-    cache: Option<&BlobCache>,
-    reach: f64,
-    ray: &Ray,
-    tmin: f64,
-    tmax: f64,
-    opts: &Options,
-    searched: &mut u64,
-) -> bool {
-    query(shape, cache, reach, ray, tmin, tmax, opts, searched).is_some_and(|h| h.t < tmax)
-}
-
 /// The first hit beyond `tmin`, its intervals searched while they begin
-/// before `tmax` (the caller's t). The chords' ends are taken in order,
+/// before `tmax` (the caller's t): the shadow ray's question, whose answer
+/// is whether that hit lies before `tmax` ([`intersect_blob`] asks with
+/// `tmax` infinite). The chords' ends are taken in order,
 /// the components whose chords span the interval up to the next end kept
 /// as they come and go; an interval on which no component of positive
 /// strength is active, or on which those cannot reach T even at their
 /// most, is passed without a polynomial.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn query(
+pub fn query(
     shape: &BlobShape,
     cache: Option<&BlobCache>,
     reach: f64,
@@ -175,10 +159,7 @@ pub(super) fn query(
     opts: &Options,
     searched: &mut u64,
 ) -> Option<LocalHit> {
-    if !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
-        return None;
-    }
-    let near = Near::of(ray, tmin, DVec3::ZERO, reach * reach);
+    let near = Near::about_origin(ray, tmin, reach)?;
     let (o, d, tmin) = (near.ray.origin, near.ray.dir, near.tmin);
     // An interval from t on holds no hit before `tmax` once t, the shift
     // added back, is past it (as the caller will compare the hit).
@@ -602,7 +583,7 @@ mod tests {
         let at = intersect_blob(&b, None, 2.0, &ray, 1e-9, &o, &mut 0).unwrap().t;
         for tmax in [at - 1e-6, at + 1e-6, 5.0, 20.0, f64::INFINITY] {
             assert_eq!(
-                blob_blocks(&b, None, 2.0, &ray, 1e-9, tmax, &o, &mut 0),
+                query(&b, None, 2.0, &ray, 1e-9, tmax, &o, &mut 0).is_some_and(|h| h.t < tmax),
                 at < tmax,
                 "{tmax}"
             );

@@ -136,6 +136,15 @@ impl Near {
         }
     }
 
+    /// [`Near::of`] the sphere of radius `reach` about the local origin,
+    /// for a ray whose numbers are all finite and whose direction is not
+    /// zero (`None` otherwise: such a ray meets nothing): the start of a
+    /// blob's and a patch's search.
+    pub fn about_origin(ray: &Ray, tmin: f64, reach: f64) -> Option<Near> {
+        let fit = ray.origin.is_finite() && ray.dir.is_finite() && ray.dir != DVec3::ZERO && !tmin.is_nan();
+        fit.then(|| Near::of(ray, tmin, DVec3::ZERO, reach * reach))
+    }
+
     /// A hit on the re-based ray as a hit on the original: the distance
     /// added back (the point is the same).
     pub fn back(&self, hit: Option<LocalHit>) -> Option<LocalHit> {

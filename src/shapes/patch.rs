@@ -367,23 +367,12 @@ pub fn intersect_patch(
     query(shape, cache, reach, ray, tmin, f64::INFINITY, false, searched)
 }
 
-/// Does the patch stand on the ray at some t with `tmin` < t < `tmax`?
-/// The shadow ray's question: the answer of [`intersect_patch`], the
-/// search stopped at the first hit before `tmax`.
-pub fn patch_blocks(
-    shape: &PatchShape,
-    cache: Option<&PatchCache>,
-    reach: f64,
-    ray: &Ray,
-    tmin: f64,
-    tmax: f64,
-    searched: &mut u64,
-) -> bool {
-    query(shape, cache, reach, ray, tmin, tmax, true, searched).is_some_and(|h| h.t < tmax)
-}
-
+/// The nearest hit beyond `tmin` (see the module doc), or with `first`
+/// the first found before `tmax` (the caller's t): the shadow ray's
+/// question, whose answer is whether that hit lies before `tmax`
+/// ([`intersect_patch`] asks for the nearest).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn query(
+pub fn query(
     shape: &PatchShape,
     cache: Option<&PatchCache>,
     reach: f64,
@@ -393,9 +382,7 @@ pub(super) fn query(
     first: bool,
     searched: &mut u64,
 ) -> Option<LocalHit> {
-    if !ray.origin.is_finite() || !ray.dir.is_finite() || ray.dir == DVec3::ZERO || tmin.is_nan() {
-        return None;
-    }
+    let near = Near::about_origin(ray, tmin, reach)?;
     let made;
     let cache = match cache {
         Some(c) => c,
@@ -404,7 +391,6 @@ pub(super) fn query(
             &made
         }
     };
-    let near = Near::of(ray, tmin, DVec3::ZERO, reach * reach);
     let mut search = Search {
         cache,
         ask: Ask {

@@ -173,113 +173,127 @@ fn toward(at: DVec3, dir: DVec3, size: f64) -> Ray {
     Ray::new(at - dir * 6.0 * size, dir)
 }
 
+/// A family of `per` cases, each a blob (or patch), a ray and its true
+/// hit from `make`.
+fn family(
+    name: String,
+    truth: &'static str,
+    per: usize,
+    rng: &mut Rng,
+    mut make: impl FnMut(&mut Rng) -> (Shape, Ray, Option<f64>),
+) -> SoftFamily {
+    let (mut shapes, mut cases) = (Vec::new(), Vec::new());
+    for k in 0..per {
+        let (shape, ray, hit) = make(rng);
+        shapes.push(SoftShape::new(shape));
+        cases.push((k, ray, hit));
+    }
+    SoftFamily {
+        name,
+        truth,
+        patches: false,
+        shapes,
+        cases,
+    }
+}
+
 /// The blob families (see the module doc).
 pub fn blob_families(per: usize) -> Vec<SoftFamily> {
     let mut rng = Rng(0xB10B_0001);
-    let mut fams = Vec::new();
-    // One component: a sphere of known radius.
+    // One component: a sphere of known radius (R, S, T, and the surface's).
     let one = |rng: &mut Rng| {
         let (r, s, t) = (rng.range(0.5, 2.0), rng.range(0.5, 3.0), rng.range(0.05, 0.4));
-        let (s, t) = (s.max(t * 1.5), t);
+        let s = s.max(t * 1.5);
         (r, s, t, surface_radius(r, s, t))
     };
-    let mut shapes = Vec::new();
-    let mut cases = Vec::new();
-    for k in 0..per {
-        let (r, s, t, rho) = one(&mut rng);
-        shapes.push(SoftShape::new(blob(t, &[(DVec3::ZERO, r, s)])));
-        let target = unit(&mut rng) * rho * rng.range(0.0, 0.999);
-        let ray = toward(target, unit(&mut rng), r);
-        cases.push((k, ray, sphere_truth(DVec3::ZERO, rho, &ray)));
-    }
-    fams.push(SoftFamily {
-        name: "one component, rays into its surface's sphere".into(),
-        truth: "analytic: one component's surface is the sphere of radius R·√(1 − √(T/S))",
-        patches: false,
-        shapes,
-        cases,
-    });
-    let mut shapes = Vec::new();
-    let mut cases = Vec::new();
-    for k in 0..per {
-        let (r, s, t, rho) = one(&mut rng);
-        shapes.push(SoftShape::new(blob(t, &[(DVec3::ZERO, r, s)])));
-        // Tangent at a point of the surface, moved inward by 1e-13 of the size.
-        let n = unit(&mut rng);
-        let dir = n.cross(unit(&mut rng)).normalize();
-        let at = n * (rho - super::GRAZE * r);
-        let ray = toward(at, dir, r);
-        cases.push((k, ray, sphere_truth(DVec3::ZERO, rho, &ray)));
-    }
-    fams.push(SoftFamily {
-        name: format!(
+    let mut fams = vec![family(
+        "one component, rays into its surface's sphere".into(),
+        "analytic: one component's surface is the sphere of radius R·√(1 − √(T/S))",
+        per,
+        &mut rng,
+        |rng| {
+            let (r, s, t, rho) = one(rng);
+            let target = unit(rng) * rho * rng.range(0.0, 0.999);
+            let ray = toward(target, unit(rng), r);
+            (
+                blob(t, &[(DVec3::ZERO, r, s)]),
+                ray,
+                sphere_truth(DVec3::ZERO, rho, &ray),
+            )
+        },
+    )];
+    fams.push(family(
+        format!(
             "one component, grazing rays (double roots), {:.0e} inside the tangent",
             super::GRAZE
         ),
-        truth: "analytic: the surface's sphere, the ray tangent to it moved inward",
-        patches: false,
-        shapes,
-        cases,
-    });
+        "analytic: the surface's sphere, the ray tangent to it moved inward",
+        per,
+        &mut rng,
+        |rng| {
+            let (r, s, t, rho) = one(rng);
+            // Tangent at a point of the surface, moved inward by 1e-13 of the size.
+            let n = unit(rng);
+            let ray = toward(n * (rho - super::GRAZE * r), n.cross(unit(rng)).normalize(), r);
+            (
+                blob(t, &[(DVec3::ZERO, r, s)]),
+                ray,
+                sphere_truth(DVec3::ZERO, rho, &ray),
+            )
+        },
+    ));
     // Two components whose spheres touch: their fields never meet, each
     // surface is its own sphere; rays aimed near the point they touch.
-    let mut shapes = Vec::new();
-    let mut cases = Vec::new();
-    for k in 0..per {
-        let (r1, s1, t, rho1) = one(&mut rng);
-        let r2 = rng.range(0.5, 2.0);
-        let s2 = rng.range(t * 1.5, 3.0);
-        let rho2 = surface_radius(r2, s2, t);
-        let axis = unit(&mut rng);
-        let c2 = axis * (r1 + r2);
-        shapes.push(SoftShape::new(blob(t, &[(DVec3::ZERO, r1, s1), (c2, r2, s2)])));
-        let near_touch = axis * r1 + unit(&mut rng) * rng.range(0.0, 0.3) * r1.min(r2);
-        let ray = toward(near_touch, unit(&mut rng), r1 + r2);
-        let truth = [sphere_truth(DVec3::ZERO, rho1, &ray), sphere_truth(c2, rho2, &ray)]
+    fams.push(family(
+        "two components whose spheres touch, rays near the touching point".into(),
+        "analytic: the two fields never overlap, each surface its own sphere",
+        per,
+        &mut rng,
+        |rng| {
+            let (r1, s1, t, rho1) = one(rng);
+            let (r2, s2) = (rng.range(0.5, 2.0), rng.range(t * 1.5, 3.0));
+            let axis = unit(rng);
+            let c2 = axis * (r1 + r2);
+            let near_touch = axis * r1 + unit(rng) * rng.range(0.0, 0.3) * r1.min(r2);
+            let ray = toward(near_touch, unit(rng), r1 + r2);
+            let truth = [
+                sphere_truth(DVec3::ZERO, rho1, &ray),
+                sphere_truth(c2, surface_radius(r2, s2, t), &ray),
+            ]
             .into_iter()
             .flatten()
             .reduce(f64::min);
-        cases.push((k, ray, truth));
-    }
-    fams.push(SoftFamily {
-        name: "two components whose spheres touch, rays near the touching point".into(),
-        truth: "analytic: the two fields never overlap, each surface its own sphere",
-        patches: false,
-        shapes,
-        cases,
-    });
-    // Overlapping components, one in three carving: the field's own
+            (blob(t, &[(DVec3::ZERO, r1, s1), (c2, r2, s2)]), ray, truth)
+        },
+    ));
+    // Overlapping components, one of them carving: the field's own
     // crossing by steps and halving.
     for (name, carve) in [
         ("overlapping components", false),
         ("overlapping components, one carving", true),
     ] {
-        let mut shapes = Vec::new();
-        let mut cases = Vec::new();
-        for k in 0..per {
-            let parts: Vec<(DVec3, f64, f64)> = (0..5)
-                .map(|j| {
-                    let s = if carve && j == 4 {
-                        -rng.range(0.5, 1.5)
-                    } else {
-                        rng.range(0.6, 1.5)
-                    };
-                    (unit(&mut rng) * rng.range(0.0, 1.0), rng.range(0.6, 1.2), s)
-                })
-                .collect();
-            let shape = blob(0.4, &parts);
-            let ray = toward(unit(&mut rng) * rng.range(0.0, 1.2), unit(&mut rng), 2.5);
-            let truth = field_truth(&shape, &ray);
-            shapes.push(SoftShape::new(shape));
-            cases.push((k, ray, truth));
-        }
-        fams.push(SoftFamily {
-            name: format!("{name}, random rays"),
-            truth: "the field's first crossing along the ray: 4000 steps, then halving to rounding",
-            patches: false,
-            shapes,
-            cases,
-        });
+        fams.push(family(
+            format!("{name}, random rays"),
+            "the field's first crossing along the ray: 4000 steps, then halving to rounding",
+            per,
+            &mut rng,
+            |rng| {
+                let parts: Vec<(DVec3, f64, f64)> = (0..5)
+                    .map(|j| {
+                        let s = if carve && j == 4 {
+                            -rng.range(0.5, 1.5)
+                        } else {
+                            rng.range(0.6, 1.5)
+                        };
+                        (unit(rng) * rng.range(0.0, 1.0), rng.range(0.6, 1.2), s)
+                    })
+                    .collect();
+                let shape = blob(0.4, &parts);
+                let ray = toward(unit(rng) * rng.range(0.0, 1.2), unit(rng), 2.5);
+                let truth = field_truth(&shape, &ray);
+                (shape, ray, truth)
+            },
+        ));
     }
     fams
 }
