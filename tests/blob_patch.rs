@@ -368,3 +368,41 @@ keyframe flat flat2
         assert!(r.colours.iter().all(|c| c.is_finite()), "{solver:?}");
     }
 }
+
+/// The hierarchy bounds a deforming blob or patch by its swept components'
+/// spheres or control hull (`Moving::swept_bounds`), tighter than its
+/// origin's box widened by its radius, and a part of the shutter by a box
+/// within the whole's: sec6_2.deck's two chains.
+#[test]
+fn the_hierarchy_bounds_blobs_and_patches_by_their_swept_shapes() {
+    let src = std::fs::read_to_string(common::decks().join("sec6_2.deck")).unwrap();
+    let scene = initialize(&src, "sec6_2.deck", common::decks(), Fidelity::Thesis).unwrap();
+    let prepared = Prepared::new(scene, Options::default()).unwrap();
+    let (objects, moving) = (&prepared.scene().objects, prepared.moving());
+    let volume = |b: &raytrace::types::BoundingBox| (b.xmax - b.xmin) * (b.ymax - b.ymin) * (b.zmax - b.zmin);
+    let within = |a: &raytrace::types::BoundingBox, b: &raytrace::types::BoundingBox| b.union(a) == *b;
+    let whole = raytrace::motion::object_boxes(objects, moving, 0.0, 1.0, Fidelity::Thesis);
+    let part = raytrace::motion::object_boxes(objects, moving, 0.25, 0.5, Fidelity::Thesis);
+    let mut chains = 0;
+    for m in moving.iter().filter(|m| m.key_chain().is_some()) {
+        chains += 1;
+        let i = m.object;
+        let swept = m.swept_bounds(0.0, 1.0).expect("a chain of blobs or patches");
+        let loose = m
+            .centre_bounds(&objects[i], 0.0, 1.0, Fidelity::Thesis)
+            .widened(objects[i].radius);
+        assert!(
+            within(&swept, &whole[i]) && within(&whole[i], &swept.widened(1e-6)),
+            "{}",
+            objects[i].name
+        );
+        assert!(
+            volume(&whole[i]) < 0.8 * volume(&loose),
+            "{}: no tighter than the sphere's",
+            objects[i].name
+        );
+        assert!(within(&part[i], &whole[i]), "{}", objects[i].name);
+        assert!(volume(&part[i]) < volume(&whole[i]), "{}", objects[i].name);
+    }
+    assert_eq!(chains, 2);
+}
