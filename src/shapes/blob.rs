@@ -262,16 +262,17 @@ fn search<const N: usize, const E: usize>(
             poly[3] += st * 2.0 * al * be;
             poly[4] += st * al * al;
         }
-        if let Some(s) = first_root(&poly, opts, searched) {
+        // The least root beyond `tmin`: a ray that leaves the surface
+        // finds the root it leaves at s ≈ 0, and may meet another in the
+        // same interval.
+        if let Some(s) = first_root(&poly, |s| a + s * len > tmin, opts, searched) {
             let t = a + s * len;
-            if t > tmin {
-                let point = o + t * d;
-                return Ok(Some(LocalHit {
-                    t,
-                    point,
-                    normal: outward(shape, chords, point, d),
-                }));
-            }
+            let point = o + t * d;
+            return Ok(Some(LocalHit {
+                t,
+                point,
+                normal: outward(shape, chords, point, d),
+            }));
         }
     }
     Ok(None)
@@ -290,12 +291,10 @@ fn chords_of(
     out: &mut [Chord],
 ) -> Result<Option<usize>, Crowded> {
     let a = d.length_squared();
+    let inv_a = 1.0 / a;
     let (mut count, mut raised, mut crowded) = (0, false, false);
     let mut chord = |k: usize| {
         let c = &shape.components[k];
-        if !counts(c) {
-            return;
-        }
         let oc = o - c.centre;
         let half_b = oc.dot(d);
         let r2 = c.radius * c.radius;
@@ -309,7 +308,7 @@ fn chords_of(
         if q == 0.0 {
             return;
         }
-        let (t0, t1) = (q / a, cc / q);
+        let (t0, t1) = (q * inv_a, cc / q);
         let (enter, leave) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
         if leave <= tmin {
             return;
@@ -322,8 +321,8 @@ fn chords_of(
         out[count] = Chord {
             enter,
             leave,
-            peak_t: -half_b / a,
-            peak_q: disc / (a * r2),
+            peak_t: -half_b * inv_a,
+            peak_q: disc * inv_a / r2,
             curve: a / r2,
             strength: c.strength,
             k: k as u8,
@@ -337,7 +336,9 @@ fn chords_of(
             // the sums below are then the same to the bit.
             out[..count].sort_unstable_by_key(|c| c.k);
         }
-        None => (0..shape.components.len().min(MAXCOMPONENTS)).for_each(chord),
+        None => (0..shape.components.len().min(MAXCOMPONENTS))
+            .filter(|&k| counts(&shape.components[k]))
+            .for_each(chord),
     }
     if crowded {
         return Err(Crowded);
@@ -347,6 +348,12 @@ fn chords_of(
 
 /// The most components a leaf of a [`BlobCache`] holds.
 const LEAF: usize = 4;
+
+/// The nodes a walk of a [`BlobCache`] keeps waiting: one a level and the
+/// one it takes, and a node over more than `LEAF` components is halved,
+/// so that a tree of `LEAF`·2ᵏ components is k + 1 levels deep.
+const STACK: usize = 16;
+const _: () = assert!(MAXCOMPONENTS <= LEAF << (STACK - 2));
 
 /// A node of a [`BlobCache`]: its box, and its components (a leaf: `len`
 /// of them from `start` in the cache's order) or its children (the next
@@ -391,7 +398,7 @@ impl BlobCache {
     fn visit(&self, ray: &Ray, tmin: f64, f: &mut impl FnMut(usize)) {
         let boxes = BoxRay::new(ray);
         // A node's right child waits while its left is taken: one a level.
-        let mut stack = [0u32; 2 * MAXCOMPONENTS];
+        let mut stack = [0u32; STACK];
         let mut len = usize::from(!self.nodes.is_empty());
         while len > 0 {
             len -= 1;
@@ -455,10 +462,10 @@ fn build(shape: &BlobShape, order: &mut [u8], start: usize, end: usize, nodes: &
 }
 
 /// The least root in [−δ, 1 + δ] (δ the solvers' slack) of the quartic
-/// `poly` (ascending) that is a root: polished, and |p(s)| within
+/// `poly` (ascending) that is a root, polished, and |p(s)| within
 /// [`RESIDUAL_TOL`] of the size of its terms (a spurious root of
-/// `laguerre`, erratum 7, is not).
-fn first_root(poly: &[f64; 7], opts: &Options, searched: &mut u64) -> Option<f64> {
+/// `laguerre`, erratum 7, is not), and that `beyond` keeps.
+fn first_root(poly: &[f64; 7], beyond: impl Fn(f64) -> bool, opts: &Options, searched: &mut u64) -> Option<f64> {
     let found = solve(4, poly, opts, searched);
     let scale: f64 = poly[..5].iter().map(|c| c.abs()).sum();
     let mut best: Option<f64> = None;
@@ -466,7 +473,7 @@ fn first_root(poly: &[f64; 7], opts: &Options, searched: &mut u64) -> Option<f64
         let s = polish(4, poly, s);
         let f = (((poly[4] * s + poly[3]) * s + poly[2]) * s + poly[1]) * s + poly[0];
         let inside = (-JOINT_SLACK..=1.0 + JOINT_SLACK).contains(&s);
-        if inside && f.abs() <= RESIDUAL_TOL * scale && best.is_none_or(|b| s < b) {
+        if inside && f.abs() <= RESIDUAL_TOL * scale && beyond(s) && best.is_none_or(|b| s < b) {
             best = Some(s);
         }
     }
@@ -572,6 +579,42 @@ mod tests {
             components: vec![c(-0.6, 1.0), c(0.6, 1.0), c(0.0, -2.0)],
         };
         assert!(intersect_blob(&carved, None, 2.0, &down, 1e-9, &opts(Solver::Robust), &mut 0).is_none());
+    }
+
+    /// A ray that leaves the surface (its `tmin` a hair past a root) meets
+    /// the next root of the same interval: two lobes, their components'
+    /// spheres overlapping over the gap between them, so that one quartic
+    /// holds both the root the ray leaves and the one it meets next.
+    #[test]
+    fn a_ray_leaving_the_surface_meets_the_next_root_of_its_interval() {
+        let c = |x: f64| BlobComponent {
+            centre: DVec3::new(x, 0.0, 0.0),
+            radius: 2.5,
+            strength: 1.0,
+        };
+        // The field on the x axis crosses 0.9 at ±2.066 and ±0.923.
+        let b = BlobShape {
+            threshold: 0.9,
+            components: vec![c(-1.5), c(1.5)],
+        };
+        let ray = Ray::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X);
+        for solver in [Solver::Laguerre, Solver::Robust] {
+            let o = opts(solver);
+            // From inside lobe A (x = −1.5): its far side, in the gap.
+            let inside = intersect_blob(&b, None, 4.0, &ray, 3.5, &o, &mut 0).unwrap();
+            assert!(
+                inside.point.x < -0.5 && inside.point.x > -1.0,
+                "{solver:?}: {}",
+                inside.point.x
+            );
+            // From a hair past that root: lobe B's near side, mirrored.
+            let next = intersect_blob(&b, None, 4.0, &ray, inside.t + 1e-12, &o, &mut 0).unwrap();
+            assert!(
+                (next.point.x + inside.point.x).abs() < 1e-9,
+                "{solver:?}: {}",
+                next.point.x
+            );
+        }
     }
 
     /// The shadow question answers as the nearest hit before `tmax`.
