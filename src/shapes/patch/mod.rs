@@ -9,33 +9,45 @@
 //! its size from the bilinear sheet of its corners), each with the box of
 //! its control points; a ray walks the boxes nearest first.
 //!
-//! In a piece whose box it meets, the intersection is Bezier clipping
-//! (Nishita, Sederberg & Kakimoto 1990, "Ray tracing trimmed rational
-//! surface patches", SIGGRAPH '90). The ray is the meeting line of two
+//! In a piece whose box it meets, the ray is the meeting line of two
 //! planes through it; the control points' signed distances to them,
 //! (x, y), make a planar Bezier patch D(u, v) whose zeros are the ray's
 //! hits, and each control point's ray parameter t rides along (the piece
-//! in the ray's frame). Then, over and over: the distances of the net to a
-//! line through the origin across the net's v direction, by columns, are
-//! the Bernstein coefficients of a function of (u, v) that D = 0 makes 0,
-//! so its zeros lie where the convex hull of the points (c/3, distance)
-//! meets the axis: the u range outside that is cut away; then v alike. A
-//! part that shrinks by less than a fifth is halved; a part narrower than
-//! [`CONVERGED`] of its piece in both directions (or whose net lies within
-//! the hit's tolerance of the ray, as where a collapsed edge keeps u from
-//! narrowing) gives its centre to Newton's method on D, and the hit is
-//! checked on the patch.
+//! in the ray's frame). Most pieces are settled by Newton's method from
+//! the piece's centre with a proof that it misses no root
+//! (`search::certified`): a contraction bound, from the Jacobian at the
+//! centre and a bound of the second derivatives (first the one kept with
+//! the piece, made in space, then the tighter one of the net in the ray's
+//! frame), shows that D is one-to-one on the piece, so that it has at most
+//! one root, and where that root can lie; Newton's method finds it, or
+//! the bound shows there is none.
 //!
-//! Why no root is missed: a range is cut only where the convex hull of
-//! Bernstein coefficients keeps from 0 a function that vanishes at every
-//! root (the convex hull property of the Bernstein basis), a halving keeps
-//! both halves, and a box or part whose least t lies beyond the nearest
-//! hit so far is dropped only because it cannot hold a nearer one (its t
-//! lies in the hull of its net's t). So every root stays in some part
-//! until that part converges; Newton's method from its centre then stands
-//! within the part's width of each root it holds, and the hit's t within
-//! the part's span of t of the nearest (two roots in one part, a ray
-//! grazing the sheet, are found as one). What can still fail, counted in
+//! A piece the bound cannot settle (a ray grazing it, a piece that folds
+//! as the ray sees it) is searched by Bezier clipping (Nishita,
+//! Sederberg & Kakimoto 1990, "Ray tracing trimmed rational surface
+//! patches", SIGGRAPH '90; `clip`). Over and over: the distances of the
+//! net to a line through the origin across the net's v direction, by
+//! columns, are the Bernstein coefficients of a function of (u, v) that
+//! D = 0 makes 0, so its zeros lie where the convex hull of the points
+//! (c/3, distance) meets the axis: the u range outside that is cut away;
+//! then v alike. A part that shrinks by less than a fifth is halved; a
+//! part narrower than [`CONVERGED`] of its piece in both directions (or
+//! whose net lies within the hit's tolerance of the ray, as where a
+//! collapsed edge keeps u from narrowing) gives its centre to Newton's
+//! method on D, and the hit is checked on the patch.
+//!
+//! Why no root is missed: a piece is passed by the bound only where no
+//! root can be in it, or after the one root it can hold; in clipping, a
+//! range is cut only where the convex hull of Bernstein coefficients
+//! keeps from 0 a function that vanishes at every root (the convex hull
+//! property of the Bernstein basis), a halving keeps both halves, and a
+//! box or part whose least t lies beyond the nearest hit so far is
+//! dropped only because it cannot hold a nearer one (its t lies in the
+//! hull of its net's t). So every root stays in some part until that part
+//! converges; Newton's method from its centre then stands within the
+//! part's width of each root it holds, and the hit's t within the part's
+//! span of t of the nearest (two roots in one part, a ray grazing the
+//! sheet, are found as one). What can still fail, counted in
 //! docs/STABILITY.md: a grazing ray (a double root, where the clips shrink
 //! slowly and the halvings multiply) may run out of [`MAX_STEPS`] and
 //! leave a hole; at a point where the patch has no tangent plane (a
@@ -45,12 +57,14 @@
 //! The normal is exact: Pᵤ × Pᵥ at the hit's (u, v), in the local frame.
 //! Everything per ray is in fixed arrays.
 
-use glam::DVec2;
+mod clip;
+mod search;
 
-use super::sweep::{box_size, RESIDUAL_TOL};
+use super::sweep::box_size;
 use super::Near;
-use crate::accel::{Aabb, BoxRay};
+use crate::accel::Aabb;
 use crate::types::{BoundingBox, DVec3, LocalHit, PatchShape, Ray};
+use search::{Ask, Search};
 
 /// A part converges when both its parameter ranges are narrower than this
 /// share of its piece's; Newton's method then finishes the root.
@@ -65,12 +79,6 @@ pub const MAX_DEPTH: usize = 3;
 /// A piece is cut while a control point stands farther than this share of
 /// its box's diagonal from the bilinear sheet of its corners.
 pub const FLAT: f64 = 0.02;
-
-/// A clip that keeps more than this share of a range halves the part.
-const SLOW: f64 = 0.8;
-
-/// The deepest a part is halved.
-const MAX_HALVINGS: u32 = 40;
 
 /// The control hull's box, in the local frame (it holds the patch).
 pub fn patch_box(shape: &PatchShape) -> BoundingBox {
@@ -182,13 +190,58 @@ where
     out
 }
 
-/// A piece of the patch before any ray: its control points, its box, and
-/// its ranges of u and v in the whole patch.
+/// A piece of the patch before any ray: its control points, its ranges
+/// of u and v in the whole patch, and what every ray's contraction bound
+/// takes from it (`search::certified`): P, Pᵤ and Pᵥ at its centre, and
+/// the bound of its second derivatives' change ([`change`]) in space,
+/// which holds for the piece seen along any ray (a projection does not
+/// lengthen a vector).
 #[derive(Clone, Debug, PartialEq)]
 struct Piece {
     net: [DVec3; 16],
     u: (f64, f64),
     v: (f64, f64),
+    centre: (DVec3, DVec3, DVec3),
+    change: f64,
+}
+
+impl Piece {
+    fn new(net: [DVec3; 16], u: (f64, f64), v: (f64, f64)) -> Piece {
+        Piece {
+            centre: eval(&net, 0.5, 0.5),
+            change: change(&net, DVec3::length_squared),
+            net,
+            u,
+            v,
+        }
+    }
+}
+
+/// ½·√((M_uu + M_uv)² + (M_uv + M_vv)²), the M bounding a net's second
+/// derivatives by its second differences (6·Δ²ᵤ, 9·ΔᵤΔᵥ, 6·Δ²ᵥ: the convex
+/// hull of the Bernstein coefficients); `len2` a difference's length
+/// squared. A NaN is kept (it fails every test of the bound).
+fn change<T>(net: &[T; 16], len2: impl Fn(T) -> f64) -> f64
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Sub<Output = T> + std::ops::Mul<f64, Output = T>,
+{
+    let d = |r: usize, c: usize| net[4 * r + c];
+    // The largest squares first, one root each.
+    let most = |m: f64, x: f64| if x > m || x.is_nan() { x } else { m };
+    let (mut uu, mut vv, mut uv) = (0.0f64, 0.0f64, 0.0f64);
+    for a in 0..4 {
+        for b in 0..2 {
+            uu = most(uu, len2(d(a, b + 2) - d(a, b + 1) * 2.0 + d(a, b)));
+            vv = most(vv, len2(d(b + 2, a) - d(b + 1, a) * 2.0 + d(b, a)));
+        }
+    }
+    for r in 0..3 {
+        for c in 0..3 {
+            uv = most(uv, len2(d(r + 1, c + 1) - d(r + 1, c) - d(r, c + 1) + d(r, c)));
+        }
+    }
+    let (uu, vv, uv) = (6.0 * uu.sqrt(), 6.0 * vv.sqrt(), 9.0 * uv.sqrt());
+    0.5 * ((uu + uv) * (uu + uv) + (uv + vv) * (uv + vv)).sqrt()
 }
 
 /// A node of the pieces' quadtree: its box, and its four children (from
@@ -260,7 +313,7 @@ impl PatchCache {
     fn split(&mut self, at: usize, net: [DVec3; 16], u: (f64, f64), v: (f64, f64), depth: usize) {
         if depth == MAX_DEPTH || unflatness(&net) <= FLAT {
             self.nodes[at].piece = Some(self.pieces.len() as u32);
-            self.pieces.push(Piece { net, u, v });
+            self.pieces.push(Piece::new(net, u, v));
             return;
         }
         let first = self.nodes.len();
@@ -287,68 +340,6 @@ impl PatchCache {
     pub fn pieces(&self) -> usize {
         self.pieces.len()
     }
-}
-
-/// What a query asks, in the frame of the ray near the patch (whose t is
-/// the caller's less `shift`).
-#[derive(Clone, Copy)]
-struct Ask {
-    tmin: f64,
-    /// The caller's `tmax`: no hit whose t (the caller's) is at or past it
-    /// matters.
-    tmax: f64,
-    shift: f64,
-    /// Stop at the first hit before `tmax`.
-    first: bool,
-}
-
-/// The ray's frame: two unit normals across the ray (from the axis it is
-/// least along), and its parameter.
-struct Frame {
-    o: DVec3,
-    n1: DVec3,
-    n2: DVec3,
-    d: DVec3,
-    inv: f64,
-}
-
-impl Frame {
-    fn new(ray: &Ray) -> Frame {
-        let dn = ray.dir.normalize();
-        let a = dn.abs();
-        let axis = if a.x <= a.y && a.x <= a.z {
-            DVec3::X
-        } else if a.y <= a.z {
-            DVec3::Y
-        } else {
-            DVec3::Z
-        };
-        let n1 = dn.cross(axis).normalize();
-        Frame {
-            o: ray.origin,
-            n1,
-            n2: dn.cross(n1),
-            d: ray.dir,
-            inv: 1.0 / ray.dir.length_squared(),
-        }
-    }
-
-    /// A point as (distance to plane 1, distance to plane 2, ray parameter).
-    fn of(&self, p: DVec3) -> DVec3 {
-        let w = p - self.o;
-        DVec3::new(self.n1.dot(w), self.n2.dot(w), self.d.dot(w) * self.inv)
-    }
-}
-
-/// The nearest root found so far: its t, and (u, v) in the whole patch.
-type Hit = (f64, f64, f64);
-
-/// One ray's search of one patch.
-struct Search<'a> {
-    cache: &'a PatchCache,
-    ask: Ask,
-    best: Option<Hit>,
-    steps: usize,
 }
 
 /// The nearest hit of a ray with the patch beyond `tmin`, in its local
@@ -391,401 +382,16 @@ pub fn query(
             &made
         }
     };
-    let mut search = Search {
-        cache,
-        ask: Ask {
-            tmin: near.tmin,
-            tmax,
-            shift: near.shift,
-            first,
-        },
-        best: None,
-        steps: 0,
+    let ask = Ask {
+        tmin: near.tmin,
+        tmax,
+        shift: near.shift,
+        first,
     };
-    search.walk(&near.ray, searched);
-    let (t, u, v) = search.best?;
+    let (t, u, v) = Search::new(cache, ask).run(&near.ray, searched)?;
     let (point, normal) = patch_point(shape, u, v);
     let normal = normal.unwrap_or(-near.ray.dir.normalize());
     near.back(Some(LocalHit { t, point, normal }))
-}
-
-impl Search<'_> {
-    /// Can no hit at t ≥ `t` (near frame) matter? Beyond the nearest hit
-    /// so far, or at or past the caller's `tmax`, compared as the caller
-    /// compares the hit it gets back (rounding is monotone: a t past the
-    /// limit stays past it once `shift` is added back).
-    fn past(&self, t: f64) -> bool {
-        self.best.is_some_and(|b| t >= b.0) || t + self.ask.shift >= self.ask.tmax
-    }
-
-    /// The far end of the span the boxes are tested over: the nearest hit
-    /// so far (the caller's `tmax` is asked of each entry by
-    /// [`Search::past`]).
-    fn reach(&self) -> f64 {
-        self.best.map_or(f64::INFINITY, |b| b.0)
-    }
-
-    /// The quadtree's boxes the ray meets, nearest first, and the pieces
-    /// in them clipped; stops when a box lies beyond the nearest hit, or
-    /// at the first hit for a shadow ray.
-    fn walk(&mut self, ray: &Ray, searched: &mut u64) {
-        let boxes = BoxRay::new(ray);
-        let frame = Frame::new(ray);
-        let nodes = &self.cache.nodes;
-        let Some((enter, _)) = boxes.span(&nodes[0].bounds, self.ask.tmin, self.reach()) else {
-            return;
-        };
-        // At most three children a level wait while the nearest is taken.
-        let mut stack = [(0u32, 0.0f64); 3 * MAX_DEPTH + 1];
-        stack[0] = (0, enter);
-        let mut len = 1;
-        while len > 0 {
-            len -= 1;
-            let (at, enter) = stack[len];
-            if self.past(enter) {
-                continue;
-            }
-            let node = &nodes[at as usize];
-            if let Some(piece) = node.piece {
-                if self.piece(&frame, &self.cache.pieces[piece as usize], searched) {
-                    return;
-                }
-                continue;
-            }
-            let mut kids: [(u32, f64); 4] = [(0, 0.0); 4];
-            let mut met = 0;
-            for k in 0..4 {
-                let child = node.first + k;
-                if let Some((e, _)) = boxes.span(&nodes[child as usize].bounds, self.ask.tmin, self.reach()) {
-                    kids[met] = (child, e);
-                    met += 1;
-                }
-            }
-            // Farthest pushed first, so the nearest comes off next.
-            kids[..met].sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
-            stack[len..len + met].copy_from_slice(&kids[..met]);
-            len += met;
-        }
-    }
-
-    /// Clips one piece; true when the search is done (a shadow ray's hit,
-    /// or the steps spent).
-    fn piece(&mut self, frame: &Frame, piece: &Piece, searched: &mut u64) -> bool {
-        let mut net = Net {
-            xy: [DVec2::ZERO; 16],
-            t: [0.0; 16],
-        };
-        // (Plain comparisons: `f64::min` and `max`, which pass NaN over,
-        // were a tenth of the patches' time; a NaN t here fails both tests
-        // below as it would theirs.)
-        let (mut t_lo, mut t_hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for (k, p) in piece.net.iter().enumerate() {
-            let q = frame.of(*p);
-            net.xy[k] = q.truncate();
-            net.t[k] = q.z;
-            t_lo = if q.z < t_lo { q.z } else { t_lo };
-            t_hi = if q.z > t_hi { q.z } else { t_hi };
-        }
-        if t_hi <= self.ask.tmin || self.past(t_lo) {
-            return false;
-        }
-        *searched += 1;
-        if let Some(root) = self.certified(&net, piece) {
-            // The piece's one root: nearer than the nearest so far, or
-            // nothing in this piece is.
-            if let Some(hit) = root.filter(|h| !self.past(h.0)) {
-                self.best = Some(hit);
-                return self.ask.first;
-            }
-            return false;
-        }
-        let whole = Part {
-            net: std::array::from_fn(|k| net.xy[k].extend(net.t[k])),
-            u: (0.0, 1.0),
-            v: (0.0, 1.0),
-        };
-        if whole.clip(Dir::U).is_none() || whole.clip(Dir::V).is_none() {
-            return false;
-        }
-        self.clip(whole, &net, piece, 0)
-    }
-
-    /// The piece's root by Newton's method from its centre, where that is
-    /// sure to be its only one: `Some(root)` when D (its net `net` in the
-    /// ray's frame) is one-to-one on the piece and Newton's method ends on
-    /// a root in it, or where no root can be in it (`Some(None)`, also
-    /// when the one root lies at or before `tmin`); `None` when that
-    /// cannot be told (then the piece is clipped).
-    ///
-    /// With J₀ the Jacobian at the centre x₀, for a root y in the piece
-    /// y − x₁ = −J₀⁻¹∫(J(z) − J₀)(y − x₀), x₁ = x₀ − J₀⁻¹D(x₀) the first
-    /// Newton step, so ‖y − x₁‖ ≤ q‖y − x₀‖ with q the most
-    /// ‖J₀⁻¹(J(z) − J₀)‖ takes on the piece: every root lies within q·√½
-    /// of x₁ (none, if that disk misses the piece), and with q < 1 there is
-    /// at most one (two roots y, y′ would give ‖y − y′‖ ≤ q‖y − y′‖).
-    /// q ≤ ‖J₀⁻¹‖·½·√((M_uu + M_uv)² + (M_uv + M_vv)²), the M bounding the
-    /// second derivatives by the net's second differences (6·Δ²ᵤ, 9·ΔᵤΔᵥ,
-    /// 6·Δ²ᵥ, the convex hull of the Bernstein coefficients) and ½ the most
-    /// |z − x₀| takes in each parameter.
-    fn certified(&self, net: &Net, piece: &Piece) -> Option<Option<Hit>> {
-        let d = |r: usize, c: usize| net.xy[4 * r + c];
-        // The largest squares first, one root each (a NaN is kept: it
-        // fails the test of q below).
-        let most = |m: f64, x: f64| if x > m || x.is_nan() { x } else { m };
-        let (mut uu, mut vv, mut uv) = (0.0f64, 0.0f64, 0.0f64);
-        for a in 0..4 {
-            for b in 0..2 {
-                uu = most(uu, (d(a, b + 2) - 2.0 * d(a, b + 1) + d(a, b)).length_squared());
-                vv = most(vv, (d(b + 2, a) - 2.0 * d(b + 1, a) + d(b, a)).length_squared());
-            }
-        }
-        for r in 0..3 {
-            for c in 0..3 {
-                uv = most(
-                    uv,
-                    (d(r + 1, c + 1) - d(r + 1, c) - d(r, c + 1) + d(r, c)).length_squared(),
-                );
-            }
-        }
-        let (uu, vv, uv) = (6.0 * uu.sqrt(), 6.0 * vv.sqrt(), 9.0 * uv.sqrt());
-        let change = 0.5 * ((uu + uv) * (uu + uv) + (uv + vv) * (uv + vv)).sqrt();
-        let start = eval(&net.xy, 0.5, 0.5);
-        let (p0, ju, jv) = start;
-        let det = ju.perp_dot(jv);
-        // ‖J₀⁻¹‖ = 1/σ_min(J₀), from the Frobenius norm and the determinant.
-        let f2 = ju.length_squared() + jv.length_squared();
-        let smallest2 = 0.5 * (f2 - (f2 * f2 - 4.0 * det * det).max(0.0).sqrt());
-        let q = change / smallest2.sqrt();
-        if q >= 1.0 || q.is_nan() || det == 0.0 {
-            return None;
-        }
-        let x1 = DVec2::new(0.5 - p0.perp_dot(jv) / det, 0.5 - ju.perp_dot(p0) / det);
-        let outside = (x1 - x1.clamp(DVec2::ZERO, DVec2::ONE)).length();
-        if outside > q * std::f64::consts::FRAC_1_SQRT_2 {
-            return Some(None);
-        }
-        let (u, v, p) = newton(&net.xy, (0.5, 0.5), start);
-        let slack = 1e-9;
-        let inside = (-slack..=1.0 + slack).contains(&u) && (-slack..=1.0 + slack).contains(&v);
-        (inside && p.length() <= RESIDUAL_TOL * self.cache.size).then(|| self.hit_at(piece, net, u, v))
-    }
-
-    /// Bezier clipping of `part` of the piece whose net in the ray's frame
-    /// is `net` (see the module doc); true when the search is done.
-    fn clip(&mut self, mut part: Part, net: &Net, piece: &Piece, halvings: u32) -> bool {
-        loop {
-            self.steps += 1;
-            if self.steps > MAX_STEPS {
-                return true;
-            }
-            let (t_lo, t_hi) = part.t_range();
-            if t_hi <= self.ask.tmin || self.past(t_lo) {
-                return false;
-            }
-            let narrow = part.u.1 - part.u.0 < CONVERGED && part.v.1 - part.v.0 < CONVERGED;
-            if narrow || part.span() <= RESIDUAL_TOL * self.cache.size {
-                if let Some(hit) = self.finish(net, piece, &part) {
-                    if !self.past(hit.0) {
-                        self.best = Some(hit);
-                        return self.ask.first;
-                    }
-                }
-                return false;
-            }
-            let Some((a, b)) = part.clip(Dir::U) else { return false };
-            part = part.cut(Dir::U, a, b);
-            let Some((c, e)) = part.clip(Dir::V) else { return false };
-            part = part.cut(Dir::V, c, e);
-            if b - a <= SLOW && e - c <= SLOW {
-                continue;
-            }
-            if halvings == MAX_HALVINGS {
-                return false;
-            }
-            // Slow: halve along the wider range, the nearer half first.
-            let dir = if part.u.1 - part.u.0 >= part.v.1 - part.v.0 {
-                Dir::U
-            } else {
-                Dir::V
-            };
-            let (h0, h1) = (part.cut(dir, 0.0, 0.5), part.cut(dir, 0.5, 1.0));
-            let (near, far) = if h1.t_range().0 < h0.t_range().0 {
-                (h1, h0)
-            } else {
-                (h0, h1)
-            };
-            if self.clip(near, net, piece, halvings + 1) {
-                return true;
-            }
-            part = far;
-        }
-    }
-
-    /// A converged part's root: Newton's method on D (the piece's net
-    /// `net` in the ray's frame) from the part's centre; the hit if it ends
-    /// within the part's width (at least [`CONVERGED`]) of it
-    /// ([`Search::hit_at`]).
-    fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
-        let centre = (0.5 * (part.u.0 + part.u.1), 0.5 * (part.v.0 + part.v.1));
-        let (u, v, p) = newton(&net.xy, centre, eval(&net.xy, centre.0, centre.1));
-        let within = |x: f64, (a, b): (f64, f64)| {
-            let margin = (b - a).max(CONVERGED);
-            x >= a - margin && x <= b + margin
-        };
-        (within(u, part.u) && within(v, part.v) && p.length() <= RESIDUAL_TOL * self.cache.size)
-            .then(|| self.hit_at(piece, net, u, v))
-            .flatten()
-    }
-
-    /// The hit (t, u, v in the whole patch) at (u, v) of `piece`, its net
-    /// in the ray's frame `net` (D vanishing there): if it is on the patch
-    /// and beyond `tmin`.
-    fn hit_at(&self, piece: &Piece, net: &Net, u: f64, v: f64) -> Option<Hit> {
-        let global = |x: f64, (a, b): (f64, f64)| a + x * (b - a);
-        let (gu, gv) = (global(u, piece.u), global(v, piece.v));
-        let on = |x: f64| (-1e-9..=1.0 + 1e-9).contains(&x);
-        let t = eval(&net.t, u, v).0;
-        (on(gu) && on(gv) && t > self.ask.tmin).then_some((t, gu.clamp(0.0, 1.0), gv.clamp(0.0, 1.0)))
-    }
-}
-
-/// A piece's net in the ray's frame: each control point's distances to
-/// the two planes through the ray, and its ray parameter.
-struct Net {
-    xy: [DVec2; 16],
-    t: [f64; 16],
-}
-
-/// Newton's method on D, the net `xy`, from `start` = (u, v) where D and
-/// its derivatives are `at`: each step kept while |D| falls, none after
-/// one at rounding's size (most roots take two or three; a grazing ray's
-/// double root, where the steps halve the error, up to sixteen); the
-/// (u, v) it ends at and D there.
-fn newton(xy: &[DVec2; 16], start: (f64, f64), at: (DVec2, DVec2, DVec2)) -> (f64, f64, DVec2) {
-    let ((mut u, mut v), (mut p, mut pu, mut pv)) = (start, at);
-    for _ in 0..16 {
-        let det = pu.perp_dot(pv);
-        if det == 0.0 || !det.is_finite() {
-            break;
-        }
-        let (du, dv) = (p.perp_dot(pv) / det, pu.perp_dot(p) / det);
-        let (nu, nv) = (u - du, v - dv);
-        let (q, qu, qv) = eval(xy, nu, nv);
-        if q.length() >= p.length() || q.is_nan() {
-            break;
-        }
-        (u, v, p, pu, pv) = (nu, nv, q, qu, qv);
-        if du.abs() + dv.abs() < 1e-13 {
-            break;
-        }
-    }
-    (u, v, p)
-}
-
-/// A part of a piece in the ray's frame: its net (x, y, t) and its ranges
-/// of the piece's own u and v.
-#[derive(Clone, Copy)]
-struct Part {
-    net: [DVec3; 16],
-    u: (f64, f64),
-    v: (f64, f64),
-}
-
-impl Part {
-    /// The part cut to [a, b] of its own range in `dir`.
-    fn cut(&self, dir: Dir, a: f64, b: f64) -> Part {
-        let range = |(lo, hi): (f64, f64)| (lo + a * (hi - lo), lo + b * (hi - lo));
-        let (u, v) = match dir {
-            Dir::U => (range(self.u), self.v),
-            Dir::V => (self.u, range(self.v)),
-        };
-        Part {
-            net: cut(&self.net, dir, a, b),
-            u,
-            v,
-        }
-    }
-
-    /// The largest distance of the net's points from the ray, twice over
-    /// (the part lies within it of the ray): where a collapsed edge keeps
-    /// a range from narrowing, the part has still met the ray.
-    fn span(&self) -> f64 {
-        self.net.iter().fold(0.0f64, |m, p| m.max(p.x.abs().max(p.y.abs()))) * 2.0
-    }
-
-    /// The least and greatest ray parameter of the net, which hold the
-    /// part's (convex hull).
-    fn t_range(&self) -> (f64, f64) {
-        self.net.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.z), hi.max(p.z))
-        })
-    }
-
-    /// The part of the part's own range in `dir` where a zero of D can
-    /// be (see the module doc), or `None` where none can.
-    fn clip(&self, dir: Dir) -> Option<(f64, f64)> {
-        let q = |r: usize, c: usize| self.net[4 * r + c].truncate();
-        // The net's direction across `dir`: the line is drawn along it.
-        let (across, along) = (
-            (q(3, 0) - q(0, 0)) + (q(3, 3) - q(0, 3)),
-            (q(0, 3) - q(0, 0)) + (q(3, 3) - q(3, 0)),
-        );
-        let (line, other) = match dir {
-            Dir::U => (across, along),
-            Dir::V => (along, across),
-        };
-        // The distance to the line: along its normal; a net without that
-        // direction is measured along the other.
-        let n = if line != DVec2::ZERO { line.perp() } else { other };
-        let (mut lo, mut hi) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
-        for r in 0..4 {
-            for c in 0..4 {
-                let k = if dir == Dir::U { c } else { r };
-                let e = n.dot(q(r, c));
-                lo[k] = lo[k].min(e);
-                hi[k] = hi[k].max(e);
-            }
-        }
-        hull_on_axis(&lo, &hi)
-    }
-}
-
-/// Where the convex hull of the points (k/3, lo[k]) and (k/3, hi[k])
-/// meets the axis: between the least and greatest crossing of a segment
-/// joining two of them of opposite signs (the hull's edges that cross are
-/// among those, and every such segment lies in the hull), widened by a
-/// rounding margin; `None` if all lie on one side. A NaN answers the
-/// whole range.
-fn hull_on_axis(lo: &[f64; 4], hi: &[f64; 4]) -> Option<(f64, f64)> {
-    if lo.iter().chain(hi).any(|e| e.is_nan()) {
-        return Some((0.0, 1.0));
-    }
-    if lo.iter().all(|&e| e > 0.0) || hi.iter().all(|&e| e < 0.0) {
-        return None;
-    }
-    let (mut a, mut b) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut at = |x: f64| {
-        a = a.min(x);
-        b = b.max(x);
-    };
-    for i in 0..4 {
-        let xi = i as f64 / 3.0;
-        if lo[i] <= 0.0 && hi[i] >= 0.0 {
-            at(xi);
-        }
-        for j in i + 1..4 {
-            let xj = j as f64 / 3.0;
-            for yi in [lo[i], hi[i]] {
-                for yj in [lo[j], hi[j]] {
-                    if (yi < 0.0) != (yj < 0.0) {
-                        at(xi + (xj - xi) * yi / (yi - yj));
-                    }
-                }
-            }
-        }
-    }
-    let pad = 1e-9;
-    (a <= b).then(|| ((a - pad).max(0.0), (b + pad).min(1.0)))
 }
 
 #[cfg(test)]
@@ -860,17 +466,6 @@ mod tests {
             }
         }
         assert!(hits > 150, "{hits}");
-    }
-
-    #[test]
-    fn hull_meets_the_axis() {
-        // All above, all below: none.
-        assert_eq!(hull_on_axis(&[1.0; 4], &[2.0; 4]), None);
-        assert_eq!(hull_on_axis(&[-2.0; 4], &[-1.0; 4]), None);
-        // A line from −1 at 0 to 2 at 1 crosses at 1/3.
-        let lo = [-1.0, 0.0, 1.0, 2.0];
-        let (a, b) = hull_on_axis(&lo, &lo).unwrap();
-        assert!((a - 1.0 / 3.0).abs() < 1e-8 && (b - 1.0 / 3.0).abs() < 1e-8, "{a} {b}");
     }
 
     #[test]
