@@ -162,8 +162,10 @@ enum Command {
         #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u64).range(1..))]
         every: u64,
     },
-    /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives
-    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe).
+    /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives,
+    /// sweeps, blobs and patches ((x, y, z) becomes <x, z, y>; sweeps become
+    /// prism and lathe, blobs blob, patches bicubic_patch; the objects at
+    /// rest, key frames as their first shape).
     Pov {
         /// The deck (a path, or a shipped deck's name such as fig5_8).
         deck: String,
