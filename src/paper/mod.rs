@@ -423,6 +423,14 @@ pub fn chain_time(pairs: usize, time: f64) -> (usize, f64) {
     (k, scaled - k as f64)
 }
 
+/// The pair of a chain's `pairs` (never empty) at shutter time `time`,
+/// and the time within it ([`chain_time`]): for the chains of sweeps and
+/// of blobs or patches alike.
+pub fn pair_at<P>(pairs: &[P], time: f64) -> (&P, f64) {
+    let (k, local) = chain_time(pairs.len(), time);
+    (&pairs[k.min(pairs.len() - 1)], local)
+}
+
 /// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k,
 /// numbered from 1, goes from the k-th shape to the next. The in-between object is A's
 /// record; each pair's pose goes from its first shape's pose to its last's.
@@ -455,10 +463,9 @@ impl PaperChain {
         &self.pairs
     }
 
-    /// The pair and local time of shutter time `time` ([`chain_time`]).
+    /// The pair and local time of shutter time `time` ([`pair_at`]).
     pub fn locate(&self, time: f64) -> (&PaperPair, f64) {
-        let (k, local) = chain_time(self.pairs.len(), time);
-        (&self.pairs[k.min(self.pairs.len() - 1)], local)
+        pair_at(&self.pairs, time)
     }
 
     /// The in-between object's pose at shutter time `time`.

@@ -37,8 +37,8 @@
 //! and the in-between is that shape, to the bit, moving from pose to pose.
 
 use super::{
-    chain_centre_bounds, chain_pairs, chain_time, cubic_range, difference, getmatrix, getpath, keyed_pose,
-    keyframe_first, reparam, Distarray, PaperError, Sdirection,
+    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_pose, keyframe_first, pair_at,
+    reparam, Distarray, PaperError, Sdirection,
 };
 use crate::options::Fidelity;
 use crate::scene::{KeyframeRecord, Scene};
@@ -387,10 +387,9 @@ impl PointChain {
         &self.pairs
     }
 
-    /// The pair and local time of shutter time `time` ([`chain_time`]).
+    /// The pair and local time of shutter time `time` ([`pair_at`]).
     pub fn locate(&self, time: f64) -> (&PointPair, f64) {
-        let (k, local) = chain_time(self.pairs.len(), time);
-        (&self.pairs[k.min(self.pairs.len() - 1)], local)
+        pair_at(&self.pairs, time)
     }
 
     /// The in-between object's pose at shutter time `time`.
@@ -417,7 +416,7 @@ impl PointChain {
     }
 
     /// Each pair the shutter times `t0` ≤ t ≤ `t1` reach, with the part of
-    /// them in the pair's own time (as [`chain_time`] maps them: times
+    /// them in the pair's own time (as [`super::chain_time`] maps them: times
     /// before the first pair or past the last extrapolate it) and in
     /// shutter time.
     fn pieces(&self, t0: f64, t1: f64) -> impl Iterator<Item = (&PointPair, (f64, f64), (f64, f64))> + '_ {

@@ -296,8 +296,8 @@ fn certified(at_centre: (DVec2, DVec2, DVec2), change: f64) -> Roots {
     let f2 = ju.length_squared() + jv.length_squared();
     let smallest2 = 0.5 * (f2 - (f2 * f2 - 4.0 * det * det).max(0.0).sqrt());
     let change2 = change * change;
-    // (Written so that a NaN is unsure.)
-    if !(change2 < smallest2) || det == 0.0 {
+    // q < 1: change² < σ², a NaN unsure.
+    if change2.partial_cmp(&smallest2) != Some(std::cmp::Ordering::Less) || det == 0.0 {
         return Roots::Unsure;
     }
     let x1 = DVec2::new(0.5 - p0.perp_dot(jv) / det, 0.5 - ju.perp_dot(p0) / det);

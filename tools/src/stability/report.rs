@@ -183,8 +183,13 @@ fn rows(out: &mut String, family: &str, tallies: &[(Method, Tally)]) {
     labelled_rows(out, family, &labelled);
 }
 
-/// The rows of one family, each method by its label.
+/// The rows of one family, each method by its label; the family's misses
+/// and spurious roots a method on stderr, as the report is made.
 fn labelled_rows(out: &mut String, family: &str, tallies: &[(&str, &Tally)]) {
+    eprintln!(
+        "{family}: {:?}",
+        tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
+    );
     for (k, (label, t)) in tallies.iter().enumerate() {
         let worst = if t.truths > t.missed {
             format!("{:.1e}", t.worst)
@@ -230,11 +235,6 @@ pub fn run(out: &Path) -> Result<(), String> {
     let mut poly_summary = Vec::new();
     for fam in poly_families(per_poly) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_poly(m, &fam))).collect();
-        eprintln!(
-            "{}: {:?}",
-            fam.name,
-            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
-        );
         rows(&mut report, &fam.name, &tallies);
         poly_summary.push((fam.name.clone(), tallies));
     }
@@ -253,11 +253,6 @@ pub fn run(out: &Path) -> Result<(), String> {
     let mut ray_summary = Vec::new();
     for fam in ray_families(&sweeps, per_ray) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_rays(m, &fam))).collect();
-        eprintln!(
-            "{}: {:?}",
-            fam.name,
-            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
-        );
         rows(&mut report, &fam.name, &tallies);
         // One line a kind of ray (the tilts of one kind share it).
         let kind = fam.name.split(", tilt").next().unwrap_or(&fam.name);
@@ -281,11 +276,6 @@ pub fn run(out: &Path) -> Result<(), String> {
     report.push_str(TABLE_HEAD);
     for fam in keyframe_families(&shapes, per_ray) {
         let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_rays(m, &fam))).collect();
-        eprintln!(
-            "{}: {:?}",
-            fam.name,
-            tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
-        );
         rows(&mut report, &fam.name, &tallies);
     }
     report.push_str(&soft_section(per_ray)?);
@@ -321,16 +311,10 @@ fn soft_section(per: usize) -> Result<String, String> {
     for fam in &fams {
         if fam.patches {
             let t = tally_soft(&Method::Robust.options(), fam);
-            eprintln!("{}: {:?}", fam.name, (t.missed, t.spurious));
             labelled_rows(&mut s, &fam.name, &[(PATCH_METHOD, &t)]);
             patches.push((fam.name.clone(), t));
         } else {
             let tallies: Vec<(Method, Tally)> = METHODS.iter().map(|&m| (m, tally_soft(&m.options(), fam))).collect();
-            eprintln!(
-                "{}: {:?}",
-                fam.name,
-                tallies.iter().map(|(_, t)| (t.missed, t.spurious)).collect::<Vec<_>>()
-            );
             rows(&mut s, &fam.name, &tallies);
             blobs.push((fam.name.clone(), tallies));
         }
