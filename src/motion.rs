@@ -8,13 +8,14 @@
 //! [`crate::drt`]), and the in-between object of a key-frame chain (the
 //! `paper = 1` branch: its pose from `goahead`'s `diff` and `diffangle`,
 //! [`PaperChain::pose`]; its contour is made where a ray needs it,
-//! `crate::intersect::Deforming`). The arrangement is the port's: the
-//! listing's `motionblur` does both for every ray.
+//! `crate::intersect::Deforming`); the port's chains of blobs or of
+//! patches ([`PointChain`]) are the same kind. The arrangement is the
+//! port's: the listing's `motionblur` does both for every ray.
 
 use crate::accel::{Aabb, Bounds, Segments, USE_UNION};
 use crate::drt::{motion_bounds, motion_place, motionblur, Isblur};
 use crate::options::Fidelity;
-use crate::paper::PaperChain;
+use crate::paper::{KeyChain, PaperChain, PointChain};
 use crate::scene::{MotionRecord, Scene};
 use crate::types::{BoundingBox, DVec3, ObjectRecord, Pose};
 
@@ -32,6 +33,9 @@ pub enum Motion {
     /// The chain of key shapes of `keyframe` record `record` (§3.2): the
     /// object is the chain's in-between object (FIRST's record).
     Chain { record: usize, chain: PaperChain },
+    /// The chain of key blobs or key patches of `keyframe` record `record`
+    /// (the port's extension, §6.2).
+    Points { record: usize, chain: PointChain },
 }
 
 /// An object that moves, and how.
@@ -58,6 +62,7 @@ impl Moving {
         match &self.motion {
             Motion::Path(record) => motionblur(rest, record, time, fidelity, pose),
             Motion::Chain { chain, .. } => *pose = chain.pose(time),
+            Motion::Points { chain, .. } => *pose = chain.pose(time),
         }
     }
 
@@ -81,20 +86,51 @@ impl Moving {
         let b = match &self.motion {
             Motion::Path(record) => motion_bounds(rest, record, t0, t1, fidelity),
             Motion::Chain { chain, .. } => chain.centre_bounds(t0, t1),
+            Motion::Points { chain, .. } => chain.centre_bounds(t0, t1),
         };
-        let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
-            .iter()
-            .fold(1.0f64, |m, v| m.max(v.abs()));
-        b.widened(ROUNDING * size)
+        rounded(b)
     }
 
-    /// The chain, for the in-between object of a key-frame chain.
-    pub fn chain(&self) -> Option<&PaperChain> {
+    /// The box the object's surface stays in over the film times `t0` ≤ t
+    /// ≤ `t1`, where the motion knows one tighter than its origin's box
+    /// widened by the object's radius: a chain of blobs or patches sweeps
+    /// its components' spheres or its control hull
+    /// ([`PointChain::world_bounds`]), widened as
+    /// [`Moving::centre_bounds`]. `None` for the other motions, and for a
+    /// chain with no surface then (its origin's box, widened by its
+    /// radius, then bounds it).
+    pub fn swept_bounds(&self, t0: f64, t1: f64) -> Option<BoundingBox> {
         match &self.motion {
-            Motion::Path(_) => None,
-            Motion::Chain { chain, .. } => Some(chain),
+            Motion::Points { chain, .. } => chain.world_bounds(t0, t1).map(rounded),
+            _ => None,
         }
     }
+
+    /// The chain, for the in-between object of a key-frame chain of
+    /// sweeps.
+    pub fn chain(&self) -> Option<&PaperChain> {
+        match &self.motion {
+            Motion::Chain { chain, .. } => Some(chain),
+            _ => None,
+        }
+    }
+
+    /// The chain of an in-between object, of sweeps or of blobs or patches.
+    pub fn key_chain(&self) -> Option<KeyChain<'_>> {
+        match &self.motion {
+            Motion::Path(_) => None,
+            Motion::Chain { chain, .. } => Some(KeyChain::Sweep(chain)),
+            Motion::Points { chain, .. } => Some(KeyChain::Points(chain)),
+        }
+    }
+}
+
+/// `b` widened by [`ROUNDING`] of its size.
+fn rounded(b: BoundingBox) -> BoundingBox {
+    let size = [b.xmin, b.xmax, b.ymin, b.ymax, b.zmin, b.zmax]
+        .iter()
+        .fold(1.0f64, |m, v| m.max(v.abs()));
+    b.widened(ROUNDING * size)
 }
 
 /// The objects of the motion table that move, in the object table's
@@ -136,7 +172,8 @@ pub const MAX_SEGMENTS: usize = 16;
 /// key-frame chain's), widened by the bounding sphere the intersection
 /// tests first ([`crate::shapes::bounding_radius`] of the object's
 /// `radius`, as `prepare` widened it to hold its own box, or its chain's
-/// at every time), and by [`BOX_SLACK`]. The object lies within its
+/// at every time), or for a chain of blobs or patches its surface's own
+/// swept box ([`Moving::swept_bounds`]), and by [`BOX_SLACK`]. The object lies within its
 /// radius of its origin whichever way it turns, so the box holds it at
 /// every time of the interval. An object that does not move is held
 /// tighter where its shape's own box ([`crate::shapes::local_box`])
@@ -145,7 +182,10 @@ pub const MAX_SEGMENTS: usize = 16;
 pub fn object_box(o: &ObjectRecord, moving: Option<&Moving>, t0: f64, t1: f64, fidelity: Fidelity) -> BoundingBox {
     let r = crate::shapes::bounding_radius(o.radius);
     let b = match moving {
-        Some(m) => m.centre_bounds(o, t0, t1, fidelity).widened(r),
+        Some(m) => match m.swept_bounds(t0, t1) {
+            Some(swept) => swept,
+            None => m.centre_bounds(o, t0, t1, fidelity).widened(r),
+        },
         None => {
             let sphere = BoundingBox::EMPTY.holding(o.sphereo).widened(r);
             match crate::shapes::local_box(o) {

@@ -41,7 +41,8 @@ impl Axis {
     }
 }
 
-/// `primitiveclass = (block, cylinder, sphere, prism, translation, conic, rotation)`.
+/// `primitiveclass = (block, cylinder, sphere, prism, translation, conic, rotation)`,
+/// and the two classes of §6.2 the port adds (`blob`, `patch`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PrimitiveClass {
     Block,
@@ -54,6 +55,11 @@ pub enum PrimitiveClass {
     Conic,
     /// A rotation sweep (§2.3).
     Rotation,
+    /// A soft object (§6.2's "soft object"; the port's extension).
+    Blob,
+    /// A bicubic Bezier patch (§6.2's "parametric surface"; the port's
+    /// extension).
+    Patch,
 }
 
 /// `surfaceattribute = (transparent, mirrored, opaque, background, light, crystal)`.
@@ -318,6 +324,42 @@ pub struct SweepShape {
     pub orientation: f64,
 }
 
+/// One component of a blob: its field is `strength`·(1 − r²/`radius`²)²
+/// at a distance r < `radius` from `centre`, 0 beyond (POV-Ray's blob
+/// field, so that the two renderers can be compared).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BlobComponent {
+    /// The centre, in the object's local frame.
+    pub centre: DVec3,
+    /// The radius of the component's sphere (> 0 from a deck; an
+    /// in-between's may shrink to 0 or below, and then adds nothing).
+    pub radius: f64,
+    /// May be negative (the component then carves the others).
+    pub strength: f64,
+}
+
+/// The most components a blob has: the bound of the in-between machinery's
+/// arrays (`sdirection = array [1..60]`, [`MAXSEGMENTS`]).
+pub const MAXCOMPONENTS: usize = MAXSEGMENTS;
+
+/// A soft object (the port's extension, §6.2): the surface where the sum
+/// of its components' fields equals `threshold`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BlobShape {
+    /// T > 0.
+    pub threshold: f64,
+    /// At most [`MAXCOMPONENTS`].
+    pub components: Vec<BlobComponent>,
+}
+
+/// A bicubic Bezier patch (the port's extension, §6.2): `points[4r + c]`
+/// is the control point of row r (the parameter v = r/3 at it) and
+/// column c (u = c/3), in the object's local frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchShape {
+    pub points: [DVec3; 16],
+}
+
 /// The variant part of `objectrecord`, in local coordinates (the local
 /// origin is the object's `sphereo`).
 #[derive(Clone, Debug, PartialEq)]
@@ -343,6 +385,11 @@ pub enum Shape {
     },
     /// `translation, conic, rotation : (orientt, segment, u, v)`.
     Sweep(SweepShape),
+    /// A soft object (the port's extension).
+    Blob(BlobShape),
+    /// A bicubic Bezier patch (the port's extension), boxed: sixteen
+    /// points would make every object's record twice as large.
+    Patch(Box<PatchShape>),
 }
 
 /// `objectrecord` of Fig. 4.3.

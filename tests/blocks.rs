@@ -16,7 +16,7 @@
 mod common;
 
 use common::sweeps::{circle_points, sweep, Rng, ROBUST};
-use raytrace::shapes::{block_blocks, intersect_block, Near, Posed, SweepCache};
+use raytrace::shapes::{blob_reach, block_blocks, intersect_block, patch_reach, Near, Posed, ShapeCache, SweepCache};
 use raytrace::types::*;
 
 /// The nearest hit's answer: a hit with t in (`tmin`, `tmax`).
@@ -129,8 +129,8 @@ fn block_blocks_at_its_ties() {
     assert!(block_blocks(lengths, &far, 1e-9, 9.0f64.next_up()));
 }
 
-/// A sphere, a block, a cylinder off its centre, a prism and a sweep, each
-/// turned and moved: `Posed::blocks` answers as `Posed::intersect`'s
+/// A sphere, a block, a cylinder off its centre, a prism, a sweep, a blob
+/// and a patch, each turned and moved: `Posed::blocks` answers as `Posed::intersect`'s
 /// nearest hit before `tmax`, with `tmax` exactly at the hit among others.
 #[test]
 fn posed_blocks_as_the_nearest_hit_for_every_shape() {
@@ -166,20 +166,57 @@ fn posed_blocks_as_the_nearest_hit_for_every_shape() {
         1.0,
     );
     let sweep_obj = common::sweeps::object(PrimitiveClass::Translation, sw);
+    // A blob of three components, one carving; a patch bent into a dome.
+    let component = |x: f64, z: f64, radius: f64, strength: f64| BlobComponent {
+        centre: DVec3::new(x, 0.0, z),
+        radius,
+        strength,
+    };
+    let blob_shape = BlobShape {
+        threshold: 0.4,
+        components: vec![
+            component(-0.5, 0.0, 1.0, 1.0),
+            component(0.5, 0.2, 0.9, 1.0),
+            component(0.0, 0.5, 0.5, -0.7),
+        ],
+    };
+    let blob = common::object(
+        "blob",
+        0,
+        [0.0; 3],
+        Shape::Blob(blob_shape.clone()),
+        blob_reach(&blob_shape),
+    );
+    let dome = PatchShape {
+        points: std::array::from_fn(|k| {
+            let (r, c) = ((k / 4) as f64, (k % 4) as f64);
+            let inner = (1.0..=2.0).contains(&r) && (1.0..=2.0).contains(&c);
+            DVec3::new(c / 1.5 - 1.0, r / 1.5 - 1.0, if inner { 1.2 } else { 0.0 })
+        }),
+    };
+    let patch = common::object(
+        "patch",
+        0,
+        [0.0; 3],
+        Shape::Patch(Box::new(dome.clone())),
+        patch_reach(&dome),
+    );
     let objects = [
         common::sphere("ball", 0, [0.0; 3], 1.25),
         common::block("box", 0, [0.0; 3], [2.0, 1.0, 0.5]),
         cylinder,
         prism,
         sweep_obj,
+        blob,
+        patch,
     ];
     let mut rng = Rng(0x5eed_b10c);
     let turn = DMat3::from_rotation_x(0.3) * DMat3::from_rotation_y(-0.7) * DMat3::from_rotation_z(1.1);
     for obj in &objects {
         let pose = obj.pose().turned(turn, DVec3::new(1.0, -2.0, 0.5));
         let cache = match &obj.shape {
-            Shape::Sweep(sw) => SweepCache::new(obj.class, sw),
-            _ => None,
+            Shape::Sweep(sw) => SweepCache::new(obj.class, sw).map(ShapeCache::Sweep),
+            shape => ShapeCache::of_moment(shape),
         };
         let posed = Posed {
             obj,

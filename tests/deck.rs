@@ -435,7 +435,7 @@ fn default_deck_initializes() {
             Shape::Block { lengths } => o.sphereo.z - lengths.z / 2.0,
             Shape::Cylinder { bottom, .. } => o.sphereo.z + bottom,
             Shape::Prism { .. } => o.sphereo.z,
-            Shape::Sweep(_) => panic!("no sweeps in the default deck"),
+            Shape::Sweep(_) | Shape::Blob(_) | Shape::Patch(_) => panic!("no sweeps, blobs or patches in still_life"),
         };
         assert!(bottom.abs() < 1e-12, "{} floats at {bottom}", o.name);
     }

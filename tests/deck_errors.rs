@@ -660,7 +660,7 @@ fn key_shape_in_two_keyframes() {
 fn keyframe_of_a_sphere() {
     check(
         &plus("keyframe ball wave\n"),
-        "t.deck:12:10: keyframe 'ball': 'ball' is a sphere, not a sweep: key shapes are sweep objects",
+        "t.deck:12:10: keyframe 'ball': 'ball' is a sphere, not a sweep, blob or patch: key shapes are sweeps of one class, blobs or patches",
     );
 }
 

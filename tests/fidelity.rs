@@ -153,10 +153,18 @@ fn erratum_9_tbox_widened_by_2_for_every_pair() {
     let (before, after) = (prepare_caches(&listing), prepare_caches(&again));
     for (i, obj) in again.objects.iter().enumerate() {
         if let Shape::Sweep(sw) = &obj.shape {
-            assert!(after[i].as_ref().is_some_and(|c| c.fits(obj.class, sw)), "{}", obj.name);
+            assert!(
+                after[i]
+                    .as_ref()
+                    .is_some_and(|c| c.sweep().is_some_and(|c| c.fits(obj.class, sw))),
+                "{}",
+                obj.name
+            );
             let widened = obj.class == PrimitiveClass::Translation;
             assert_eq!(
-                before[i].as_ref().is_some_and(|c| c.fits(obj.class, sw)),
+                before[i]
+                    .as_ref()
+                    .is_some_and(|c| c.sweep().is_some_and(|c| c.fits(obj.class, sw))),
                 !widened,
                 "{}",
                 obj.name

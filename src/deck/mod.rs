@@ -123,13 +123,26 @@
 //!   rotation), `scale` (1 for translation and rotation) and `orientt`;
 //!   `u`, `v` and `bbox` are left empty for the sweep module (`spline`).
 //!
+//! # Blobs and patches (the port's extension, src/deck/blob_patch.rs)
+//! - `blob NAME SURFACE at X Y Z threshold T`, then one component
+//!   `X Y Z RADIUS STRENGTH` a line (1 to [`MAXCOMPONENTS`], 60), then
+//!   `end`: T and RADIUS sizes, STRENGTH any number of the range. Its
+//!   `radius` is the farthest reach |centre| + RADIUS of a component of
+//!   positive strength (0 without one: the blob has no surface).
+//! - `patch NAME SURFACE at X Y Z`, then 16 control points `X Y Z`, whole
+//!   points on a line (several a line allowed), then `end`; its `radius`
+//!   the farthest control point's distance.
+//! - Both take no `axis` (their points are in three dimensions).
+//!
+//! [`MAXCOMPONENTS`]: crate::types::MAXCOMPONENTS
+//!
 //! # Motion and key frames
 //! - `motion NAME to X Y Z [turn AX AY AZ] [via X1 Y1 Z1 X2 Y2 Z2]
 //!   [law constant|accelerate|decelerate|smooth]`: one per object; `turn`
 //!   defaults to 0 0 0 and `law` to constant.
 //! - `keyframe A B [C …] [expander burtnyk|arclength]`: two or more distinct
-//!   sweep objects of one class (the word `expander`, in any case, ends the
-//!   list of names). A shape may be in one `keyframe` record only. The
+//!   sweep objects of one class, or blobs, or patches (the word `expander`,
+//!   in any case, ends the list of names; blobs and patches take none). A shape may be in one `keyframe` record only. The
 //!   later shapes are removed from `objects` into `KeyframeRecord::rest`
 //!   after the whole deck is read; every index (`objects`, `object_pos`,
 //!   `MotionRecord::object`, `KeyframeRecord::first`) refers to the final
@@ -192,6 +205,7 @@
 //! message is cut after 40 characters, its control characters escaped.
 //! A missing `view` or `image` is reported at the end of the deck.
 
+mod blob_patch;
 mod film;
 mod lens;
 mod lex;
@@ -268,6 +282,8 @@ pub const RECORDS: &[&str] = &[
     "cylinder",
     "prism",
     "sweep",
+    "blob",
+    "patch",
     "rotate",
     "translate",
     "delete",
@@ -301,6 +317,8 @@ pub const FIELDS: &[(&str, &[&str])] = &[
     ("cylinder", &["at", "radius", "bottom", "top", "axis"]),
     ("prism", &["at", "height", "axis"]),
     ("sweep", &["at", "length", "scale", "axis"]),
+    ("blob", &["at", "threshold"]),
+    ("patch", &["at"]),
     ("motion", &["to", "turn", "via", "law"]),
     ("motion", &["path"]),
     ("keyframe", &["expander"]),
@@ -507,6 +525,8 @@ impl Builder<'_> {
             "cylinder" => self.cylinder(pos),
             "prism" => self.prism(pos),
             "sweep" => self.sweep(pos),
+            "blob" => self.blob(pos),
+            "patch" => self.patch(pos),
             "rotate" => self.rotate(),
             "translate" => self.translate(),
             "delete" => self.delete(),

@@ -74,6 +74,8 @@ pub(super) fn class_name(class: PrimitiveClass) -> &'static str {
         PrimitiveClass::Translation => "translation sweep",
         PrimitiveClass::Conic => "conic sweep",
         PrimitiveClass::Rotation => "rotation sweep",
+        PrimitiveClass::Blob => "blob",
+        PrimitiveClass::Patch => "patch",
     }
 }
 
@@ -140,13 +142,13 @@ pub(super) fn convex_ccw(pts: &[[f64; 2]]) -> Result<Vec<[f64; 2]>, PolygonFault
 }
 
 /// What an object record gives, before its pose is complete.
-struct NewObject {
-    name: String,
-    class: PrimitiveClass,
-    surface: usize,
-    sphereo: DVec3,
-    radius: f64,
-    shape: Shape,
+pub(super) struct NewObject {
+    pub(super) name: String,
+    pub(super) class: PrimitiveClass,
+    pub(super) surface: usize,
+    pub(super) sphereo: DVec3,
+    pub(super) radius: f64,
+    pub(super) shape: Shape,
 }
 
 /// The points of a prism or sweep: (U, V), where each U stands, and where
@@ -166,7 +168,7 @@ struct Limit {
 impl Builder<'_> {
     /// `NAME SURFACE` of an object record: the name (which becomes the
     /// record's) and the surface index.
-    fn declare(&mut self) -> Result<(String, usize), DeckError> {
+    pub(super) fn declare(&mut self) -> Result<(String, usize), DeckError> {
         let (name, pos) = self.p.name("an object name")?;
         self.p.name = Some(name.clone());
         if self.entries.len() >= MAX_OBJECTS {
@@ -189,7 +191,7 @@ impl Builder<'_> {
     }
 
     /// `at X Y Z`.
-    fn at(&mut self) -> Result<DVec3, DeckError> {
+    pub(super) fn at(&mut self) -> Result<DVec3, DeckError> {
         self.p.keyword("at")?;
         self.p.vec3("after 'at'")
     }
@@ -204,7 +206,7 @@ impl Builder<'_> {
 
     /// Adds an object to the scene; `transfm` and `inverse` are computed
     /// when the deck is read to its end.
-    fn push_object(&mut self, pos: Pos, axis: Axis, o: NewObject) {
+    pub(super) fn push_object(&mut self, pos: Pos, axis: Axis, o: NewObject) {
         self.object_index.insert(o.name.clone(), self.entries.len());
         self.entries.push(ObjEntry {
             record: ObjectRecord {

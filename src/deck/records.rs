@@ -11,7 +11,7 @@ use super::{Builder, DeckError, PendingKeyframe, PendingMotion, SurfaceInfo, MAX
 use crate::options::Fidelity;
 use crate::raster::read_raster_file_within;
 use crate::scene::{BlurRecord, Expander, ImageSpec, Law, LightRecord, MotionRecord, PatternRecord, Pos, View};
-use crate::types::{Axis, Paint, PaintKind, SurfaceAttribute, SurfaceRecord, Texture};
+use crate::types::{Axis, Paint, PaintKind, PrimitiveClass, SurfaceAttribute, SurfaceRecord, Texture};
 
 /// The largest `blur N`: the CLT sum costs N uniforms a sample.
 const MAX_BLUR: i64 = 1000;
@@ -542,11 +542,11 @@ impl Builder<'_> {
             let e = &self.entries[i];
             let name = &e.record.name;
             let class = e.record.class;
-            if !super::objects::is_sweep(class) {
+            if !super::objects::is_sweep(class) && !matches!(class, PrimitiveClass::Blob | PrimitiveClass::Patch) {
                 return Err(self.p.error_at(
                     pos,
                     format!(
-                        "'{name}' is a {}, not a sweep: key shapes are sweep objects",
+                        "'{name}' is a {}, not a sweep, blob or patch: key shapes are sweeps of one class, blobs or patches",
                         super::objects::class_name(class)
                     ),
                 ));
@@ -594,7 +594,17 @@ impl Builder<'_> {
         }
         let mut expander = Expander::Arclength;
         let mut seen = Vec::new();
-        while let Some((_, _)) = self.p.field(&["expander"], &mut seen)? {
+        while let Some((_, at)) = self.p.field(&["expander"], &mut seen)? {
+            let class = self.entries[shapes[0]].record.class;
+            if !super::objects::is_sweep(class) {
+                return Err(self.p.error_at(
+                    at,
+                    format!(
+                        "an expander matches the segments of sweep contours; {}s are matched point by point",
+                        super::objects::class_name(class)
+                    ),
+                ));
+            }
             expander = self
                 .p
                 .choice(

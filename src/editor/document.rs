@@ -256,5 +256,7 @@ fn kind_of(o: &ObjectRecord) -> &'static str {
         Shape::Cylinder { .. } => "cylinder",
         Shape::Prism { .. } => "prism",
         Shape::Sweep(_) => "sweep",
+        Shape::Blob(_) => "blob",
+        Shape::Patch(_) => "patch",
     }
 }

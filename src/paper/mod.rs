@@ -23,7 +23,10 @@
 //! The procedures are here in the listing's order, in three files by
 //! line range: [`goahead`](self::goahead()) and what it calls first (OCR
 //! 2270–2552), the Hermite patches (2554–2877), the arc-length method
-//! (2879–3011). All are re-exported from this module.
+//! (2879–3011). All are re-exported from this module. A fourth file,
+//! `points`, is the port's: the key-frame chains of blobs and patches
+//! (§6.2), whose points take the same procedures ([`PointChain`]).
+
 //!
 //! # State
 //! The Pascal kept each pair's state in global arrays indexed by the pair
@@ -62,6 +65,7 @@
 mod arclength;
 mod goahead;
 mod hermite;
+mod points;
 
 pub use arclength::{expanding2, more2, plus};
 pub use goahead::{burtnyk, difference, expanding, goahead, merge, more, saving, widen_tbox, Outline};
@@ -69,6 +73,7 @@ pub use hermite::{
     coor, coor1, coor2, delete, do34, getdistance, getmatrix, getpath, inbetween, initM, multiply, patch, saving1,
     Hermite, Rvalue, Rvalue1, MH, MH_T,
 };
+pub use points::{point_shares, KeyChain, PointChain, PointPair};
 
 use std::ops::{Index, IndexMut};
 
@@ -163,6 +168,8 @@ impl std::fmt::Display for PaperMessage {
 pub enum PaperError {
     #[error("key-frame pair {int}: {which} is not a sweep object")]
     NotSweep { int: usize, which: &'static str },
+    #[error("key-frame pair {int}: {which} is not a blob or a patch")]
+    NotPoints { int: usize, which: &'static str },
     #[error("key-frame pair {int}: FIRST is a {first:?} sweep and LAST a {last:?} sweep; a pair must be of one class")]
     ClassMismatch {
         int: usize,
@@ -374,16 +381,7 @@ impl PaperPair {
     /// LAST stands whenever LAST's extra turn is about one axis (or the
     /// deck turned it about x, then y, then z).
     pub fn pose(&self, time: f64) -> Pose {
-        let sphereo = self.centre(time);
-        let turn = match self.fidelity {
-            // Listing: rotate(name,xaxis,0,0,0,angle.x) on the restored
-            // temp1, which holds angle.x already: no further turn. The y
-            // and z lines `angle.y+diffangle[int].y*time` are commented out.
-            Fidelity::Listing => crate::types::DMat3::IDENTITY,
-            // Thesis: the turn θ(t) − θ₁ = t·(θ₂ − θ₁) about x, y, z.
-            Fidelity::Thesis => crate::drt::turn_xyz(self.diffangle * time),
-        };
-        self.first_pose.turned(turn, sphereo)
+        keyed_pose(&self.first_pose, self.diff, self.diffangle, self.fidelity, time)
     }
 
     /// The in-between object's origin at local time `time`, as
@@ -392,6 +390,23 @@ impl PaperPair {
     pub fn centre(&self, time: f64) -> DVec3 {
         self.first_pose.sphereo + self.diff * time
     }
+}
+
+/// The pose at `time` of an in-between object whose first key shape stands
+/// at `first_pose`, with `goahead`'s `diff` and `diffangle`: the
+/// `paper = 1` branch of `motionblur` ([`PaperPair::pose`], erratum 19),
+/// for the sweeps' pairs and for the blobs' and patches' ([`PointPair`]).
+pub fn keyed_pose(first_pose: &Pose, diff: DVec3, diffangle: DVec3, fidelity: Fidelity, time: f64) -> Pose {
+    let sphereo = first_pose.sphereo + diff * time;
+    let turn = match fidelity {
+        // Listing: rotate(name,xaxis,0,0,0,angle.x) on the restored
+        // temp1, which holds angle.x already: no further turn. The y
+        // and z lines `angle.y+diffangle[int].y*time` are commented out.
+        Fidelity::Listing => crate::types::DMat3::IDENTITY,
+        // Thesis: the turn θ(t) − θ₁ = t·(θ₂ − θ₁) about x, y, z.
+        Fidelity::Thesis => crate::drt::turn_xyz(diffangle * time),
+    };
+    first_pose.turned(turn, sphereo)
 }
 
 /// Which pair of a chain of `pairs` pairs shutter time `time` falls in, and
@@ -415,6 +430,14 @@ pub fn chain_time(pairs: usize, time: f64) -> (usize, f64) {
     (k, scaled - k as f64)
 }
 
+/// The pair of a chain's `pairs` (never empty) at shutter time `time`,
+/// and the time within it ([`chain_time`]): for the chains of sweeps and
+/// of blobs or patches alike.
+pub fn pair_at<P>(pairs: &[P], time: f64) -> (&P, f64) {
+    let (k, local) = chain_time(pairs.len(), time);
+    (&pairs[k.min(pairs.len() - 1)], local)
+}
+
 /// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k,
 /// numbered from 1, goes from the k-th shape to the next. The in-between object is A's
 /// record; each pair's pose goes from its first shape's pose to its last's.
@@ -432,26 +455,14 @@ impl PaperChain {
         expander: Expander,
         fidelity: Fidelity,
     ) -> Result<PaperChain, PaperError> {
-        if rest.is_empty() {
-            return Err(PaperError::EmptyChain);
-        }
-        let mut pairs = Vec::with_capacity(rest.len());
-        let mut from = first;
-        for (k, to) in rest.iter().enumerate() {
-            pairs.push(goahead(k + 1, from, to, expander, fidelity)?);
-            from = to;
-        }
+        let pairs = chain_pairs(first, rest, |int, from, to| goahead(int, from, to, expander, fidelity))?;
         Ok(PaperChain { pairs })
     }
 
     /// The chain of a deck's `keyframe` record: FIRST from `scene.objects`,
     /// the later shapes from the record.
     pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PaperChain, PaperError> {
-        let first = scene
-            .objects
-            .get(record.first)
-            .ok_or(PaperError::NoSuchObject { index: record.first })?;
-        PaperChain::new(first, &record.rest, record.expander, fidelity)
+        PaperChain::new(keyframe_first(scene, record)?, &record.rest, record.expander, fidelity)
     }
 
     /// The pairs, pair k (from 1) at index k − 1.
@@ -459,10 +470,9 @@ impl PaperChain {
         &self.pairs
     }
 
-    /// The pair and local time of shutter time `time` ([`chain_time`]).
+    /// The pair and local time of shutter time `time` ([`pair_at`]).
     pub fn locate(&self, time: f64) -> (&PaperPair, f64) {
-        let (k, local) = chain_time(self.pairs.len(), time);
-        (&self.pairs[k.min(self.pairs.len() - 1)], local)
+        pair_at(&self.pairs, time)
     }
 
     /// The in-between object's pose at shutter time `time`.
@@ -486,20 +496,7 @@ impl PaperChain {
     /// between holds every place (times past the ends extrapolate the
     /// first or last pair, as [`chain_time`] does).
     pub fn centre_bounds(&self, t0: f64, t1: f64) -> BoundingBox {
-        let (a, b) = (t0.min(t1), t0.max(t1));
-        let mut bounds = BoundingBox::EMPTY
-            .holding(self.pose(a).sphereo)
-            .holding(self.pose(b).sphereo);
-        let n = self.pairs.len();
-        for k in 1..n {
-            let boundary = k as f64 / n as f64;
-            if boundary > a && boundary < b {
-                bounds = bounds
-                    .holding(self.pairs[k - 1].pose(1.0).sphereo)
-                    .holding(self.pairs[k].pose(0.0).sphereo);
-            }
-        }
-        bounds
+        chain_centre_bounds(self.pairs.len(), |k, local| self.pairs[k].pose(local), t0, t1)
     }
 
     /// The in-between contour at shutter time `time`, into `obj`
@@ -529,6 +526,55 @@ impl PaperChain {
             .skip(1)
             .fold(self.pairs[0].bbox, |b, p| b.union(&p.bbox))
     }
+}
+
+/// `goahead` (`make`) for pair k (from 1) of every consecutive couple of
+/// `first, rest[0], rest[1], …`: a chain's pairs, at least one.
+pub(crate) fn chain_pairs<P>(
+    first: &ObjectRecord,
+    rest: &[ObjectRecord],
+    make: impl Fn(usize, &ObjectRecord, &ObjectRecord) -> Result<P, PaperError>,
+) -> Result<Vec<P>, PaperError> {
+    if rest.is_empty() {
+        return Err(PaperError::EmptyChain);
+    }
+    let mut pairs = Vec::with_capacity(rest.len());
+    let mut from = first;
+    for (k, to) in rest.iter().enumerate() {
+        pairs.push(make(k + 1, from, to)?);
+        from = to;
+    }
+    Ok(pairs)
+}
+
+/// FIRST of a deck's `keyframe` record, from `scene.objects`.
+pub(crate) fn keyframe_first<'a>(scene: &'a Scene, record: &KeyframeRecord) -> Result<&'a ObjectRecord, PaperError> {
+    scene
+        .objects
+        .get(record.first)
+        .ok_or(PaperError::NoSuchObject { index: record.first })
+}
+
+/// The box the in-between object's origin stays in over the shutter times
+/// `t0` ≤ t ≤ `t1` of a chain of `pairs` pairs whose pair k (from 0) puts
+/// it at `pose(k, local)` ([`PaperChain::centre_bounds`], for the sweeps'
+/// chains and the blobs' and patches'): its places at `t0`, `t1` and at
+/// both sides of each pair boundary between, the origin moving along a
+/// straight line within a pair.
+pub(crate) fn chain_centre_bounds(pairs: usize, pose: impl Fn(usize, f64) -> Pose, t0: f64, t1: f64) -> BoundingBox {
+    let (a, b) = (t0.min(t1), t0.max(t1));
+    let at = |time: f64| {
+        let (k, local) = chain_time(pairs, time);
+        pose(k.min(pairs - 1), local).sphereo
+    };
+    let mut bounds = BoundingBox::EMPTY.holding(at(a)).holding(at(b));
+    for k in 1..pairs {
+        let boundary = k as f64 / pairs as f64;
+        if boundary > a && boundary < b {
+            bounds = bounds.holding(pose(k - 1, 1.0).sphereo).holding(pose(k, 0.0).sphereo);
+        }
+    }
+    bounds
 }
 
 /// The local box of a sweep whose contour has U in `u` = (min, max) and V

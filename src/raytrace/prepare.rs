@@ -9,11 +9,11 @@ use crate::drt::TimeTable;
 use crate::intersect::{rest_poses, Aggregate, Deforming, Poses};
 use crate::motion::{object_bounds, paths, Motion, Moving};
 use crate::options::{Fidelity, Options, TimeSampler};
-use crate::paper::PaperChain;
+use crate::paper::{PaperChain, PointChain};
 use crate::sampler::Tables;
-use crate::scene::Scene;
-use crate::shapes::SweepCache;
-use crate::types::{DVec3, Pose, Shape};
+use crate::scene::{KeyframeRecord, Scene};
+use crate::shapes::ShapeCache;
+use crate::types::{BoundingBox, DVec3, Pose, Shape};
 
 /// A scene ready to render with its options: made once by
 /// [`Prepared::new`], then read by every render of it (a still, each
@@ -37,7 +37,7 @@ pub struct Prepared {
     /// Every object at rest.
     rest: Vec<Pose>,
     /// What `shapes` prepared for each object's own shape.
-    caches: Vec<Option<Arc<SweepCache>>>,
+    caches: Vec<Option<Arc<ShapeCache>>>,
     aggregate: Aggregate,
     /// The film times the aggregate's structure bounds the objects over:
     /// every time a sample can have. The structure is searched at every
@@ -71,15 +71,15 @@ impl Prepared {
         crate::paper::widen_tbox(&mut scene, fidelity);
         let chains = key_frame_chains(&scene, fidelity)?;
         for (k, chain) in &chains {
-            let b = chain.bbox();
-            let corner = DVec3::new(
-                b.xmin.abs().max(b.xmax.abs()),
-                b.ymin.abs().max(b.ymax.abs()),
-                b.zmin.abs().max(b.zmax.abs()),
-            );
-            let first = scene.keyframes[*k].first;
-            if corner.is_finite() {
-                scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
+            widen_to_hold(&mut scene, *k, &chain.bbox());
+        }
+        let points = point_chains(&scene, fidelity)?;
+        // A chain of blobs or patches over the times the render's samples
+        // take.
+        let span = film_span(&scene, &times);
+        for (k, chain) in &points {
+            if let Some(b) = chain.local_bounds(span.0, span.1) {
+                widen_to_hold(&mut scene, *k, &b);
             }
         }
         let caches = crate::shapes::prepare_caches(&scene);
@@ -87,6 +87,10 @@ impl Prepared {
         moving.extend(chains.into_iter().map(|(record, chain)| Moving {
             object: scene.keyframes[record].first,
             motion: Motion::Chain { record, chain },
+        }));
+        moving.extend(points.into_iter().map(|(record, chain)| Moving {
+            object: scene.keyframes[record].first,
+            motion: Motion::Points { record, chain },
         }));
         Ok(Prepared::assemble(
             scene,
@@ -105,11 +109,11 @@ impl Prepared {
         opts: Options,
         tables: Tables,
         moving: Vec<Moving>,
-        caches: Vec<Option<Arc<SweepCache>>>,
+        caches: Vec<Option<Arc<ShapeCache>>>,
         accel: Accel,
     ) -> Prepared {
         let mut deforming_of = vec![None; scene.objects.len()];
-        let chains = moving.iter().enumerate().filter(|(_, m)| m.chain().is_some());
+        let chains = moving.iter().enumerate().filter(|(_, m)| m.key_chain().is_some());
         for (d, (_, m)) in chains.enumerate() {
             deforming_of[m.object] = Some(d);
         }
@@ -169,7 +173,7 @@ impl Prepared {
         &self.deforming_of
     }
 
-    pub fn caches(&self) -> &[Option<Arc<SweepCache>>] {
+    pub fn caches(&self) -> &[Option<Arc<ShapeCache>>] {
         &self.caches
     }
 
@@ -207,7 +211,7 @@ impl Prepared {
     pub fn deforming(&self) -> Vec<Deforming<'_>> {
         self.moving
             .iter()
-            .filter_map(|m| m.chain().map(|chain| Deforming::new(m.object, chain)))
+            .filter_map(|m| m.key_chain().map(|chain| Deforming::new(m.object, chain)))
             .collect()
     }
 
@@ -242,10 +246,10 @@ impl Prepared {
         let mut caches = self.caches.clone();
         for m in &self.moving {
             let obj = &mut still.objects[m.object];
-            if let Some(chain) = m.chain() {
+            if let Some(chain) = m.key_chain() {
                 let mut contour = chain.scratch();
                 chain.inbetween(time, &mut contour);
-                obj.shape = Shape::Sweep(contour);
+                obj.shape = contour;
                 // A contour of the moment: nothing was prepared for it.
                 caches[m.object] = None;
             }
@@ -294,22 +298,64 @@ pub fn time_table(scene: &Scene, fidelity: Fidelity) -> Result<TimeTable, Render
     })
 }
 
-/// `goahead(i2, …)` for every key-frame pair of the main program
-/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record,
-/// with the record's index.
-pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
+/// Is `record` a chain of blobs or of patches (the port's extension)?
+fn of_points(scene: &Scene, record: &KeyframeRecord) -> bool {
+    scene
+        .objects
+        .get(record.first)
+        .is_some_and(|o| matches!(o.shape, Shape::Blob(_) | Shape::Patch(_)))
+}
+
+/// The chains `make` makes of the `keyframe` records of blobs or patches
+/// (`points`) or of the others, with each record's index; a record it
+/// cannot make is an error at the record.
+fn chains<C, E: std::fmt::Display>(
+    scene: &Scene,
+    points: bool,
+    make: impl Fn(&KeyframeRecord) -> Result<C, E>,
+) -> Result<Vec<(usize, C)>, RenderError> {
     scene
         .keyframes
         .iter()
         .enumerate()
+        .filter(|(_, record)| of_points(scene, record) == points)
         .map(|(k, record)| {
-            PaperChain::from_keyframe(scene, record, fidelity)
-                .map(|chain| (k, chain))
-                .map_err(|e| RenderError::Misfit {
-                    pos: record.pos.clone(),
-                    record: "keyframe",
-                    message: e.to_string(),
-                })
+            make(record).map(|chain| (k, chain)).map_err(|e| RenderError::Misfit {
+                pos: record.pos.clone(),
+                record: "keyframe",
+                message: e.to_string(),
+            })
         })
         .collect()
+}
+
+/// `goahead(i2, …)` for every key-frame pair of the main program
+/// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record of
+/// sweeps, with the record's index (the chains of blobs and patches are
+/// [`point_chains`]).
+pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
+    chains(scene, false, |record| {
+        PaperChain::from_keyframe(scene, record, fidelity)
+    })
+}
+
+/// The chains of the `keyframe` records of blobs or of patches (the port's
+/// extension, §6.2: `PointChain`), with each record's index.
+pub fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
+    chains(scene, true, |record| PointChain::from_keyframe(scene, record, fidelity))
+}
+
+/// The bounding-sphere `radius` of keyframe record `k`'s in-between object
+/// widened to hold its local box `b` at every time (a sweep chain's
+/// `bbox`, a blob or patch chain's box over the render's times).
+fn widen_to_hold(scene: &mut Scene, k: usize, b: &BoundingBox) {
+    let corner = DVec3::new(
+        b.xmin.abs().max(b.xmax.abs()),
+        b.ymin.abs().max(b.ymax.abs()),
+        b.zmin.abs().max(b.zmax.abs()),
+    );
+    let first = scene.keyframes[k].first;
+    if corner.is_finite() {
+        scene.objects[first].radius = scene.objects[first].radius.max(corner.length() * (1.0 + 1e-9));
+    }
 }

@@ -1,5 +1,7 @@
 //! Reconstructed base: the primitive intersections of the base program
-//! `Raytrace` (Ch. 4 (e): sphere, block, cylinder, prism, sweep object).
+//! `Raytrace` (Ch. 4 (e): sphere, block, cylinder, prism, sweep object);
+//! and the port's extension, the objects §6.2 names next ([`blob`],
+//! [`patch`]).
 //! The thesis does not print them; they follow the usual closed forms
 //! (Rogers 1985, the thesis's reference for the static program), in each
 //! object's local frame: the ray is carried by the object's `inverse`, the
@@ -18,13 +20,81 @@
 //! away is intersected as exactly as from 10 (the port's extension; the
 //! thesis's eye is never far, DEVIATIONS D20).
 
+pub mod blob;
+pub mod patch;
 mod posed;
 pub mod sweep;
 
+pub use blob::{blob_box, blob_reach, BlobCache};
+pub use patch::{patch_box, patch_reach, PatchCache};
 pub use posed::Posed;
-pub use sweep::{prepare_caches, SweepCache};
+pub use sweep::SweepCache;
 
+use std::sync::Arc;
+
+use crate::scene::Scene;
 use crate::types::{BoundingBox, DVec3, LocalHit, ObjectRecord, PrimitiveClass, Ray, Shape};
+
+/// What is prepared for an object's own shape before any ray, owned by
+/// the render: a sweep's ([`SweepCache`]), a blob's hierarchy of
+/// components ([`BlobCache`]), a patch's pieces ([`PatchCache`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShapeCache {
+    Sweep(SweepCache),
+    Blob(BlobCache),
+    Patch(PatchCache),
+}
+
+impl ShapeCache {
+    /// A sweep's cache.
+    pub fn sweep(&self) -> Option<&SweepCache> {
+        match self {
+            ShapeCache::Sweep(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// A blob's hierarchy.
+    pub fn blob(&self) -> Option<&BlobCache> {
+        match self {
+            ShapeCache::Blob(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// A patch's pieces.
+    pub fn patch(&self) -> Option<&PatchCache> {
+        match self {
+            ShapeCache::Patch(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The cache of a blob or a patch: made for one at rest once, for an
+    /// in-between at each instant (a sweep's contour of the moment takes
+    /// none).
+    pub fn of_moment(shape: &Shape) -> Option<ShapeCache> {
+        match shape {
+            Shape::Blob(b) => Some(ShapeCache::Blob(BlobCache::new(b))),
+            Shape::Patch(p) => Some(ShapeCache::Patch(PatchCache::new(p))),
+            _ => None,
+        }
+    }
+}
+
+/// The caches of `scene.objects[i]`, in their order: the sweeps' (made
+/// after their boxes are final, `prepare_sweeps` then `widen_tbox`;
+/// objects of one contour, box and class share one), the blobs' and
+/// patches' ([`ShapeCache::of_moment`]); `None` for the other objects.
+pub fn prepare_caches(scene: &Scene) -> Vec<Option<Arc<ShapeCache>>> {
+    let sweeps = sweep::prepare_caches(scene);
+    scene
+        .objects
+        .iter()
+        .zip(sweeps)
+        .map(|(obj, sweep)| sweep.or_else(|| ShapeCache::of_moment(&obj.shape).map(Arc::new)))
+        .collect()
+}
 
 /// A ray taken near an object: the same line from another origin,
 /// `ray.origin = original.at(shift)`, and `tmin` measured from there.
@@ -64,6 +134,15 @@ impl Near {
             tmin: tmin - shift,
             shift,
         }
+    }
+
+    /// [`Near::of`] the sphere of radius `reach` about the local origin,
+    /// for a ray whose numbers are all finite and whose direction is not
+    /// zero (`None` otherwise: such a ray meets nothing): the start of a
+    /// blob's and a patch's search.
+    pub fn about_origin(ray: &Ray, tmin: f64, reach: f64) -> Option<Near> {
+        let fit = ray.origin.is_finite() && ray.dir.is_finite() && ray.dir != DVec3::ZERO && !tmin.is_nan();
+        fit.then(|| Near::of(ray, tmin, DVec3::ZERO, reach * reach))
     }
 
     /// A hit on the re-based ray as a hit on the original: the distance
@@ -436,8 +515,10 @@ pub fn bounding_radius(radius: f64) -> f64 {
 /// prism's extent; a sweep's from its `bbox` (its own, or in `listing`
 /// fidelity its class's, which holds it, erratum 9), for a rotation sweep
 /// ±its greatest radius across (the listing's `rbox` keeps the radius
-/// range min U … max U in x and y). `None` for a sphere (its sphere is its
-/// bound) and a sweep without segments.
+/// range min U … max U in x and y); a blob's from its components' spheres
+/// ([`blob_box`]), a patch's from its control points ([`patch_box`]).
+/// `None` for a sphere (its sphere is its bound), a sweep without segments
+/// and a blob without a component of positive strength.
 pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
     let b = |lo: DVec3, hi: DVec3| BoundingBox {
         xmin: lo.x,
@@ -468,6 +549,8 @@ pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
             Some(b(DVec3::new(-r, -r, sw.bbox.zmin), DVec3::new(r, r, sw.bbox.zmax)))
         }
         Shape::Sweep(sw) => Some(sw.bbox),
+        Shape::Blob(b) => blob_box(b),
+        Shape::Patch(p) => Some(patch_box(p)),
     }
 }
 

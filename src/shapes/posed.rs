@@ -1,7 +1,10 @@
 //! An object as a ray meets it at one instant: the dispatch from the
 //! object's shape to its intersection.
 
-use super::sweep::{Sweep, SweepCache};
+use super::blob::query as blob_query;
+use super::patch::query as patch_query;
+use super::sweep::Sweep;
+use super::ShapeCache;
 use super::{
     block_blocks, bounding_sphere_hit, intersect_block, intersect_cylinder, intersect_prism, intersect_sphere,
 };
@@ -10,14 +13,15 @@ use crate::types::{LocalHit, ObjectRecord, Pose, Ray, Shape, SweepShape};
 
 /// An object as a ray meets it at one instant: its record, the shape it
 /// has then (its own, or its contour of the moment when it deforms), the
-/// cache made with that shape ([`SweepCache`]; `None` for a contour of the
-/// moment, whose caps are then solved and whose bounds are made per ray)
-/// and where it stands then.
+/// cache made with that shape ([`ShapeCache`]; `None` for a contour of the
+/// moment, whose caps are then solved and whose bounds are made per ray;
+/// a patch of the moment's pieces made at the instant) and where it
+/// stands then.
 #[derive(Clone, Copy, Debug)]
 pub struct Posed<'a> {
     pub obj: &'a ObjectRecord,
     pub shape: &'a Shape,
-    pub cache: Option<&'a SweepCache>,
+    pub cache: Option<&'a ShapeCache>,
     pub pose: &'a Pose,
 }
 
@@ -44,13 +48,15 @@ impl Posed<'_> {
             } => intersect_cylinder(*cylradius, *bottom, *top, &local, tmin),
             Shape::Prism { height, vertex, .. } => intersect_prism(vertex, *height, &local, tmin),
             Shape::Sweep(sw) => self.sweep(sw).intersect(&local, tmin, opts, searched),
+            Shape::Blob(_) | Shape::Patch(_) => self.of_points(&local, tmin, f64::INFINITY, false, opts, searched),
         }
     }
 
     /// Does the shape (as in [`Posed::intersect`]) stand on the ray at
     /// some t with `tmin` < t < `tmax`? The shadow ray's question: a sweep
-    /// answers it at its first hit before `tmax` ([`Sweep::blocks`]), a
-    /// block by its slabs, the other shapes by their nearest hit. The same
+    /// answers it at its first hit before `tmax` ([`Sweep::blocks`]), as
+    /// blobs and patches do, a block by its slabs, the other shapes by
+    /// their nearest hit. The same
     /// answer as `intersect(..).is_some_and(|h| h.t < tmax)`.
     pub fn blocks(&self, ray: &Ray, tmin: f64, tmax: f64, opts: &Options, searched: &mut u64) -> bool {
         match self.shape {
@@ -59,6 +65,11 @@ impl Posed<'_> {
                 self.sweep(sw).blocks(&local, tmin, tmax, opts, searched)
             }
             Shape::Block { lengths } => block_blocks(*lengths, &ray.transformed(&self.pose.inverse), tmin, tmax),
+            Shape::Blob(_) | Shape::Patch(_) => {
+                let local = ray.transformed(&self.pose.inverse);
+                self.of_points(&local, tmin, tmax, true, opts, searched)
+                    .is_some_and(|h| h.t < tmax)
+            }
             _ => self.intersect(ray, tmin, opts, searched).is_some_and(|h| h.t < tmax),
         }
     }
@@ -69,7 +80,41 @@ impl Posed<'_> {
         Sweep {
             class: self.obj.class,
             shape: sw,
-            cache: self.cache,
+            cache: self.cache.and_then(ShapeCache::sweep),
+        }
+    }
+
+    /// A blob's or a patch's hit with the ray `local` in its frame: the
+    /// nearest beyond `tmin`, or (`first`) the first found before `tmax`.
+    /// Out of line, so that the dispatch of the thesis's shapes stays the
+    /// size it was where it is inlined (the shadow rays' loop).
+    #[inline(never)]
+    fn of_points(
+        &self,
+        local: &Ray,
+        tmin: f64,
+        tmax: f64,
+        first: bool,
+        opts: &Options,
+        searched: &mut u64,
+    ) -> Option<LocalHit> {
+        let (radius, cache) = (self.obj.radius, self.cache);
+        match self.shape {
+            Shape::Blob(b) => blob_query(
+                b,
+                cache.and_then(ShapeCache::blob),
+                radius,
+                local,
+                tmin,
+                tmax,
+                opts,
+                searched,
+            ),
+            Shape::Patch(p) => {
+                let cache = cache.and_then(ShapeCache::patch);
+                patch_query(p, cache, radius, local, tmin, tmax, first, searched)
+            }
+            _ => None,
         }
     }
 }

@@ -34,6 +34,8 @@ pub fn object(name: &str, surface: usize, at: [f64; 3], shape: Shape, radius: f6
         Shape::Cylinder { .. } => PrimitiveClass::Cylinder,
         Shape::Prism { .. } => PrimitiveClass::Prism,
         Shape::Sweep(_) => PrimitiveClass::Translation,
+        Shape::Blob(_) => PrimitiveClass::Blob,
+        Shape::Patch(_) => PrimitiveClass::Patch,
     };
     ObjectRecord {
         name: name.into(),

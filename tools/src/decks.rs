@@ -61,6 +61,19 @@ pub const SOLVER_DECKS: &[&str] = &["fig5_6", "fig5_7", "fig5_8", "stress_edge_o
 /// conic, rotation.
 pub const SWEEP_KINDS: &[&str] = &["fig5_6", "fig5_7", "fig5_8"];
 
+/// The scenes of blobs and patches (the port's extension, §6.2) that
+/// `tools vs-povray --shapes` compares, in tools/decks: a blob of 24
+/// components and one that carves, a vase and a floor of 20 patches, and
+/// the speed goal's one blob of 60 components with those 20 patches.
+pub const SHAPE_DECKS: &[&str] = &["blob", "patches", "blob_patches"];
+
+/// The path of a deck of tools/decks by name.
+pub fn tools_deck(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("decks")
+        .join(format!("{name}.deck"))
+}
+
 /// The folder of the shipped decks, legacy_pascal/decks.
 pub fn deck_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../legacy_pascal/decks")

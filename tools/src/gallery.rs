@@ -170,6 +170,13 @@ pub const GALLERY: &[Picture] = &[
         FIVE,
         96,
     ),
+    render("docs/img/sec6_2.png", "legacy_pascal/decks/sec6_2.deck"),
+    frames(
+        "docs/img/sec6_2_frames.png",
+        "legacy_pascal/decks/sec6_2.deck",
+        FIVE,
+        128,
+    ),
     Picture {
         image: "docs/img/stress_edge_on.png",
         deck: "legacy_pascal/decks/stress_edge_on.deck",
@@ -204,6 +211,16 @@ pub const GALLERY: &[Picture] = &[
         128,
     ),
     render("docs/img/tutorial_5_path.png", "legacy_pascal/tutorial/5_path.deck"),
+    render(
+        "docs/img/tutorial_6_blob_patch.png",
+        "legacy_pascal/tutorial/6_blob_patch.deck",
+    ),
+    frames(
+        "docs/img/tutorial_6_blob_patch_frames.png",
+        "legacy_pascal/tutorial/6_blob_patch.deck",
+        FIVE,
+        128,
+    ),
     editor(
         "docs/img/editor_goblet.png",
         "legacy_pascal/decks/fig5_8.deck",
@@ -599,7 +616,7 @@ mod tests {
     fn each_tutorial_deck_renders_and_builds_on_the_one_before() {
         let root = checkout();
         let decks = tutorial_decks(&root);
-        assert_eq!(decks.len(), 5);
+        assert_eq!(decks.len(), 6);
         let mut before: Option<(Vec<String>, Raster)> = None;
         for deck in &decks {
             let name = deck.strip_prefix(&root).unwrap().to_str().unwrap().to_owned();

@@ -182,9 +182,11 @@ enum Command {
         #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u64).range(1..))]
         every: u64,
     },
-    /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives
-    /// and sweeps ((x, y, z) becomes <x, z, y>; sweeps become prism and lathe),
-    /// paints as POV-Ray patterns and textures as image maps.
+    /// Export a deck's scene to POV-Ray 3.7 SDL: camera, lights, primitives,
+    /// sweeps, blobs and patches ((x, y, z) becomes <x, z, y>; sweeps become
+    /// prism and lathe, blobs blob, patches bicubic_patch; the objects at
+    /// rest, key frames as their first shape), paints as POV-Ray patterns
+    /// and textures as image maps.
     Pov {
         /// The deck (a path, or a shipped deck's name such as fig5_8).
         deck: String,
@@ -221,6 +223,11 @@ enum Command {
         /// (repeat or separate by commas; the deck default, table, if none).
         #[arg(long, value_enum, value_delimiter = ',')]
         sampler: Vec<raytrace::options::TimeSampler>,
+        /// Instead of the decks: the scenes of blobs and patches in
+        /// tools/decks (a blob, a vase and floor of patches, and the
+        /// speed goal's one blob of 60 components with 20 patches).
+        #[arg(long, conflicts_with = "depth_of_field")]
+        shapes: bool,
     },
     /// Time a sample against the number of objects: N spheres, fig5_6 stars and fig5_8
     /// goblets at random in a box, with each --accel and with POV-Ray when installed, one
@@ -423,6 +430,7 @@ fn run(command: Command) -> Result<(), Failure> {
             runs,
             depth_of_field,
             sampler,
+            shapes,
         } => {
             let set = tools::vs_povray::Settings {
                 size: size.clamp(8, 4096),
@@ -437,7 +445,14 @@ fn run(command: Command) -> Result<(), Failure> {
                 };
                 return tools::vs_povray::depth_of_field(&set, &samplers).map_err(Failure::other);
             }
-            let decks: Vec<PathBuf> = decks.iter().map(PathBuf::from).collect();
+            let decks: Vec<PathBuf> = if shapes {
+                tools::decks::SHAPE_DECKS
+                    .iter()
+                    .map(|d| tools::decks::tools_deck(d))
+                    .collect()
+            } else {
+                decks.iter().map(PathBuf::from).collect()
+            };
             tools::vs_povray::run(&decks, &set)
         }
     };

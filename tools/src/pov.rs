@@ -53,8 +53,8 @@ use raytrace::raytrace::{getangle, translookpt};
 use raytrace::scene::{LightRecord, Scene};
 use raytrace::shapes::sweep::segment_points;
 use raytrace::types::{
-    CurveKind, DMat4, DVec3, ObjectRecord, Paint, PaintKind, PrimitiveClass, Shape, SurfaceAttribute, SurfaceRecord,
-    SweepShape, MAXSEGMENTS,
+    BlobShape, CurveKind, DMat4, DVec3, ObjectRecord, Paint, PaintKind, PatchShape, PrimitiveClass, Shape, SurfaceAttribute,
+    SurfaceRecord, SweepShape, MAXSEGMENTS,
 };
 
 /// A point or vector of our world as POV-Ray's: (x, y, z) → <x, z, y>.
@@ -452,7 +452,47 @@ fn shape_sdl(class: PrimitiveClass, shape: &Shape, radius: f64) -> Option<String
             )
         }
         Shape::Sweep(sw) => sweep_sdl(class, sw)?,
+        Shape::Blob(b) => blob_sdl(b)?,
+        Shape::Patch(p) => patch_sdl(p),
     })
+}
+
+/// A blob's SDL (without its texture and matrix): POV-Ray's `blob`, whose
+/// field is ours (each component strength·(1 − r²/R²)² within R), one
+/// `sphere` component each; `None` for a blob without components.
+pub fn blob_sdl(b: &BlobShape) -> Option<String> {
+    if b.components.is_empty() {
+        return None;
+    }
+    let parts: Vec<String> = b
+        .components
+        .iter()
+        .map(|c| {
+            format!(
+                "sphere {{ {}, {}, strength {} }}",
+                pov_vec(c.centre),
+                num(c.radius),
+                num(c.strength)
+            )
+        })
+        .collect();
+    Some(format!("blob {{ threshold {} {}", num(b.threshold), parts.join(" ")))
+}
+
+/// How finely POV-Ray cuts a patch into triangles (`u_steps`, `v_steps`
+/// of `bicubic_patch` type 1: 2⁶ = 64 strips each way): fine enough that
+/// its silhouettes are the exact patch's to a pixel at 256².
+pub const PATCH_STEPS: u32 = 6;
+
+/// A patch's SDL (without its texture and matrix): POV-Ray's
+/// `bicubic_patch` of type 1 (its triangles made once, [`PATCH_STEPS`]
+/// each way), the 16 points in our order (rows of four), each swapped.
+pub fn patch_sdl(p: &PatchShape) -> String {
+    let pts: Vec<String> = p.points.iter().map(|&q| pov_vec(q)).collect();
+    format!(
+        "bicubic_patch {{ type 1 flatness 0 u_steps {PATCH_STEPS} v_steps {PATCH_STEPS} {}",
+        pts.join(", ")
+    )
 }
 
 /// POV-Ray's focal blur for a `lens` of aperture > 0 (the port's

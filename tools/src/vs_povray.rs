@@ -2,9 +2,10 @@
 //! geometry (the scene [`crate::pov`] exports). For each deck: CPU time of
 //! both, one thread each, at equal samples (our `mask` M against POV's
 //! `+A0.0 +AM1 +RM -J`, M×M rays a pixel), the renders interleaved and the
-//! medians taken; then the silhouettes of the sweep objects at one sample
-//! a pixel (each sweep alone, white on black, no light), compared pixel by
-//! pixel. Not the thesis's: a cross-check of the port. Linux only (ours
+//! medians taken; then the silhouettes of the sweep objects, blobs and
+//! patches at one sample a pixel (those alone, white on black, no light),
+//! compared pixel by pixel. `--shapes` compares the scenes of blobs and
+//! patches of tools/decks ([`crate::decks::SHAPE_DECKS`]). Not the thesis's: a cross-check of the port. Linux only (ours
 //! from the rendering thread's CPU clock, POV-Ray's process from
 //! /proc/self/stat's children's times).
 //!
@@ -185,12 +186,12 @@ pub fn read_ppm(bytes: &[u8]) -> Result<(usize, usize, Vec<[u8; 3]>), String> {
     Ok((w, h, px))
 }
 
-/// The scene's sweep objects alone, white (ambient 1) on black, no light:
-/// a render of it is the sweeps' silhouette.
+/// The scene's sweep objects, blobs and patches alone, white (ambient 1)
+/// on black, no light: a render of it is their silhouette.
 fn silhouette_scene(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     let keep: Vec<usize> = (0..s.objects.len())
-        .filter(|&i| matches!(s.objects[i].shape, Shape::Sweep(_)))
+        .filter(|&i| matches!(s.objects[i].shape, Shape::Sweep(_) | Shape::Blob(_) | Shape::Patch(_)))
         .collect();
     s.object_pos = keep.iter().map(|&i| s.object_pos[i].clone()).collect();
     s.objects = keep.iter().map(|&i| s.objects[i].clone()).collect();
@@ -293,7 +294,7 @@ pub fn run(decks: &[PathBuf], set: &Settings) -> Result<(), String> {
     let pool = crate::measure::one_thread()?;
     let dir = crate::measure::scratch_dir("vs-povray")?;
     println!(
-        "{}², {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
+        "{}², {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps, blobs and patches at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
         set.size,
         set.mask * set.mask,
         set.runs

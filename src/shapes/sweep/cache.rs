@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use super::{CapGrid, QueryBounds};
 use crate::scene::Scene;
+use crate::shapes::ShapeCache;
 use crate::types::{PrimitiveClass, Shape, SweepShape};
 
 /// See the module doc. Made by [`SweepCache::new`], or for a whole scene
@@ -44,20 +45,20 @@ impl SweepCache {
     }
 }
 
-/// The caches of `scene.objects[i]`, in their order: `None` for an object
-/// that is not a sweep or has nothing to keep. Made after the boxes are
+/// The sweeps' caches of `scene.objects[i]`, in their order: `None` for
+/// an object that is not a sweep or has nothing to keep. Made after the boxes are
 /// final (`prepare_sweeps`, then `widen_tbox`). Objects with the same
 /// contour, box and class share one cache (a scene of a thousand copies of
 /// one star makes its cap grid once).
-pub fn prepare_caches(scene: &Scene) -> Vec<Option<Arc<SweepCache>>> {
-    let mut made: HashMap<Vec<u64>, Option<Arc<SweepCache>>> = HashMap::new();
+pub fn prepare_caches(scene: &Scene) -> Vec<Option<Arc<ShapeCache>>> {
+    let mut made: HashMap<Vec<u64>, Option<Arc<ShapeCache>>> = HashMap::new();
     scene
         .objects
         .iter()
         .map(|obj| match &obj.shape {
             Shape::Sweep(sw) => made
                 .entry(key(obj.class, sw))
-                .or_insert_with(|| SweepCache::new(obj.class, sw).map(Arc::new))
+                .or_insert_with(|| SweepCache::new(obj.class, sw).map(|c| Arc::new(ShapeCache::Sweep(c))))
                 .clone(),
             _ => None,
         })

@@ -16,8 +16,9 @@
 //! the time of one solve.
 //!
 //! One file a part: `roots` and `rays` build the families,
-//! `keyframe` the key-frame ones, `tally` counts what each method
-//! does on them, `report` writes the tables.
+//! `keyframe` the key-frame ones, `soft` the blobs' and patches' (§6.2,
+//! the port's extension), `tally` counts what each method does on them,
+//! `report` writes the tables.
 
 use raytrace::options::{Fidelity, Options, Solver};
 
@@ -25,12 +26,14 @@ mod keyframe;
 mod rays;
 mod report;
 mod roots;
+mod soft;
 mod tally;
 
 pub use keyframe::*;
 pub use rays::*;
 pub use report::run;
 pub use roots::*;
+pub use soft::*;
 pub use tally::*;
 
 /// A root counts as found within this distance of the true root.

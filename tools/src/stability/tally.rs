@@ -40,7 +40,7 @@ pub fn rounding_bound(n: usize, a: &[f64; 7], w: f64) -> f64 {
 
 /// Times `f` over all cases, repeated until each run takes 50 ms; the
 /// median of 7 runs, in ns a case.
-fn time_per_case(cases: usize, mut f: impl FnMut()) -> f64 {
+pub(super) fn time_per_case(cases: usize, mut f: impl FnMut()) -> f64 {
     let mut reps = 1usize;
     loop {
         let t = Instant::now();
