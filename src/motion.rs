@@ -74,6 +74,7 @@ impl Moving {
         match &self.motion {
             Motion::Path(record) => motion_place(rest, record, time, fidelity).0,
             Motion::Chain { chain, .. } => chain.centre(time),
+            Motion::Points { chain, .. } => chain.centre(time),
         }
     }
 

@@ -388,8 +388,16 @@ impl PaperPair {
     /// [`PaperPair::pose`] puts it: FIRST's place plus `time`·`diff`.
     #[inline]
     pub fn centre(&self, time: f64) -> DVec3 {
-        self.first_pose.sphereo + self.diff * time
+        keyed_centre(&self.first_pose, self.diff, time)
     }
+}
+
+/// Where [`keyed_pose`] puts the in-between object's origin at `time`:
+/// FIRST's place plus `time`·`diff`, the same to the bit; what the
+/// bounding sphere's test needs without the rest of the pose.
+#[inline]
+pub fn keyed_centre(first_pose: &Pose, diff: DVec3, time: f64) -> DVec3 {
+    first_pose.sphereo + diff * time
 }
 
 /// The pose at `time` of an in-between object whose first key shape stands
@@ -397,7 +405,7 @@ impl PaperPair {
 /// `paper = 1` branch of `motionblur` ([`PaperPair::pose`], erratum 19),
 /// for the sweeps' pairs and for the blobs' and patches' ([`PointPair`]).
 pub fn keyed_pose(first_pose: &Pose, diff: DVec3, diffangle: DVec3, fidelity: Fidelity, time: f64) -> Pose {
-    let sphereo = first_pose.sphereo + diff * time;
+    let sphereo = keyed_centre(first_pose, diff, time);
     let turn = match fidelity {
         // Listing: rotate(name,xaxis,0,0,0,angle.x) on the restored
         // temp1, which holds angle.x already: no further turn. The y

@@ -37,7 +37,7 @@
 //! and the in-between is that shape, to the bit, moving from pose to pose.
 
 use super::{
-    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_pose, keyframe_first, pair_at,
+    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_centre, keyed_pose, keyframe_first, pair_at,
     reparam, Distarray, PaperError, Sdirection,
 };
 use crate::options::Fidelity;
@@ -360,6 +360,12 @@ impl PointPair {
     pub fn pose(&self, time: f64) -> Pose {
         keyed_pose(&self.first_pose, self.diff, self.diffangle, self.fidelity, time)
     }
+
+    /// The origin of [`PointPair::pose`] at `time`, the same to the bit.
+    #[inline]
+    pub fn centre(&self, time: f64) -> DVec3 {
+        keyed_centre(&self.first_pose, self.diff, time)
+    }
 }
 
 /// The pairs of a chain `keyframe A B C …` of blobs or of patches: pair k
@@ -396,6 +402,13 @@ impl PointChain {
     pub fn pose(&self, time: f64) -> Pose {
         let (pair, local) = self.locate(time);
         pair.pose(local)
+    }
+
+    /// The in-between object's origin at shutter time `time`, as
+    /// [`PointChain::pose`] puts it.
+    pub fn centre(&self, time: f64) -> DVec3 {
+        let (pair, local) = self.locate(time);
+        pair.centre(local)
     }
 
     /// The in-between shape at shutter time `time`, into `out`.

@@ -75,7 +75,7 @@ impl<'p> Tracer<'p> {
     /// colour, for a reconstruction that reads it: the same colour, from
     /// the same one search for the first hit.
     pub(super) fn shoot_features(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> (Intensity, Features) {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.bounded);
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
         self.stats.primary += 1;
         self.stats.rays += 1;
         let Some(hit) = intersect(&snap, aray, &mut self.stats) else {

@@ -40,7 +40,7 @@ pub fn generated(name: &str) -> Option<Result<String, String>> {
             crate::scale::scenes::Frame {
                 size: 128,
                 mask: 1,
-                moving: true,
+                travel: 2.0,
             },
         )),
         "ball" => Some(
