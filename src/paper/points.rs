@@ -37,8 +37,8 @@
 //! and the in-between is that shape, to the bit, moving from pose to pose.
 
 use super::{
-    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_centre, keyed_pose, keyframe_first, pair_at,
-    reparam, Distarray, PaperError, Sdirection,
+    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_centre, keyed_pose,
+    keyframe_first, pair_at, reparam, Distarray, PaperError, Sdirection,
 };
 use crate::options::Fidelity;
 use crate::scene::{KeyframeRecord, Scene};

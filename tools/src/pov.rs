@@ -53,8 +53,8 @@ use raytrace::raytrace::{getangle, translookpt};
 use raytrace::scene::{LightRecord, Scene};
 use raytrace::shapes::sweep::segment_points;
 use raytrace::types::{
-    BlobShape, CurveKind, DMat4, DVec3, ObjectRecord, Paint, PaintKind, PatchShape, PrimitiveClass, Shape, SurfaceAttribute,
-    SurfaceRecord, SweepShape, MAXSEGMENTS,
+    BlobShape, CurveKind, DMat4, DVec3, ObjectRecord, Paint, PaintKind, PatchShape, PrimitiveClass, Shape,
+    SurfaceAttribute, SurfaceRecord, SweepShape, MAXSEGMENTS,
 };
 
 /// A point or vector of our world as POV-Ray's: (x, y, z) → <x, z, y>.
