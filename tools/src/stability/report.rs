@@ -392,7 +392,9 @@ machine). Three methods: `laguerre` as printed (§2.5, 4 steps from the fixed st
 listing and thesis fidelity (erratum 7 parts them: the derivative stored and the zero-denominator \
 guards), and the robust solver (`robust::real_roots`, `--solver robust`). \
 docs/laguerre_misses.md has laguerre's miss rates on random polynomials and random rays; this report \
-takes the hard cases one family at a time.\n";
+takes the hard cases one family at a time. Where the reconstructions fail (what `--denoise` blurs \
+that it should not, the thin things `--coherence N` misses, with pictures) is in \
+docs/reconstruction.md, \"Where they fail\".\n";
 
 const ROOTTESTING: &str = "\n`roottesting`'s odd root counts are not measured in this report: the sweep driver \
 decides the caps by `point_in_contour`, not by the parity of the side roots, so it never calls \
