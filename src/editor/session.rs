@@ -10,10 +10,10 @@ use std::path::Path;
 
 use super::document::Document;
 use super::keyshapes::Chain;
+use super::layout::{PLANE, SLIDER};
 use super::model::{Contour, Edit, History, Refusal};
 use super::plane::{insertion_place, Plane};
 use super::preview::Job;
-use super::screen::{PLANE, SLIDER};
 use crate::types::{CurveKind, PrimitiveClass};
 
 /// How far an arrow key pans, in pixels.

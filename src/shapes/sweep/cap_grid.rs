@@ -205,8 +205,8 @@ impl CapGrid {
 mod tests {
     use super::*;
     use crate::hash::hashed_uniform;
-    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
     use crate::shapes::sweep::SweepCache;
+    use crate::shapes::sweep::{star_points, translation_sweep};
     use crate::types::{CurveKind, PrimitiveClass, SweepShape};
 
     /// The grid the cache of `sw` as an object of `class` keeps.

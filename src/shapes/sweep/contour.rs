@@ -166,7 +166,7 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
+    use crate::shapes::sweep::{star_points, translation_sweep};
     use crate::types::{CurveKind, SweepShape};
 
     fn square(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {
