@@ -228,7 +228,7 @@ impl<'a> Search<'a> {
     /// `net` in the ray's frame) from the part's centre; the hit if it ends
     /// within the part's width (at least [`CONVERGED`]) of it
     /// ([`Search::hit_at`]).
-    pub(super) fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
+    fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
         let centre = (0.5 * (part.u.0 + part.u.1), 0.5 * (part.v.0 + part.v.1));
         let (u, v, p) = newton(&net.xy, centre, eval(&net.xy, centre.0, centre.1));
         let within = |x: f64, (a, b): (f64, f64)| {
