@@ -2,7 +2,7 @@
 //! into. [`nearest`] for the rays `raytrace` shades, [`for_each_blocker`]
 //! for the shadow rays (a `crystal` object lets light through, so a plain
 //! yes or no is not enough). The backend is the original's loop over the
-//! object table ([`Aggregate::Linear`]); structures over the objects are
+//! object table ([`Aggregate`] without a structure, `--accel none`); structures over the objects are
 //! the port's and go beside it.
 //!
 //! What every backend answers as the loop does, written down: of two hits
@@ -57,7 +57,7 @@ pub struct Snapshot<'a> {
 /// instant begins, as `motionblur` did for every ray; with a structure
 /// over the objects, a moving object is posed the first time a ray of the
 /// instant reaches its bounding sphere (its origin alone found before,
-/// [`Poses::centre`]), and those no ray comes near cost nothing.
+/// `Poses::centre`), and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
     objects: &'a [ObjectRecord],
@@ -133,7 +133,7 @@ impl<'a> Poses<'a> {
     /// (`moving_of[i]` its index there) moves from [`Poses::at`] on, all
     /// of them at once if `eager` (for the loop), else each when first
     /// asked. Eager poses of instants whose times come back (`repeats`)
-    /// are kept for them ([`Now::All`]).
+    /// are kept for them (`Now::All`).
     pub fn new(
         objects: &'a [ObjectRecord],
         rest: &'a [Pose],
@@ -508,7 +508,7 @@ impl Aggregate {
     }
 
     /// `structure` over `scene`'s objects (the loop for `None`); `counted`
-    /// as [`Aggregate::counted`] says.
+    /// as `Aggregate::counted` says.
     pub fn new(scene: &Scene, structure: Option<Structure>, counted: bool) -> Aggregate {
         let shadow = Shadow::of(scene);
         let casters = shadow

@@ -1,5 +1,5 @@
 //! A second root solver for the sweep intersection, not the thesis's (the
-//! thesis uses [`laguerre`](super::sweep::laguerre)): every real root of a
+//! thesis uses [`laguerre`](crate::proc::sweep::laguerre)): every real root of a
 //! polynomial of degree ≤ 6 in an interval.
 //!
 //! First the cheap answer of the polynomial's Bernstein coefficients on the

@@ -103,7 +103,7 @@ fn branch(x: f64, y: f64, z: f64, cx: f64, cy: f64, cz: f64) -> u64 {
 }
 
 /// Which side of the centre each axis of child `k` (1..8) lies on, `true`
-/// for above: the inverse of [`branch`].
+/// for above: the inverse of `branch`.
 pub fn findnode_digit(k: u64) -> [bool; 3] {
     match k {
         6 => [true, true, true],

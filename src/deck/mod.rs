@@ -267,7 +267,7 @@ pub fn read_deck(reader: impl std::io::Read) -> std::io::Result<Vec<u8>> {
 }
 
 /// The record keywords, for the suggestion after an unknown one; every
-/// keyword that [`Builder::record`] reads is here (a test holds them equal
+/// keyword that `Builder::record` reads is here (a test holds them equal
 /// to DECK.md's list).
 pub const RECORDS: &[&str] = &[
     "view",

@@ -1,7 +1,7 @@
 //! A deck's words and line ends with the bytes they stand on: for a
 //! program that rewrites one record of a deck and must leave every other
 //! byte as it is (the contour editor's save, the port's extension). The
-//! words are the reader's own ([`super::lex`]), so a word inside a comment
+//! words are the reader's own (`super::lex`), so a word inside a comment
 //! is no word here either.
 
 use std::ops::Range;

@@ -8,7 +8,7 @@ use crate::scene::Scene;
 use crate::types::{BoundingBox, Coeff, CurveKind, DVec3, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// The four control points of segment i: B-spline points i … i+3
-/// (wrapping), Bezier P[3i] … P[3i+3 mod 3k].
+/// (wrapping), Bezier `P[3i]` … `P[3i+3 mod 3k]`.
 pub fn segment_points(curve: CurveKind, points: &[[f64; 2]], i: usize) -> [[f64; 2]; 4] {
     let n = points.len();
     match curve {
