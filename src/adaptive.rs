@@ -184,7 +184,7 @@ pub fn quantum(budget: u32) -> u32 {
 /// The rays of the passes after the first, for an image of `pixels` pixels
 /// and a budget of `budget` a pixel, `first` of which the first pass spent:
 /// the `extra` of each pass, 1/(passes left) of what remains.
-pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
+pub(crate) fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     let passes = PASSES;
     let mut left = pixels as u64 * budget.saturating_sub(first) as u64;
     let mut out = vec![0u64; passes];

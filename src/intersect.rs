@@ -457,7 +457,7 @@ impl Snapshot<'_> {
 
 /// What an object does to a shadow ray that meets it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shadow {
+pub(crate) enum Shadow {
     /// Stops it (every surface but the three below).
     Opaque,
     /// Lets kt·colour of the light through (`crystal`).
@@ -729,7 +729,7 @@ fn blockers_in(
 
 /// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
 /// scene in which nothing moves.
-pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
+pub(crate) fn rest_poses(scene: &Scene) -> Vec<Pose> {
     scene.objects.iter().map(|o| o.pose()).collect()
 }
 

@@ -24,7 +24,7 @@ use super::{visit_each, Aabb, BoxRay, Step};
 use crate::types::DVec3;
 
 /// A cell holding more objects than this is subdivided (if it may be).
-pub const MAX_IN_CELL: usize = 8;
+pub(crate) const MAX_IN_CELL: usize = 8;
 
 /// The deepest level: node numbers stay below 10^(MAX_DEPTH + 1), well
 /// within a u64.

@@ -244,7 +244,7 @@ pub const MAX_TEXELS: usize = 4096 * 4096;
 pub const MAX_OBJECTS: usize = 1_000_000;
 
 /// The reading limit of a deck texture ([`MAX_TEXELS`]).
-pub const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
+pub(crate) const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
     pixels: MAX_TEXELS,
     what: "deck texture",
 };

@@ -22,7 +22,7 @@ pub const SLIDER: Rect = Rect {
 };
 
 /// The rendered preview.
-pub const PREVIEW: Rect = Rect {
+pub(crate) const PREVIEW: Rect = Rect {
     x: 608,
     y: 16,
     w: 384,
@@ -30,7 +30,7 @@ pub const PREVIEW: Rect = Rect {
 };
 
 /// The text beside the plane, under the preview.
-pub const INFO: Rect = Rect {
+pub(crate) const INFO: Rect = Rect {
     x: 592,
     y: 424,
     w: 432,
@@ -38,7 +38,7 @@ pub const INFO: Rect = Rect {
 };
 
 /// The message line at the bottom.
-pub const STATUS: Rect = Rect {
+pub(crate) const STATUS: Rect = Rect {
     x: 0,
     y: 836,
     w: 1024,

@@ -20,7 +20,7 @@ use crate::types::{CurveKind, PrimitiveClass};
 pub const PAN_STEP: f64 = 64.0;
 
 /// How far `,` and `.` move the time slider.
-pub const TIME_STEP: f64 = 0.05;
+pub(crate) const TIME_STEP: f64 = 0.05;
 
 /// A key of the editor's window.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

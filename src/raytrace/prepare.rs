@@ -341,7 +341,7 @@ pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize,
 
 /// The chains of the `keyframe` records of blobs or of patches (the port's
 /// extension, §6.2: `PointChain`), with each record's index.
-pub fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
+pub(crate) fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
     chains(scene, true, |record| PointChain::from_keyframe(scene, record, fidelity))
 }
 

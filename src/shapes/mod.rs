@@ -556,7 +556,7 @@ pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
 
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
 /// Padded ([`bounding_radius`]) so no surface hit is lost.
-pub fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
+pub(crate) fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
     let r = bounding_radius(radius);
     let oc = ray.origin - centre;
     let a = ray.dir.length_squared();

@@ -34,7 +34,7 @@ enum Cell {
 /// See the module doc. Built by [`CapGrid::new`] from the contour's
 /// segments; answers [`CapGrid::answer`].
 #[derive(Clone, PartialEq)]
-pub struct CapGrid {
+pub(crate) struct CapGrid {
     x0: f64,
     y0: f64,
     /// Cells per unit of U and of V.
