@@ -9,7 +9,8 @@
 //! The crate's root holds what a program that renders needs: the deck
 //! reader ([`initialize`], [`read_deck_file`]), the choices of a render
 //! ([`Options`]: [`Fidelity`], [`Solver`], [`TimeSampler`]), the prepared
-//! scene and the render ([`Prepared`], [`render`], a [`Request`]), and the
+//! scene and the render ([`Prepared`] with an [`Accel`], [`render`], a
+//! [`Request`] of a film's [`Frame`] and a [`Reconstruction`]), and the
 //! raster's files ([`outputframe`], the Sun raster the original wrote, and
 //! `write_png`). A deck's error names its FILE:LINE:COLUMN.
 //!
@@ -114,10 +115,13 @@ pub mod tile;
 pub mod trace;
 pub mod types;
 
+pub use accel::Accel;
 pub use deck::{initialize, read_deck_file, DeckError};
+pub use film::Frame;
 pub use options::{Fidelity, Options, Solver, TimeSampler};
 #[cfg(feature = "png")]
 pub use raster::write_png;
 pub use raster::{outputframe, Raster, RasterError};
 pub use raytrace::{render, Prepared, Render, RenderError, Request};
+pub use reconstruct::Reconstruction;
 pub use scene::Scene;
