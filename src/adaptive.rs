@@ -52,7 +52,7 @@ pub const NEIGHBOUR: f64 = 0.5;
 /// as scrambled Sobol points converge faster than independent ones where
 /// a pixel is smooth (0.8 measured best of 0.65, 0.8, 1 and 1.25; 0.75,
 /// which two square roots compute, within ±0.003 of its error ratios on
-/// every deck of the goal). [`needs`] computes exactly w^¾.
+/// every deck of the goal). `allocate::needs` computes exactly w^¾.
 pub const NEED_POWER: f64 = 0.75;
 
 /// The largest [`quantum`]: a pixel's count after the first pass is its
@@ -184,7 +184,7 @@ pub fn quantum(budget: u32) -> u32 {
 /// The rays of the passes after the first, for an image of `pixels` pixels
 /// and a budget of `budget` a pixel, `first` of which the first pass spent:
 /// the `extra` of each pass, 1/(passes left) of what remains.
-pub fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
+pub(crate) fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     let passes = PASSES;
     let mut left = pixels as u64 * budget.saturating_sub(first) as u64;
     let mut out = vec![0u64; passes];

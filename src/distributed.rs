@@ -22,7 +22,7 @@ use crate::types::DVec3;
 /// cone it fills seen from `p`, uniform over the solid angle, and the
 /// distance to where that direction enters it.
 #[inline]
-pub fn toward_light(light: &LightRecord, p: DVec3, sampler: &mut dyn Sampler) -> Option<(DVec3, f64)> {
+pub(crate) fn toward_light(light: &LightRecord, p: DVec3, sampler: &mut dyn Sampler) -> Option<(DVec3, f64)> {
     let to_light = light.position - p;
     let dist = to_light.length();
     if light.radius <= 0.0 {

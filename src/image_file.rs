@@ -32,7 +32,7 @@ const PNG_SIGNATURE: &[u8] = b"\x89PNG\r\n\x1a\n";
 
 /// The kind of a file from its first bytes (at least 8 for a PNG, 3 for a
 /// netpbm file); anything else is taken for a Sun raster.
-pub fn kind_of(head: &[u8]) -> Kind {
+pub(crate) fn kind_of(head: &[u8]) -> Kind {
     match head {
         _ if head.starts_with(PNG_SIGNATURE) => Kind::Png,
         [b'P', n @ b'1'..=b'7', next, ..] if next.is_ascii_whitespace() => Kind::Netpbm(*n),

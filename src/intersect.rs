@@ -2,7 +2,7 @@
 //! into. [`nearest`] for the rays `raytrace` shades, [`for_each_blocker`]
 //! for the shadow rays (a `crystal` object lets light through, so a plain
 //! yes or no is not enough). The backend is the original's loop over the
-//! object table ([`Aggregate::Linear`]); structures over the objects are
+//! object table ([`Aggregate`] without a structure, `--accel none`); structures over the objects are
 //! the port's and go beside it.
 //!
 //! What every backend answers as the loop does, written down: of two hits
@@ -231,7 +231,7 @@ impl Snapshot<'_> {
 
 /// What an object does to a shadow ray that meets it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shadow {
+pub(crate) enum Shadow {
     /// Stops it (every surface but the three below).
     Opaque,
     /// Lets kt·colour of the light through (`crystal`).
@@ -282,7 +282,7 @@ impl Aggregate {
     }
 
     /// `structure` over `scene`'s objects (the loop for `None`); `counted`
-    /// as [`Aggregate::counted`] says.
+    /// as `Aggregate::counted` says.
     pub fn new(scene: &Scene, structure: Option<Structure>, counted: bool) -> Aggregate {
         let shadow = Shadow::of(scene);
         let casters = shadow
@@ -503,7 +503,7 @@ fn blockers_in(
 
 /// Every object of `scene` at rest: the poses of a [`Snapshot`] of a
 /// scene in which nothing moves.
-pub fn rest_poses(scene: &Scene) -> Vec<Pose> {
+pub(crate) fn rest_poses(scene: &Scene) -> Vec<Pose> {
     scene.objects.iter().map(|o| o.pose()).collect()
 }
 

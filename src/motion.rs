@@ -279,7 +279,7 @@ pub fn object_bounds(objects: &[ObjectRecord], moving: &[Moving], span: (f64, f6
 
 /// The most objects the hierarchy's trees over the runs of time segments
 /// hold together ([`object_bounds`]): a bound on their memory.
-pub const RUN_OBJECTS: usize = 4_000_000;
+pub(crate) const RUN_OBJECTS: usize = 4_000_000;
 
 /// How much `whole` outstretches `instant` on the axis where it does most,
 /// in widths of `instant` (0 for boxes that are not finite).

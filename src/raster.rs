@@ -44,20 +44,20 @@ pub use complete::{check_complete, sun_raster_len};
 pub use format::{write_exr_to, write_image, write_png_to, write_ppm_to, Format, FormatError, EXTENSIONS};
 
 /// `RAS_MAGIC`: the first four bytes of every Sun raster file.
-pub const RAS_MAGIC: u32 = 0x59a6_6a95;
+pub(crate) const RAS_MAGIC: u32 = 0x59a6_6a95;
 /// `RT_OLD`: the layout of RT_STANDARD; old writers left `ras_length` 0.
-pub const RT_OLD: u32 = 0;
+pub(crate) const RT_OLD: u32 = 0;
 /// `RT_STANDARD`: raw pixels, 24/32-bit in BGR order.
 pub const RT_STANDARD: u32 = 1;
 /// `RT_BYTE_ENCODED`: RT_STANDARD data run-length encoded with escape 0x80.
 pub const RT_BYTE_ENCODED: u32 = 2;
 /// `RT_FORMAT_RGB`: raw pixels, 24/32-bit in RGB order.
-pub const RT_FORMAT_RGB: u32 = 3;
+pub(crate) const RT_FORMAT_RGB: u32 = 3;
 /// `RMT_NONE`: no colour map (`ras_maplength` 0).
-pub const RMT_NONE: u32 = 0;
+pub(crate) const RMT_NONE: u32 = 0;
 /// `RMT_EQUAL_RGB`: a map of three planes (red, green, blue) of
 /// `ras_maplength / 3` bytes each.
-pub const RMT_EQUAL_RGB: u32 = 1;
+pub(crate) const RMT_EQUAL_RGB: u32 = 1;
 /// The largest width and height read or written (a sanity cap, far above
 /// the thesis's 256×256 and the PS 390's 1024×864).
 pub const MAX_SIDE: usize = 16384;
@@ -584,7 +584,7 @@ pub fn open_sized(path: &Path) -> std::io::Result<(File, Option<u64>)> {
 /// once for what `length` (the reader's bytes from its start, when known)
 /// says is there: a buffer grown by doubling as it fills would hold up to
 /// twice the file while it is read.
-pub fn read_bounded(
+pub(crate) fn read_bounded(
     reader: &mut impl Read,
     bytes: &mut Vec<u8>,
     most: usize,

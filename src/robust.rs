@@ -1,5 +1,5 @@
 //! A second root solver for the sweep intersection, not the thesis's (the
-//! thesis uses [`laguerre`](super::sweep::laguerre)): every real root of a
+//! thesis uses [`laguerre`](crate::proc::sweep::laguerre)): every real root of a
 //! polynomial of degree ≤ 6 in an interval.
 //!
 //! First the cheap answer of the polynomial's Bernstein coefficients on the
@@ -19,7 +19,7 @@
 //! Allocation-free: fixed arrays of seven coefficients and six roots.
 
 /// The highest degree [`real_roots`] takes (the rotation sweep's sextic).
-pub const MAX_DEGREE: usize = 6;
+pub(crate) const MAX_DEGREE: usize = 6;
 
 /// Unit roundoff of f64.
 const EPS: f64 = f64::EPSILON;
@@ -93,7 +93,7 @@ fn bracketed(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, f1: f64) -> f64 
 /// that holds its one root (p(x0) = `f0`, of the other sign than p(x1));
 /// a start outside it becomes the midpoint. Stopped when the step is at
 /// rounding level.
-pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
+pub(crate) fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) -> f64 {
     newton_until(p, m, x0, x1, f0, start, 0.0)
 }
 
@@ -101,7 +101,7 @@ pub fn newton_in(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64) 
 /// at most `settle`: the root is then nearer than the step by its square
 /// (times p″/2p′), so a caller that polishes the root can spare the last
 /// steps.
-pub fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64, settle: f64) -> f64 {
+pub(crate) fn newton_until(p: &[f64; 7], m: usize, x0: f64, x1: f64, f0: f64, start: f64, settle: f64) -> f64 {
     // The sweeps' cubics by a body of their own, whose evaluations unroll
     // (the same operations).
     match m {
@@ -351,7 +351,7 @@ fn isolate(p: &[f64; 7], n: usize, b: &[f64; 7], tiny: f64, x0: f64, x1: f64, ha
 /// coefficients `b[..=n]` first crosses 0: Newton's start for the one root
 /// of a count of one, nearer the root than the chord's crossing when the
 /// curve bends, and the root itself where p is linear.
-pub fn polygon_crossing(n: usize, b: &[f64; 7]) -> f64 {
+pub(crate) fn polygon_crossing(n: usize, b: &[f64; 7]) -> f64 {
     let k = (0..n).find(|&k| (b[k] < 0.0) != (b[k + 1] < 0.0)).unwrap_or(0);
     (k as f64 + b[k] / (b[k] - b[k + 1])) / n as f64
 }
@@ -445,7 +445,7 @@ const BERNSTEIN_WEIGHTS: [[[f64; 7]; 7]; 7] = {
 /// (0 or not finite when that is). The polynomial lies in the convex hull
 /// of its Bernstein coefficients, and changes sign inside no more often
 /// than they do.
-pub fn bernstein(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f64) {
+pub(crate) fn bernstein(n: usize, a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f64) {
     // One body per degree, so that each is unrolled (the same operations
     // in the same order whatever the degree: the same results).
     match n {
@@ -481,7 +481,7 @@ fn bernstein_of<const N: usize>(a: &[f64; 7], lo: f64, hi: f64) -> ([f64; 7], f6
 /// The Bernstein coefficients on [0, 1] of the degree-`n` polynomial `c`
 /// (ascending power coefficients; n ≤ 6): the conversion at the end of
 /// [`bernstein`], without its shift to another interval.
-pub fn bernstein_unit(n: usize, c: &[f64; 7]) -> [f64; 7] {
+pub(crate) fn bernstein_unit(n: usize, c: &[f64; 7]) -> [f64; 7] {
     // One body per degree, as in `bernstein`.
     match n {
         0 => bernstein_unit_of::<0>(c),
@@ -496,7 +496,7 @@ pub fn bernstein_unit(n: usize, c: &[f64; 7]) -> [f64; 7] {
 
 /// [`bernstein_unit`] of degree `N`.
 #[inline(always)]
-pub fn bernstein_unit_of<const N: usize>(c: &[f64; 7]) -> [f64; 7] {
+pub(crate) fn bernstein_unit_of<const N: usize>(c: &[f64; 7]) -> [f64; 7] {
     let mut b = [0.0; 7];
     for (k, wk) in BERNSTEIN_WEIGHTS[N].iter().enumerate().take(N + 1) {
         // b_k = Σ_{j ≤ k} C(k, j) / C(n, j) · c_j

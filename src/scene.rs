@@ -194,9 +194,9 @@ pub const MAX_FRAMES: u32 = 10_000;
 pub const MAX_RATE: u32 = 60;
 /// The shutter when the record names none: open half of each frame's
 /// interval (a 180° shutter, the usual one of film cameras).
-pub const DEFAULT_SHUTTER: f64 = 0.5;
+pub(crate) const DEFAULT_SHUTTER: f64 = 0.5;
 /// The frame rate when the record names none.
-pub const DEFAULT_RATE: u32 = 12;
+pub(crate) const DEFAULT_RATE: u32 = 12;
 
 /// The deck's `film FRAMES [shutter S] [rate FPS]` record.
 #[derive(Clone, Debug, PartialEq)]

@@ -118,7 +118,7 @@ fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> Inter
 
 /// The colour a surface shows at a hit under diffuse light: its `color`,
 /// or its pattern's (`painting` of unit `proc`), or its texture's.
-pub fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord) -> Intensity {
+pub(crate) fn surface_color(snap: &Snapshot, surf: &SurfaceRecord, hit: &IntersectionRecord) -> Intensity {
     let obj = &snap.scene.objects[hit.object];
     if let Some(tex) = &surf.texture {
         let f = face_coords(obj, hit.local, hit.local_normal);
@@ -167,7 +167,7 @@ pub fn raytrace(snap: &Snapshot, aray: &Ray, weight: f64, depth: u32, ctx: &mut 
 /// first hit (the features a reconstruction reads,
 /// [`crate::reconstruct::Features`]) shades the same hit without
 /// searching for it twice.
-pub fn shade(
+pub(crate) fn shade(
     snap: &Snapshot,
     aray: &Ray,
     hit: &IntersectionRecord,

@@ -4,7 +4,7 @@
 //! `surfacerecord`, `points`, `coeff`, `objectrecord`, `ray` and
 //! `intersectionrecord`. They are kept here with their Pascal field names.
 //! Pascal pointers (`surfaceptr`, `objectptr`, `matrix = ^dualarray`) become
-//! indices into the [`Scene`]'s vectors or plain values; the variant part of
+//! indices into the [`Scene`](crate::scene::Scene)'s vectors or plain values; the variant part of
 //! `objectrecord` becomes the enum [`Shape`].
 //!
 //! Records the thesis does not print (the view, the image, lights, motion and
@@ -398,7 +398,7 @@ pub struct ObjectRecord {
     /// `name`: 1–10 characters.
     pub name: String,
     pub class: PrimitiveClass,
-    /// `surface`: index into [`Scene::surfaces`] (the Pascal `surfaceptr`).
+    /// `surface`: index into [`Scene::surfaces`](crate::scene::Scene::surfaces) (the Pascal `surfaceptr`).
     pub surface: usize,
     /// `transfm`: local → world.
     pub transfm: DMat4,
@@ -512,14 +512,14 @@ pub struct IntersectionRecord {
     pub p: DVec3,
     /// `insidepx, insidepy, insidepz`: the fudged-in point (just inside).
     pub insidep: DVec3,
-    /// `surface`: index into [`Scene::surfaces`].
+    /// `surface`: index into [`Scene::surfaces`](crate::scene::Scene::surfaces).
     pub surface: usize,
     /// `parameter`: the ray parameter of the hit (the `dir` is unit length
     /// for every ray the port traces, so this is also the distance).
     pub parameter: f64,
     /// `distance`: from the ray's origin to the hit.
     pub distance: f64,
-    /// The object hit (index into [`Scene::objects`]); not in Fig. 4.3.
+    /// The object hit (index into [`Scene::objects`](crate::scene::Scene::objects)); not in Fig. 4.3.
     pub object: usize,
     /// The hit point in the object's local frame; not in Fig. 4.3: patterns
     /// and textures are painted from it.

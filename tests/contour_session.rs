@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 
 use raytrace::cli::DeckInput;
 use raytrace::editor::document::Document;
+use raytrace::editor::layout::{PLANE, SLIDER};
 use raytrace::editor::model::Edit;
-use raytrace::editor::screen::{draw, Preview, PLANE, SLIDER};
+use raytrace::editor::screen::{draw, Preview};
 use raytrace::editor::session::{Button, Editor, Effect, Key};
 use raytrace::options::Fidelity;
 use raytrace::types::{CurveKind, PrimitiveClass};

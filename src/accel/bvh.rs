@@ -316,7 +316,7 @@ impl Bvh {
     /// order the ray enters them, each skipped when the ray enters it
     /// beyond the limit as it stands then; a leaf's objects each behind
     /// its own box (a leaf of one object behind its lane of the parent's
-    /// test, which is its box). The nodes' tests are [`QuadRay::span`]'s,
+    /// test, which is its box). The nodes' tests are `QuadRay::span`'s,
     /// which may let in a box the ray only passes near, never keep out one
     /// it meets. Where a node, or an object of a leaf, has boxes over the
     /// time segments, those of `segment` are tested: the ray's time must

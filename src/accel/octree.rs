@@ -24,7 +24,7 @@ use super::{visit_each, Aabb, BoxRay, Step};
 use crate::types::DVec3;
 
 /// A cell holding more objects than this is subdivided (if it may be).
-pub const MAX_IN_CELL: usize = 8;
+pub(crate) const MAX_IN_CELL: usize = 8;
 
 /// The deepest level: node numbers stay below 10^(MAX_DEPTH + 1), well
 /// within a u64.
@@ -103,7 +103,7 @@ fn branch(x: f64, y: f64, z: f64, cx: f64, cy: f64, cz: f64) -> u64 {
 }
 
 /// Which side of the centre each axis of child `k` (1..8) lies on, `true`
-/// for above: the inverse of [`branch`].
+/// for above: the inverse of `branch`.
 pub fn findnode_digit(k: u64) -> [bool; 3] {
     match k {
         6 => [true, true, true],

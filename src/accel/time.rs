@@ -115,7 +115,7 @@ pub(super) const UNTIMED: u32 = u32::MAX;
 
 /// [`Bounds`] as the structures read them: the boxes as [`Aabb`]s, and the
 /// boxes over the segments of every object that has them in one table
-/// (object i's from `first[i]`, or [`UNTIMED`]).
+/// (object i's from `first[i]`, or `UNTIMED`).
 #[derive(Clone, Debug)]
 pub struct Timed {
     pub(super) segments: Segments,

@@ -21,7 +21,7 @@ use super::{cost, PixelSum, CAP, NEIGHBOUR};
 /// average `budget`, with λ found so they add up to the total; then
 /// rounded to whole counts of n or multiples of `quantum` (the render's
 /// is [`quantum`](super::quantum) of the budget), by the largest fractions of the way to
-/// the next (ties to the first pixel; [`round_counts`]). When no pixel
+/// the next (ties to the first pixel; `round_counts`). When no pixel
 /// shows any spread, the rays go evenly, to within a quantum.
 pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
     let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();

@@ -244,7 +244,7 @@ pub const MAX_TEXELS: usize = 4096 * 4096;
 pub const MAX_OBJECTS: usize = 1_000_000;
 
 /// The reading limit of a deck texture ([`MAX_TEXELS`]).
-pub const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
+pub(crate) const TEXTURE_LIMIT: crate::raster::PixelLimit = crate::raster::PixelLimit {
     pixels: MAX_TEXELS,
     what: "deck texture",
 };
@@ -267,7 +267,7 @@ pub fn read_deck(reader: impl std::io::Read) -> std::io::Result<Vec<u8>> {
 }
 
 /// The record keywords, for the suggestion after an unknown one; every
-/// keyword that [`Builder::record`] reads is here (a test holds them equal
+/// keyword that `Builder::record` reads is here (a test holds them equal
 /// to DECK.md's list).
 pub const RECORDS: &[&str] = &[
     "view",

@@ -1,7 +1,7 @@
 //! A deck's words and line ends with the bytes they stand on: for a
 //! program that rewrites one record of a deck and must leave every other
 //! byte as it is (the contour editor's save, the port's extension). The
-//! words are the reader's own ([`super::lex`]), so a word inside a comment
+//! words are the reader's own (`super::lex`), so a word inside a comment
 //! is no word here either.
 
 use std::ops::Range;
@@ -11,7 +11,7 @@ use super::DeckError;
 
 /// A word of the deck outside comments, or a line end that ends a record.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Lexeme {
+pub(crate) struct Lexeme {
     /// The word; `None` for a line end.
     pub word: Option<String>,
     /// The 1-based line the lexeme stands on.
@@ -22,7 +22,7 @@ pub struct Lexeme {
 
 /// The lexemes of `source` in order, up to its end, or the deck's error
 /// where a comment is left open or a byte outside comments is not ASCII.
-pub fn lexemes(source: &[u8], file: &str) -> Result<Vec<Lexeme>, DeckError> {
+pub(crate) fn lexemes(source: &[u8], file: &str) -> Result<Vec<Lexeme>, DeckError> {
     let mut lexer = Lexer::new(Bytes::Borrowed(source), file.into());
     let mut out = Vec::new();
     loop {

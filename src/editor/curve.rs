@@ -9,7 +9,7 @@ use crate::shapes::sweep::fill_segments;
 use crate::types::{Axis, BoundingBox, Coeff, SweepShape};
 
 /// Points a segment is drawn through (its ends included).
-pub const SAMPLES: usize = 32;
+pub(crate) const SAMPLES: usize = 32;
 
 /// A sweep record holding `contour`'s points, its `u`, `v` filled by
 /// `spline` (a B-spline of fewer than 4 points has no segment; a Bezier
@@ -35,7 +35,7 @@ pub fn shape(contour: &Contour) -> SweepShape {
 
 /// Each segment of (u, v) as a polyline of [`SAMPLES`] points over its
 /// parameter range [first, last].
-pub fn polylines(u: &[Coeff], v: &[Coeff]) -> Vec<Vec<[f64; 2]>> {
+pub(crate) fn polylines(u: &[Coeff], v: &[Coeff]) -> Vec<Vec<[f64; 2]>> {
     u.iter()
         .zip(v)
         .map(|(cu, cv)| {

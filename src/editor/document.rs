@@ -51,7 +51,7 @@ end
 ";
 
 /// The name of the sweep in [`NEW_DECK`].
-pub const NEW_NAME: &str = "shape";
+pub(crate) const NEW_NAME: &str = "shape";
 
 /// A deck and the sweep of it being edited.
 #[derive(Clone, Debug)]
@@ -211,7 +211,7 @@ fn same_contour(a: &Contour, b: &Contour) -> bool {
 }
 
 /// The object at `target`.
-pub fn object_of(scene: &Scene, target: Target) -> &ObjectRecord {
+pub(crate) fn object_of(scene: &Scene, target: Target) -> &ObjectRecord {
     match target {
         Target::Object(i) => &scene.objects[i],
         Target::KeyShape { record, index } => &scene.keyframes[record].rest[index],

@@ -57,7 +57,7 @@ pub fn fill(fb: &mut Framebuffer, r: Rect, colour: u32) {
 }
 
 /// The one-pixel border just inside `r`.
-pub fn outline(fb: &mut Framebuffer, r: Rect, colour: u32) {
+pub(crate) fn outline(fb: &mut Framebuffer, r: Rect, colour: u32) {
     for side in [
         Rect { h: 1, ..r },
         Rect {
@@ -119,7 +119,7 @@ fn cut(clip: Rect, a: (f64, f64), b: (f64, f64)) -> Option<((f64, f64), (f64, f6
 
 /// How a point is marked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mark {
+pub(crate) enum Mark {
     /// A filled square (a point the curve passes through).
     Square,
     /// A ring (a point the curve is drawn toward).
@@ -129,7 +129,7 @@ pub enum Mark {
 }
 
 /// A mark of radius `r` pixels centred on (x, y), inside `clip`.
-pub fn mark(fb: &mut Framebuffer, clip: Rect, (x, y): (f64, f64), r: i64, kind: Mark, colour: u32) {
+pub(crate) fn mark(fb: &mut Framebuffer, clip: Rect, (x, y): (f64, f64), r: i64, kind: Mark, colour: u32) {
     if !(x.is_finite() && y.is_finite()) {
         return;
     }

@@ -92,7 +92,7 @@ pub fn view(scene: &Scene, chain: Chain, time: f64, fidelity: Fidelity) -> Resul
 
 /// The key shapes of the `keyframe` record `record`, in order: FIRST's
 /// sweep, then the later shapes'.
-pub fn key_shapes(scene: &Scene, record: usize) -> Vec<&SweepShape> {
+pub(crate) fn key_shapes(scene: &Scene, record: usize) -> Vec<&SweepShape> {
     let k = &scene.keyframes[record];
     std::iter::once(&scene.objects[k.first])
         .chain(&k.rest)

@@ -17,6 +17,7 @@ pub mod curve;
 pub mod document;
 pub mod draw;
 pub mod keyshapes;
+pub mod layout;
 pub mod model;
 pub mod plane;
 pub mod preview;

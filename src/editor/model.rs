@@ -17,10 +17,10 @@ const PER_UNIT: f64 = 1e6;
 
 /// The length a sweep gets when it becomes a translation or conic sweep
 /// and had none (a rotation sweep has no `length`).
-pub const DEFAULT_LENGTH: f64 = 1.0;
+pub(crate) const DEFAULT_LENGTH: f64 = 1.0;
 
 /// The scale a sweep gets when it becomes a conic sweep and had none.
-pub const DEFAULT_SCALE: f64 = 0.5;
+pub(crate) const DEFAULT_SCALE: f64 = 0.5;
 
 /// The largest magnitude of a coordinate ([`crate::deck::MAX_MAGNITUDE`]).
 const MAX_COORD: f64 = crate::deck::MAX_MAGNITUDE;
@@ -84,7 +84,7 @@ impl std::fmt::Display for Refusal {
 }
 
 /// The deck's word for a curve.
-pub fn curve_word(curve: CurveKind) -> &'static str {
+pub(crate) fn curve_word(curve: CurveKind) -> &'static str {
     match curve {
         CurveKind::Bspline => "bspline",
         CurveKind::Bezier => "bezier",
@@ -92,7 +92,7 @@ pub fn curve_word(curve: CurveKind) -> &'static str {
 }
 
 /// The deck's word for a sweep kind.
-pub fn class_word(class: PrimitiveClass) -> &'static str {
+pub(crate) fn class_word(class: PrimitiveClass) -> &'static str {
     match class {
         PrimitiveClass::Translation => "translation",
         PrimitiveClass::Conic => "conic",
@@ -276,7 +276,7 @@ fn check_coordinates(u: f64, v: f64) -> Result<(), Refusal> {
 
 /// The contours before each edit (undo) and after each undone one (redo).
 #[derive(Clone, Debug, Default)]
-pub struct History {
+pub(crate) struct History {
     past: Vec<Contour>,
     future: Vec<Contour>,
 }

@@ -22,7 +22,7 @@ pub struct Plane {
 
 /// The largest round number (1, 2, 2.5 or 5 times a power of ten) not
 /// above `x` (> 0).
-pub fn round_below(x: f64) -> f64 {
+pub(crate) fn round_below(x: f64) -> f64 {
     let p = 10f64.powf(x.log10().floor());
     [5.0, 2.5, 2.0, 1.0]
         .into_iter()
@@ -134,7 +134,7 @@ impl Plane {
 /// the control points): after the first end of the polygon's side nearest
 /// it, so that it falls between the two points it is nearest to join.
 /// Among fewer than two points, at the end.
-pub fn insertion_place(points: &[[f64; 2]], at: [f64; 2]) -> usize {
+pub(crate) fn insertion_place(points: &[[f64; 2]], at: [f64; 2]) -> usize {
     let n = points.len();
     if n < 2 {
         return n;

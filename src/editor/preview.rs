@@ -35,7 +35,7 @@ pub const FINE: Pass = Pass {
 
 /// The rows a window of the fine pass renders before it looks for a
 /// newer edit.
-pub const ROWS_A_WINDOW: usize = 16;
+pub(crate) const ROWS_A_WINDOW: usize = 16;
 
 /// What to render: the scene with the contour, and the time it is shown at.
 #[derive(Clone, Debug)]
@@ -97,7 +97,7 @@ pub fn render_rows(prepared: &Prepared, rows: std::ops::Range<usize>) -> Result<
 }
 
 /// The whole of a pass at once.
-pub fn render_pass(job: &Job, pass: Pass) -> Result<Raster, String> {
+pub(crate) fn render_pass(job: &Job, pass: Pass) -> Result<Raster, String> {
     let prepared = job.prepare(pass)?;
     let height = prepared.scene().image.height;
     render_rows(&prepared, 0..height)

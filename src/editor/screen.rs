@@ -11,6 +11,7 @@
 use super::curve::{joints, polylines, shape};
 use super::draw::{blank, fill, line, mark, outline, picture, text, wrap, Mark, Rect};
 use super::keyshapes::{self, ChainView};
+use super::layout::{INFO, PLANE, PREVIEW, SCREEN, SLIDER, STATUS};
 use super::model::{class_word, curve_word};
 use super::plane::Plane;
 use super::preview::{render_pass, FINE};
@@ -18,54 +19,6 @@ use super::session::Editor;
 use crate::psout::Framebuffer;
 use crate::raster::Raster;
 use crate::types::{CurveKind, PrimitiveClass};
-
-/// The (U, V) plane.
-pub const PLANE: Rect = Rect {
-    x: 0,
-    y: 0,
-    w: 576,
-    h: 800,
-};
-
-/// The time slider of a key-frame chain, under the plane.
-pub const SLIDER: Rect = Rect {
-    x: 72,
-    y: 808,
-    w: 480,
-    h: 20,
-};
-
-/// The rendered preview.
-pub const PREVIEW: Rect = Rect {
-    x: 608,
-    y: 16,
-    w: 384,
-    h: 384,
-};
-
-/// The text beside the plane, under the preview.
-const INFO: Rect = Rect {
-    x: 592,
-    y: 424,
-    w: 432,
-    h: 400,
-};
-
-/// The message line at the bottom.
-const STATUS: Rect = Rect {
-    x: 0,
-    y: 836,
-    w: 1024,
-    h: 28,
-};
-
-/// The whole screen, for text.
-const SCREEN: Rect = Rect {
-    x: 0,
-    y: 0,
-    w: 1024,
-    h: 864,
-};
 
 const LINE_HEIGHT: i64 = 12;
 

@@ -10,17 +10,17 @@ use std::path::Path;
 
 use super::document::Document;
 use super::keyshapes::Chain;
+use super::layout::{PLANE, SLIDER};
 use super::model::{Contour, Edit, History, Refusal};
 use super::plane::{insertion_place, Plane};
 use super::preview::Job;
-use super::screen::{PLANE, SLIDER};
 use crate::types::{CurveKind, PrimitiveClass};
 
 /// How far an arrow key pans, in pixels.
 pub const PAN_STEP: f64 = 64.0;
 
 /// How far `,` and `.` move the time slider.
-pub const TIME_STEP: f64 = 0.05;
+pub(crate) const TIME_STEP: f64 = 0.05;
 
 /// A key of the editor's window.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

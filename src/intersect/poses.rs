@@ -13,7 +13,7 @@ use crate::types::{DVec3, ObjectRecord, Pose};
 /// instant begins, as `motionblur` did for every ray; with a structure
 /// over the objects, a moving object is posed the first time a ray of the
 /// instant reaches its bounding sphere (its origin alone found before,
-/// [`Poses::centre`]), and those no ray comes near cost nothing.
+/// `Poses::centre`), and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
     objects: &'a [ObjectRecord],
@@ -89,7 +89,7 @@ impl<'a> Poses<'a> {
     /// (`moving_of[i]` its index there) moves from [`Poses::at`] on, all
     /// of them at once if `eager` (for the loop), else each when first
     /// asked. Eager poses of instants whose times come back (`repeats`)
-    /// are kept for them ([`Now::All`]).
+    /// are kept for them (`Now::All`).
     pub fn new(
         objects: &'a [ObjectRecord],
         rest: &'a [Pose],

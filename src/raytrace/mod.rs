@@ -21,7 +21,7 @@
 //! sequential order.
 //!
 //! Reconstructed here, as the thesis does not print them: `getangle`,
-//! `translookpt` ([`camera`]), `antialias`, and where on the screen a
+//! `translookpt` (`camera`), `antialias`, and where on the screen a
 //! subpixel lies. The port's beside them: the pixels made from their
 //! samples otherwise ([`Request::reconstruction`]: `--denoise`, and the
 //! thesis's coherence of §2.1.2, `--coherence N`, which it describes and

@@ -332,7 +332,7 @@ fn chains<C, E: std::fmt::Display>(
 /// `goahead(i2, …)` for every key-frame pair of the main program
 /// (`for i2 := 1 to papernumber`): the chain of each `keyframe` record of
 /// sweeps, with the record's index (the chains of blobs and patches are
-/// [`point_chains`]).
+/// `point_chains`).
 pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PaperChain)>, RenderError> {
     chains(scene, false, |record| {
         PaperChain::from_keyframe(scene, record, fidelity)
@@ -341,7 +341,7 @@ pub fn key_frame_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize,
 
 /// The chains of the `keyframe` records of blobs or of patches (the port's
 /// extension, §6.2: `PointChain`), with each record's index.
-pub fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
+pub(crate) fn point_chains(scene: &Scene, fidelity: Fidelity) -> Result<Vec<(usize, PointChain)>, RenderError> {
     chains(scene, true, |record| PointChain::from_keyframe(scene, record, fidelity))
 }
 

@@ -17,7 +17,7 @@
 /// mod M) or a power of two from 4 to 32 (polynomials over GF(2) modulo
 /// the irreducible one given, its top bit M).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Field {
+pub(crate) enum Field {
     Prime(usize),
     Binary(usize, usize),
 }

@@ -303,7 +303,7 @@ impl Sampler for GridSampler<'_> {
     /// shuffle for the pair, never the time's (a ray's time does not
     /// decide its lens position, Cook 1984): for the first pair (the
     /// lens, when there is one) the cell of Bose's array of the
-    /// subpixel's place ([`Field::cell`]) with its columns and rows
+    /// subpixel's place (`Field::cell`) with its columns and rows
     /// shuffled, so that the lens is stratified with the place in the
     /// pixel too (where M has no field, along each axis only); for the
     /// others a permutation of the cells. Within its cell a point of one

@@ -23,7 +23,7 @@ pub fn strata(pixel: usize, n: usize) -> Vec<u32> {
 }
 
 /// A permutation of 0..n drawn by Fisher–Yates from the keys `key` + i.
-pub fn shuffled(key: u64, n: usize) -> Vec<u32> {
+pub(crate) fn shuffled(key: u64, n: usize) -> Vec<u32> {
     let mut perm: Vec<u32> = (0..n as u32).collect();
     for i in 0..n.saturating_sub(1) {
         let r = i + (hashed_uniform(key + i as u64) * (n - i) as f64) as usize;
@@ -41,14 +41,14 @@ pub fn stratified_time(pixel: usize, j: usize, stratum: u32, n: usize) -> f64 {
 
 /// The scramble of Sobol dimension `d` < 4 for `key` (a pixel, or for the
 /// time a row): the adaptive sampler's seeds of its place, time and shift.
-pub fn sobol_seed(key: u64, d: u64) -> u32 {
+pub(crate) fn sobol_seed(key: u64, d: u64) -> u32 {
     (hashed_uniform((key << 2 | d) ^ 0x5EED_0000_0000_0000) * 4_294_967_296.0) as u32
 }
 
 /// The streams of the further dimensions (the top byte of their keys,
 /// below the dimension's number).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stream {
+pub(crate) enum Stream {
     /// `--sampler random`'s and every sampler's dimensions past its own:
     /// an independent uniform.
     Uniform = 1,
@@ -67,12 +67,12 @@ pub enum Stream {
 /// The key of further dimension `d` of `index` (a subpixel, a pixel or a
 /// pixel's sample) in `stream`: dimension and stream in the top byte and
 /// a half, the index below.
-pub fn dimension_key(stream: Stream, d: u32, index: u64) -> u64 {
+pub(crate) fn dimension_key(stream: Stream, d: u32, index: u64) -> u64 {
     ((stream as u64) << 60) ^ ((u64::from(d) & 0xFFF) << 48) ^ (index & 0xFFFF_FFFF_FFFF)
 }
 
 /// A uniform in [0, 1) for further dimension `d` of `index` in `stream`.
-pub fn dimension_uniform(stream: Stream, d: u32, index: u64) -> f64 {
+pub(crate) fn dimension_uniform(stream: Stream, d: u32, index: u64) -> f64 {
     hashed_uniform(dimension_key(stream, d, index))
 }
 

@@ -5,7 +5,7 @@
 /// The dimensions with direction numbers here: 0–1 the place in the pixel,
 /// 2 the time, 3–9 further dimensions (a lens point, a light point, a gloss
 /// turn and one to spare); past them a sampler draws independent uniforms.
-pub const SOBOL_DIMENSIONS: usize = 10;
+pub(crate) const SOBOL_DIMENSIONS: usize = 10;
 
 /// The Sobol sequence's direction numbers, 32 bits: dimension 0 is the van
 /// der Corput sequence; dimensions 1–9 come from Joe & Kuo 2008's first
@@ -103,7 +103,7 @@ const fn sobol_bytes() -> [[[u32; 256]; 4]; 3] {
 /// reversed: for the place and the time by the byte tables (the sequence is
 /// linear over bits, so the bytes' points XOR together), for the further
 /// dimensions by the direction numbers.
-pub fn sobol_reversed(j: u32, d: usize) -> u32 {
+pub(crate) fn sobol_reversed(j: u32, d: usize) -> u32 {
     match SOBOL_BYTES.get(d) {
         Some(t) => {
             let [b0, b1, b2, b3] = j.to_le_bytes();
@@ -125,7 +125,7 @@ pub(crate) fn sobol(j: u32, d: usize) -> u32 {
 /// even numbers carry upward only), so each digit of the point is flipped
 /// by a function of the digits above it, as Owen's scramble does; the
 /// point's bits in their own order come back.
-pub fn owen_scramble_reversed(reversed: u32, seed: u32) -> u32 {
+pub(crate) fn owen_scramble_reversed(reversed: u32, seed: u32) -> u32 {
     let mut v = reversed;
     v = v.wrapping_add(seed);
     v ^= v.wrapping_mul(0x6c50_b47c);

@@ -283,7 +283,7 @@ const BLOCK_NORMALS: [DVec3; 6] = [DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_
 /// Reconstructed: the slab test, as a convex clip of six planes.
 ///
 /// The six planes ±x = h.x, ±y = h.y, ±z = h.z taken in that order, as
-/// [`intersect_convex`] would take them, with its dot products written out:
+/// `intersect_convex` would take them, with its dot products written out:
 /// n·d and n·o of an axis normal are ±d_k and ±o_k exactly, so the hits are
 /// the same to the bit, without the products by zero. (Taken a pair of
 /// faces at a time with an early exit, as [`block_blocks`] is, it took 14 %
@@ -353,11 +353,11 @@ fn slab(dk: f64, ok: f64, hk: f64) -> Slab {
 /// `tmin` < t < `tmax`? The shadow ray's question, answered as
 /// `intersect_block(..).is_some_and(|h| h.t < tmax)` is, to the bit: the
 /// same re-based ray ([`Near`]), the same quotients of the same planes
-/// ([`slab`]), the same choice of entry or exit and the same
+/// (`slab`), the same choice of entry or exit and the same
 /// `t + shift < tmax`; but no point or normal, and it stops at the first
 /// slab after which no hit inside the span can remain. The entry only
 /// grows and the exit only shrinks from plane to plane, and their values
-/// are a largest and a smallest (NaN quotients skipped, as [`Clip::plane`]
+/// are a largest and a smallest (NaN quotients skipped, as `Clip::plane`
 /// skips them), the same whatever the order the slabs come in; so the
 /// thinnest slab goes first, the one a ray leaving a face or crossing a
 /// floor is most often decided by.
@@ -556,7 +556,7 @@ pub fn local_box(obj: &ObjectRecord) -> Option<BoundingBox> {
 
 /// Does the ray meet the sphere of `radius` about `centre` beyond `tmin`?
 /// Padded ([`bounding_radius`]) so no surface hit is lost.
-pub fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
+pub(crate) fn bounding_sphere_hit(centre: DVec3, radius: f64, ray: &Ray, tmin: f64) -> bool {
     let r = bounding_radius(radius);
     let oc = ray.origin - centre;
     let a = ray.dir.length_squared();

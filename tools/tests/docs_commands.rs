@@ -61,7 +61,7 @@ use std::time::{Duration, Instant, SystemTime};
 
 use doc_lines::{
     anchors, blocks, code_of, flags, inline_spans, is_synopsis, links, named, names_a_program, outside_raster, words,
-    DocLine, Named,
+    DocLine, Named, EXAMPLE,
 };
 
 /// The checkout.
@@ -101,7 +101,7 @@ fn newest(path: &Path) -> SystemTime {
 fn binaries() -> BTreeMap<&'static str, PathBuf> {
     let tools = PathBuf::from(env!("CARGO_BIN_EXE_tools"));
     let dir = tools.parent().unwrap().to_path_buf();
-    let sources = ["src", "Cargo.toml", "Cargo.lock"]
+    let sources = ["src", "examples", "Cargo.toml", "Cargo.lock"]
         .map(|p| newest(&repo().join(p)))
         .into_iter()
         .max()
@@ -113,8 +113,13 @@ fn binaries() -> BTreeMap<&'static str, PathBuf> {
             PathBuf::from(env!("CARGO_BIN_EXE_fidelity-mutants")),
         ),
     ]);
-    for name in ["raytrace", "psout", "contour"] {
-        let path = dir.join(name);
+    for (name, file) in [
+        ("raytrace", "raytrace"),
+        ("psout", "psout"),
+        ("contour", "contour"),
+        ("example-render", "examples/render"),
+    ] {
+        let path = dir.join(file);
         let built = std::fs::metadata(&path).and_then(|m| m.modified());
         assert!(
             built.as_ref().is_ok_and(|&b| b >= sources),
@@ -159,8 +164,9 @@ sub=$1; shift
 exec REAL "$sub" $add "$@"
 "#;
 
-/// `cargo run [--release] [-p P] [--bin B] [-- ARGS]`: B (or P's default
-/// binary) with ARGS, through the shims above; any other form is refused.
+/// `cargo run [--release] [-p P] [--bin B | --example E] [-- ARGS]`: B (or
+/// P's default binary, or the root package's example E) with ARGS, through
+/// the shims above; any other form is refused.
 const CARGO_SHIM: &str = r#"#!/bin/sh
 [ "$1" = run ] || { echo "docs test: only 'cargo run' runs here: cargo $*" >&2; exit 97; }
 shift; pkg=raytrace; bin=
@@ -168,6 +174,7 @@ while [ $# -gt 0 ]; do case $1 in
   --release) shift;;
   -p|--package) pkg=$2; shift 2;;
   --bin) bin=$2; shift 2;;
+  --example) bin=example-$2; shift 2;;
   --) shift; break;;
   *) echo "docs test: 'cargo run $1' is not known here" >&2; exit 97;;
 esac; done
@@ -175,6 +182,7 @@ case $pkg/$bin in
   raytrace/|raytrace/raytrace) exec raytrace "$@";;
   raytrace/psout) exec psout "$@";;
   raytrace/contour) exec contour "$@";;
+  raytrace/example-render) exec example-render "$@";;
   tools/|tools/tools) exec tools "$@";;
   tools/fidelity-mutants) exec fidelity-mutants "$@";;
 esac
@@ -190,6 +198,7 @@ fn write_shims(dir: &Path, bins: &BTreeMap<&str, PathBuf>) {
         ("contour", CONTOUR_SHIM),
         ("tools", TOOLS_SHIM),
         ("fidelity-mutants", "#!/bin/sh\nexec REAL \"$@\"\n"),
+        ("example-render", "#!/bin/sh\nexec REAL \"$@\"\n"),
         ("cargo", CARGO_SHIM),
     ];
     for (name, body) in shims {
@@ -320,6 +329,14 @@ fn check_mention(n: &Named, helps: &mut Helps) -> Result<(), String> {
     let Some(program) = n.program.as_deref() else {
         return Ok(());
     };
+    if program.starts_with(EXAMPLE) {
+        // An example takes no flags and answers no --help: it must exist.
+        return match (helps.bins.contains_key(program), flags(&n.args).first()) {
+            (false, _) => Err(format!("no example {program}")),
+            (true, Some(f)) => Err(format!("{program} takes no flags, not {f}")),
+            (true, None) => Ok(()),
+        };
+    }
     let help = helps.help(program, n.sub.as_deref())?;
     match flags(&n.args).into_iter().find(|f| !help_has(&help, f)) {
         Some(f) => Err(format!(

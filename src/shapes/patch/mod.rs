@@ -25,7 +25,7 @@
 //! A piece the bound cannot settle (a ray grazing it, a piece that folds
 //! as the ray sees it) is searched by Bezier clipping (Nishita,
 //! Sederberg & Kakimoto 1990, "Ray tracing trimmed rational surface
-//! patches", SIGGRAPH '90; `clip`). Over and over: the distances of the
+//! patches", SIGGRAPH '90; `search::clip`). Over and over: the distances of the
 //! net to a line through the origin across the net's v direction, by
 //! columns, are the Bernstein coefficients of a function of (u, v) that
 //! D = 0 makes 0, so its zeros lie where the convex hull of the points
@@ -57,7 +57,6 @@
 //! The normal is exact: Pᵤ × Pᵥ at the hit's (u, v), in the local frame.
 //! Everything per ray is in fixed arrays.
 
-mod clip;
 mod search;
 
 use super::sweep::box_size;

@@ -1,16 +1,18 @@
 //! One ray's search of a patch's pieces (see the module doc of
 //! [`super`]): the quadtree's boxes walked nearest first, each piece's
 //! root by Newton's method where the contraction bound proves it the
-//! piece's only one ([`certified`]), Bezier clipping (`super::clip`)
-//! where it cannot.
+//! piece's only one ([`certified`]), Bezier clipping ([`clip`], the search's
+//! step) where it cannot.
 
 use glam::DVec2;
 
-use super::clip::Part;
+mod clip;
+
 use super::{change, eval, Dir, PatchCache, Piece, CONVERGED, MAX_DEPTH};
 use crate::accel::BoxRay;
 use crate::shapes::sweep::RESIDUAL_TOL;
 use crate::types::{DVec3, Ray};
+use clip::Part;
 
 /// Newton's method stops after a step shorter than this (in a piece's
 /// parameters): where it converges quadratically, as at a root the
@@ -226,7 +228,7 @@ impl<'a> Search<'a> {
     /// `net` in the ray's frame) from the part's centre; the hit if it ends
     /// within the part's width (at least [`CONVERGED`]) of it
     /// ([`Search::hit_at`]).
-    pub(super) fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
+    fn finish(&self, net: &Net, piece: &Piece, part: &Part) -> Option<Hit> {
         let centre = (0.5 * (part.u.0 + part.u.1), 0.5 * (part.v.0 + part.v.1));
         let (u, v, p) = newton(&net.xy, centre, eval(&net.xy, centre.0, centre.1));
         let within = |x: f64, (a, b): (f64, f64)| {

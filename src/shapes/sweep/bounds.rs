@@ -87,7 +87,7 @@ impl QueryBounds {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{prepare, Sweep, SweepCache};
+    use super::super::{star_points, translation_sweep, Sweep, SweepCache};
     use super::*;
     use crate::options::Options;
     use crate::types::Ray;
@@ -96,8 +96,7 @@ mod tests {
     /// its segments and is still met; one with no segments at all is not.
     #[test]
     fn a_sweep_without_a_box_takes_its_size_from_its_segments() {
-        let filled =
-            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
+        let filled = translation_sweep(star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
         // The cache made for the filled box: its cap grid holds for the
         // boxless sweep's segments, its bounds not for its box.
         let cache = SweepCache::new(PrimitiveClass::Translation, &filled);
@@ -157,8 +156,7 @@ mod tests {
     /// a box flat in x or z is not a box.
     #[test]
     fn query_bounds_of_a_box() {
-        let mut sw =
-            prepare::translation_sweep(prepare::star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
+        let mut sw = translation_sweep(star_points(8, 1.0, 0.6), crate::types::CurveKind::Bspline, 1.0);
         sw.bbox = BoundingBox {
             xmin: -1.0,
             xmax: 2.0,

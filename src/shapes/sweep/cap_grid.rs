@@ -34,7 +34,7 @@ enum Cell {
 /// See the module doc. Built by [`CapGrid::new`] from the contour's
 /// segments; answers [`CapGrid::answer`].
 #[derive(Clone, PartialEq)]
-pub struct CapGrid {
+pub(crate) struct CapGrid {
     x0: f64,
     y0: f64,
     /// Cells per unit of U and of V.
@@ -205,8 +205,8 @@ impl CapGrid {
 mod tests {
     use super::*;
     use crate::hash::hashed_uniform;
-    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
     use crate::shapes::sweep::SweepCache;
+    use crate::shapes::sweep::{star_points, translation_sweep};
     use crate::types::{CurveKind, PrimitiveClass, SweepShape};
 
     /// The grid the cache of `sw` as an object of `class` keeps.

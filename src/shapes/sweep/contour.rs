@@ -94,7 +94,7 @@ pub(super) fn inside_contour(
 ///
 /// Reconstructed (the thesis prints no cap test). Its cubics are solved by
 /// the port's robust solver whatever `Options::solver` says (the one root
-/// of a cubic whose Bernstein count is one by [`one_crossing`], the rest by
+/// of a cubic whose Bernstein count is one by `one_crossing`, the rest by
 /// [`real_roots`]): one missed crossing turns a whole cap inside out along
 /// a line.
 pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
@@ -166,7 +166,7 @@ pub fn point_in_contour(u: &[Coeff], v: &[Coeff], x: f64, y: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shapes::sweep::prepare::{star_points, translation_sweep};
+    use crate::shapes::sweep::{star_points, translation_sweep};
     use crate::types::{CurveKind, SweepShape};
 
     fn square(points: &[[f64; 2]], curve: CurveKind) -> SweepShape {

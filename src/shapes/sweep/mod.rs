@@ -434,6 +434,41 @@ impl Sweep<'_> {
     }
 }
 
+/// `n` points round the origin at radii `r_even` and `r_odd` in turn, at
+/// equal angles from +x: the unit tests' stars and rings.
+#[cfg(test)]
+fn star_points(n: usize, r_even: f64, r_odd: f64) -> Vec<[f64; 2]> {
+    (0..n)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / n as f64;
+            let r = if k % 2 == 0 { r_even } else { r_odd };
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
+/// A translation sweep of `length` over the contour through `points`,
+/// filled as `prepare_sweeps` fills it, with its own box: the unit tests'
+/// contours.
+#[cfg(test)]
+fn translation_sweep(points: Vec<[f64; 2]>, curve: crate::types::CurveKind, length: f64) -> SweepShape {
+    let mut sw = SweepShape {
+        orientt: crate::types::Axis::Z,
+        curve,
+        points,
+        segment: 0,
+        u: vec![],
+        v: vec![],
+        length,
+        scale: 1.0,
+        bbox: BoundingBox::default(),
+        orientation: 0.0,
+    };
+    let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
+    sw.bbox = prepare::own_box(PrimitiveClass::Translation, &sw, &sbox);
+    sw
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -559,13 +594,13 @@ mod tests {
     #[test]
     fn kept_and_computed_orientation_give_the_same_hits() {
         use crate::types::CurveKind;
-        let ring = prepare::star_points(8, 1.0, 0.6);
+        let ring = star_points(8, 1.0, 0.6);
         for (turn, want) in [(false, 1.0), (true, -1.0)] {
             let mut points = ring.clone();
             if turn {
                 points.reverse();
             }
-            let sw = prepare::translation_sweep(points, CurveKind::Bspline, 1.0);
+            let sw = translation_sweep(points, CurveKind::Bspline, 1.0);
             let cache = SweepCache::new(PrimitiveClass::Translation, &sw);
             let kept = Sweep {
                 class: PrimitiveClass::Translation,

@@ -8,7 +8,7 @@ use crate::scene::Scene;
 use crate::types::{BoundingBox, Coeff, CurveKind, DVec3, PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
 
 /// The four control points of segment i: B-spline points i … i+3
-/// (wrapping), Bezier P[3i] … P[3i+3 mod 3k].
+/// (wrapping), Bezier `P[3i]` … `P[3i+3 mod 3k]`.
 pub fn segment_points(curve: CurveKind, points: &[[f64; 2]], i: usize) -> [[f64; 2]; 4] {
     let n = points.len();
     match curve {
@@ -48,41 +48,6 @@ pub fn fill_segments(class: PrimitiveClass, sw: &mut SweepShape) -> BoundingBox 
     }
     sw.orientation = orientation(&sw.u, &sw.v);
     sbox
-}
-
-/// `n` points round the origin at radii `r_even` and `r_odd` in turn, at
-/// equal angles from +x: the unit tests' stars and rings.
-#[cfg(test)]
-pub(super) fn star_points(n: usize, r_even: f64, r_odd: f64) -> Vec<[f64; 2]> {
-    (0..n)
-        .map(|k| {
-            let a = k as f64 * std::f64::consts::TAU / n as f64;
-            let r = if k % 2 == 0 { r_even } else { r_odd };
-            [r * a.cos(), r * a.sin()]
-        })
-        .collect()
-}
-
-/// A translation sweep of `length` over the contour through `points`,
-/// filled as `prepare_sweeps` fills it, with its own box: the unit tests'
-/// contours.
-#[cfg(test)]
-pub(super) fn translation_sweep(points: Vec<[f64; 2]>, curve: CurveKind, length: f64) -> SweepShape {
-    let mut sw = SweepShape {
-        orientt: crate::types::Axis::Z,
-        curve,
-        points,
-        segment: 0,
-        u: vec![],
-        v: vec![],
-        length,
-        scale: 1.0,
-        bbox: BoundingBox::default(),
-        orientation: 0.0,
-    };
-    let sbox = fill_segments(PrimitiveClass::Translation, &mut sw);
-    sw.bbox = own_box(PrimitiveClass::Translation, &sw, &sbox);
-    sw
 }
 
 /// The box the listing's class box gets from one sweep: `spline`'s x and

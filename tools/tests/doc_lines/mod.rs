@@ -16,6 +16,10 @@
 /// The port's programs, as a doc names them when they are on PATH.
 pub const PROGRAMS: [&str; 5] = ["raytrace", "psout", "contour", "tools", "fidelity-mutants"];
 
+/// How a line names an example of the root package (`cargo run --example
+/// render` names `example-render`).
+pub const EXAMPLE: &str = "example-";
+
 /// One command line of a page.
 #[derive(Clone, Debug)]
 pub struct DocLine {
@@ -197,8 +201,9 @@ pub fn is_synopsis(line: &str) -> bool {
 /// subcommand and its own options.
 #[derive(Debug, Default, PartialEq)]
 pub struct Named {
-    /// `raytrace`, `psout`, `contour`, `tools`, `fidelity-mutants`; None for a cargo
-    /// command that runs no program (`cargo test`, `cargo install`).
+    /// `raytrace`, `psout`, `contour`, `tools`, `fidelity-mutants`, an
+    /// example (`example-render`); None for a cargo command that runs no
+    /// program (`cargo test`, `cargo install`).
     pub program: Option<String>,
     /// The tools subcommand (`join`), when one is named.
     pub sub: Option<String>,
@@ -229,10 +234,11 @@ pub fn named(line: &str) -> Option<Named> {
             match words[i].as_str() {
                 "-p" | "--package" => out.package = words.get(i + 1).cloned(),
                 "--bin" => bin = words.get(i + 1).cloned(),
+                "--example" => bin = words.get(i + 1).map(|e| format!("{EXAMPLE}{e}")),
                 "--path" => out.path = words.get(i + 1).cloned(),
                 _ => {}
             }
-            i += if ["-p", "--package", "--bin", "--path"].contains(&words[i].as_str()) {
+            i += if ["-p", "--package", "--bin", "--example", "--path"].contains(&words[i].as_str()) {
                 2
             } else {
                 1
@@ -324,6 +330,9 @@ mod tests {
         );
         let n = named("cargo run --release --bin psout -- --screenshot s.png f.ras").unwrap();
         assert_eq!(n.program.as_deref(), Some("psout"));
+        let n = named("cargo run --release --example render -- d.deck raster/o.png").unwrap();
+        assert_eq!(n.program.as_deref(), Some("example-render"));
+        assert_eq!(n.args, ["d.deck", "raster/o.png"]);
         let n = named("seq 36 | parallel -S 2/: raytrace d.deck --frames {} | head").unwrap();
         assert_eq!(
             (n.program.as_deref(), flags(&n.args)),

@@ -1,13 +1,14 @@
 //! Bezier clipping (Nishita, Sederberg & Kakimoto 1990) of a piece the
-//! contraction bound cannot settle (see the module doc of [`super`]): a
+//! contraction bound cannot settle (see the module doc of
+//! [`crate::shapes::patch`]), the step of the [`super`] search: a
 //! part's ranges cut to where the convex hull of its Bernstein
 //! coefficients meets 0, halved where that is slow, Newton's method
 //! finishing a part that has converged.
 
 use glam::DVec2;
 
-use super::search::{Net, Search};
-use super::{cut, Dir, Piece, CONVERGED, MAX_STEPS};
+use super::{Net, Search};
+use crate::shapes::patch::{cut, Dir, Piece, CONVERGED, MAX_STEPS};
 use crate::shapes::sweep::RESIDUAL_TOL;
 use crate::types::DVec3;
 
