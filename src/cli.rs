@@ -3,13 +3,17 @@
 //! of [`Options`] (`--fidelity`, `--solver`, `--sampler`, the library's own
 //! enums), the image's size and the threads (`--mask`, `--size`,
 //! `--threads`), how pixels are made from samples (`--denoise`,
-//! `--coherence`), a task of a farm (`--tile`, `--resume`), and the deck a
-//! command names (a file, or `-` for standard input). Each flattens into a program's `clap` parser; what goes wrong is
-//! a [`Failure`] whose kind gives the exit status. The port's.
+//! `--coherence`), a task of a farm (`--tile`, `--resume`). Each flattens
+//! into a program's `clap` parser; what goes wrong is a [`Failure`] whose
+//! kind gives the exit status. Also what only a program does: print its
+//! failure and end with its status ([`exit_code`]), and end on SIGINT and
+//! SIGTERM ([`remove_temp_files_on_signals`]). The port's; behind the
+//! feature `cli`, so the library alone parses no flags, prints nothing and
+//! never ends the process.
 
-use std::io::Read;
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::{Mutex, Once, PoisonError};
 
 use clap::Args;
 
@@ -19,7 +23,7 @@ use crate::exit::Failure;
 use crate::options::{Fidelity, Options, Solver, TimeSampler};
 use crate::raytrace::Prepared;
 use crate::reconstruct::Reconstruction;
-use crate::scene::Scene;
+use crate::run::DeckInput;
 use crate::tile::Tile;
 
 /// `--fidelity`: the listing or the thesis.
@@ -205,69 +209,71 @@ impl FarmArgs {
     }
 }
 
-/// The deck argument that means standard input.
-pub const STDIN: &str = "-";
-
-/// The name a deck read from standard input has in errors.
-pub const STDIN_NAME: &str = "<stdin>";
-
-/// A deck as a command names it, read: its text, the name its errors give,
-/// the folder its files (textures) are relative to, and the stem the
-/// default output is named by.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct DeckInput {
-    pub source: Vec<u8>,
-    /// The file name as the user gave it, or [`STDIN_NAME`].
-    pub name: String,
-    /// The deck's folder; the current folder for standard input.
-    pub dir: PathBuf,
-    /// The file name without its extension; `stdin` for standard input.
-    pub stem: String,
+/// The end of a program's `main`: success, or the failure's message
+/// printed to stderr as `PROGRAM: MESSAGE` and its kind's status
+/// ([`crate::exit`]).
+pub fn exit_code(program: &str, result: Result<(), Failure>) -> ExitCode {
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("{program}: {}", f.message);
+            ExitCode::from(f.kind.status())
+        }
+    }
 }
 
-impl DeckInput {
-    /// Reads the deck at `path`, or standard input for `-` ([`STDIN`]),
-    /// at most one byte past the reader's limit ([`crate::deck::MAX_DECK_BYTES`]).
-    /// A deck that cannot be read is an input error naming it.
-    pub fn read(path: &Path) -> Result<DeckInput, Failure> {
-        if path.as_os_str() == STDIN {
-            return DeckInput::from_reader(std::io::stdin().lock(), STDIN_NAME, Path::new(""), "stdin")
-                .map_err(|e| Failure::input(format!("{STDIN_NAME}: {e}")));
-        }
-        let source =
-            crate::deck::read_deck_file(path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?;
-        Ok(DeckInput {
-            source,
-            name: path.display().to_string(),
-            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
-            stem: path
-                .file_stem()
-                .map_or("out".into(), |s| s.to_string_lossy().into_owned()),
-        })
-    }
+/// What the program does last when a signal stops it, after the temporary
+/// files are removed and before it exits: [`on_signal`].
+type LastWord = Box<dyn Fn(i32) + Send>;
 
-    /// The deck's text as bytes from any reader (standard input, a test's
-    /// buffer), named `name` in errors, its files relative to `dir`.
-    pub fn from_reader(reader: impl Read, name: &str, dir: &Path, stem: &str) -> std::io::Result<DeckInput> {
-        Ok(DeckInput {
-            source: crate::deck::read_deck(reader)?,
-            name: name.to_string(),
-            dir: dir.to_path_buf(),
-            stem: stem.to_string(),
-        })
-    }
+static LAST_WORD: Mutex<Option<LastWord>> = Mutex::new(None);
 
-    /// The scene the deck describes ([`crate::deck::initialize`]); an
-    /// error is an input error at its FILE:LINE:COLUMN.
-    pub fn initialize(&self, fidelity: Fidelity) -> Result<Scene, Failure> {
-        crate::deck::initialize(&self.source, &self.name, &self.dir, fidelity).map_err(Failure::input)
-    }
+/// Sets what the program does last when SIGINT or SIGTERM stops it (after
+/// [`remove_temp_files_on_signals`] has removed the temporary files, before
+/// the exit): `raytrace` says what was kept and the command that goes on.
+/// The call gets the signal. A later call replaces an earlier one.
+pub fn on_signal(last_word: impl Fn(i32) + Send + 'static) {
+    *LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(last_word));
+}
+
+/// Makes SIGINT and SIGTERM remove this process's temporary files
+/// ([`crate::output::remove_temp_files`]), say the program's last word
+/// ([`on_signal`]) and exit with 128 + the signal (130, 143). For the
+/// programs' `main`; a second call does nothing.
+///
+/// The signals are taken by `signal-hook`'s iterator on a thread of its
+/// own, so the removal runs as ordinary code, not inside a signal handler.
+pub fn remove_temp_files_on_signals() -> Result<(), Failure> {
+    static INSTALLED: Once = Once::new();
+    let mut result = Ok(());
+    INSTALLED.call_once(|| {
+        result = (|| {
+            use signal_hook::consts::{SIGINT, SIGTERM};
+            let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
+            std::thread::Builder::new()
+                .name("output-signals".into())
+                .spawn(move || {
+                    if let Some(signal) = signals.forever().next() {
+                        // Held until exit: no temporary file is made or
+                        // renamed after this.
+                        let _removed = crate::output::remove_temp_files();
+                        if let Some(last_word) = LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
+                            last_word(signal);
+                        }
+                        std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
+                    }
+                })?;
+            Ok(())
+        })();
+    });
+    result.map_err(|e: std::io::Error| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use clap::Parser;
+    use std::path::PathBuf;
 
     #[derive(Parser, Debug)]
     struct Cli {
@@ -392,22 +398,5 @@ mod tests {
         // --mask 2 makes it fit.
         let args = parse(&["--mask", "2"]).unwrap();
         assert!(args.scene(&deck, &Options::default()).is_ok());
-    }
-
-    #[test]
-    fn a_deck_from_a_reader_keeps_its_name_folder_and_stem() {
-        let deck = DeckInput::from_reader(&b"view"[..], STDIN_NAME, Path::new(""), "stdin").unwrap();
-        assert_eq!(deck.source, b"view");
-        assert_eq!((deck.dir.as_os_str(), deck.stem.as_str()), ("".as_ref(), "stdin"));
-        let e = deck.initialize(Fidelity::Thesis).unwrap_err();
-        assert_eq!(e.kind, crate::exit::Kind::Input);
-        assert!(e.message.starts_with("<stdin>:1:"), "{e}");
-    }
-
-    #[test]
-    fn a_missing_deck_file_is_an_input_error_naming_it() {
-        let e = DeckInput::read(Path::new("/nonexistent/x.deck")).unwrap_err();
-        assert_eq!(e.kind, crate::exit::Kind::Input);
-        assert!(e.message.starts_with("/nonexistent/x.deck: "), "{e}");
     }
 }

@@ -2,18 +2,17 @@
 //! command line's `--fidelity`, `--solver`, `--sampler`). The port's;
 //! every unit of the thesis reads its fidelity from here.
 //!
-//! The command line takes these enums as they are (`clap::ValueEnum`): a
-//! value's name is the variant's in lower case, and the first paragraph of
-//! its doc comment is its line in `--help`.
-
-use clap::ValueEnum;
+//! The command line (feature `cli`) takes these enums as they are
+//! (`clap::ValueEnum`): a value's name is the variant's in lower case, and
+//! the first paragraph of its doc comment is its line in `--help`.
 
 /// Which of two behaviours to follow where the printed listings and the
 /// thesis text disagree (legacy_pascal/DEVIATIONS.md lists every place).
 ///
 /// Only the code of an erratum branches on this; each branch quotes both
 /// formulas.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Fidelity {
     /// Reproduce the printed listings, quirks included.
     Listing,
@@ -23,7 +22,8 @@ pub enum Fidelity {
 }
 
 /// The root solver of the sweep intersection (`--solver`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Solver {
     /// `laguerre` as printed (§2.5): the thesis's method and the default.
     #[default]
@@ -34,7 +34,8 @@ pub enum Solver {
 }
 
 /// How each subpixel's time is chosen (`--sampler`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum TimeSampler {
     /// The pattern lookup table of §2.6.4 (Fig. 2.33) with the CLT jitter
     /// of §2.6.5, as the fidelity reads them: the thesis's method and the

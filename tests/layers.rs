@@ -53,11 +53,14 @@ const LAYERS: &[(&str, u32)] = &[
     ("distributed", 7),
     // The reconstructed shading.
     ("trace", 8),
-    // The main program; the command line's words for a render.
+    // The main program.
     ("raytrace", 9),
-    ("cli", 10),
+    // A render's jobs: the deck read, a film's frames, a still's files.
+    ("run", 10),
     // The picture as it renders (`raytrace --show`, `--watch`).
     ("show", 10),
+    // The command line's words for a render.
+    ("cli", 11),
     // The port's contour editor (`contour`): edits a deck's sweep, shows
     // it rendered.
     ("editor", 11),

@@ -30,7 +30,8 @@ pub use time::{Bounds, Hierarchy, Segments, Timed, USE_UNION};
 use crate::types::{BoundingBox, DVec3, Ray};
 
 /// `--accel`: how the objects a ray may meet are found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Accel {
     /// The loop below 9 objects, the bounding volume hierarchy from there (as
     /// POV-Ray's Bounding_Threshold).

@@ -16,13 +16,15 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
-use raytrace::cli::{DeckInput, FidelityArg};
+use raytrace::cli::exit_code;
+use raytrace::cli::FidelityArg;
 use raytrace::editor::document::Document;
 use raytrace::editor::screen;
 use raytrace::editor::session::{Editor, KEYS_HELP};
-use raytrace::exit::{exit_code, Failure};
+use raytrace::exit::Failure;
 use raytrace::output::{write_atomically, OutputError};
 use raytrace::psout;
+use raytrace::run::DeckInput;
 
 /// Edit a sweep of a scene deck: its control points, curve and sweep kind,
 /// seen at once as the curve and as the rendered object.
@@ -87,8 +89,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
-    raytrace::output::remove_temp_files_on_signals()
-        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    raytrace::cli::remove_temp_files_on_signals()?;
     let headless = args.output.is_some() || args.screenshot.is_some() || args.list;
     if args.script.is_some() && !headless {
         return Err(Failure::usage(

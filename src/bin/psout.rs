@@ -14,7 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
-use raytrace::exit::{exit_code, Failure};
+use raytrace::cli::exit_code;
+use raytrace::exit::Failure;
 use raytrace::image_file::read_image_file;
 use raytrace::psout;
 
@@ -57,8 +58,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
-    raytrace::output::remove_temp_files_on_signals()
-        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    raytrace::cli::remove_temp_files_on_signals()?;
     if let Some(out) = &args.screenshot {
         check_screenshot_name(out)?;
     }

@@ -7,14 +7,16 @@ use std::time::Instant;
 
 use clap::Parser;
 
-use raytrace::cli::{DeckInput, FarmArgs, RenderArgs};
-use raytrace::exit::{exit_code, Failure};
+use raytrace::cli::exit_code;
+use raytrace::cli::{FarmArgs, RenderArgs};
+use raytrace::exit::Failure;
 use raytrace::film::{Frame, FrameFiles, FrameRange};
 use raytrace::options::{Options, TimeSampler};
 use raytrace::output::{is_stream, write_atomically, OutputError, PendingFile, STDOUT};
 use raytrace::raster::{read_raster_file, Format, FormatError, Raster};
 use raytrace::raytrace::{Prepared, Render, Request};
 use raytrace::reconstruct::Reconstruction;
+use raytrace::run::DeckInput;
 use raytrace::scene::{FilmRecord, Scene};
 use raytrace::tile::{check_written, write_tile, Tile};
 
@@ -126,14 +128,13 @@ const DEFAULT_FOLDER: &str = "raster";
 /// summary; with `--show` in a window as the rows finish, with `--watch`
 /// again each time the deck changes.
 fn run(cli: &Cli) -> Result<(), Failure> {
-    raytrace::output::remove_temp_files_on_signals()
-        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    raytrace::cli::remove_temp_files_on_signals()?;
     let opts = cli.render.options.options()?;
     cli.render.reconstruction()?;
     // Usage errors of the output names come first, before the deck is read.
     let _ = check_output_names(cli)?;
     let watched = match (&cli.deck, cli.watch) {
-        (Some(path), true) if path.as_os_str() != raytrace::cli::STDIN => Some(path.clone()),
+        (Some(path), true) if path.as_os_str() != raytrace::run::STDIN => Some(path.clone()),
         (_, true) => {
             return Err(Failure::usage(
                 "--watch renders a deck file again when it changes: name one (not - or the default deck)",

@@ -348,7 +348,7 @@ impl Picture {
 /// The contour editor's screen, as `contour --screenshot` draws it.
 fn editor_screen(deck: &Path, sweep: &str, script: &str, time: Option<f64>) -> Result<Raster, String> {
     use raytrace::editor::{document::Document, screen::screenshot, session::Editor};
-    let input = raytrace::cli::DeckInput::read(deck).map_err(|e| e.message)?;
+    let input = raytrace::run::DeckInput::read(deck).map_err(|e| e.message)?;
     let mut editor = Editor::new(Document::open(input, sweep, Fidelity::Thesis).map_err(|e| e.message)?);
     if let Some(t) = time {
         editor.time = t;

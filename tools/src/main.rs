@@ -15,8 +15,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use raytrace::cli::{DeckInput, FidelityArg, RenderArgs};
-use raytrace::exit::{exit_code, Failure};
+use raytrace::cli::{exit_code, FidelityArg, RenderArgs};
+use raytrace::exit::Failure;
+use raytrace::run::DeckInput;
 
 #[derive(Parser)]
 #[command(name = "tools", version, about = "Tools of the TR-88-036 port")]

@@ -9,13 +9,13 @@
 
 use std::time::Instant;
 
-use raytrace::cli::DeckInput;
 use raytrace::editor::document::Document;
 use raytrace::editor::model::Edit;
 use raytrace::editor::preview::{render_rows, QUICK};
 use raytrace::editor::screen::{draw, Preview};
 use raytrace::editor::session::Editor;
 use raytrace::options::Fidelity;
+use raytrace::run::DeckInput;
 
 /// Times `runs` edits of point `point` (from 1) of the sweep `name` of
 /// `deck`, each followed by the quick preview on `threads` threads.

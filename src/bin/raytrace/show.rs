@@ -3,11 +3,12 @@
 //! bands), stays until a key, and under `--watch` waits for the deck file
 //! to change. Nothing is decided here but what the window's keys mean.
 
-use raytrace::cli::{DeckInput, RenderArgs};
+use raytrace::cli::RenderArgs;
 use raytrace::exit::Failure;
 use raytrace::options::{Options, TimeSampler};
 use raytrace::psout;
 use raytrace::raytrace::{Prepared, Render, RenderError};
+use raytrace::run::DeckInput;
 use raytrace::show::quick_size;
 
 /// The error when no window can be opened (as psout gives it).
