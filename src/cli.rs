@@ -12,6 +12,7 @@
 //! never ends the process.
 
 use std::ops::Range;
+use std::path::Path;
 use std::process::ExitCode;
 use std::sync::{Mutex, Once, PoisonError};
 
@@ -35,7 +36,8 @@ pub struct FidelityArg {
     pub fidelity: Fidelity,
 }
 
-/// `--fidelity`, `--solver`, `--sampler`: the [`Options`] of a render.
+/// `--fidelity`, `--solver`, `--sampler`, `--accel`: the [`Options`] of a
+/// render.
 #[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OptionArgs {
     #[command(flatten)]
@@ -49,6 +51,11 @@ pub struct OptionArgs {
     /// table is the thesis's.
     #[arg(long, value_enum, default_value_t)]
     pub sampler: TimeSampler,
+
+    /// How the objects a ray may meet are found; the image is the same with each
+    /// (docs/scale.md).
+    #[arg(long, value_enum, default_value_t)]
+    pub accel: Accel,
 }
 
 impl OptionArgs {
@@ -59,6 +66,7 @@ impl OptionArgs {
             fidelity: self.fidelity.fidelity,
             solver: self.solver,
             sampler: self.sampler,
+            accel: self.accel,
         };
         crate::adaptive::check(&opts).map_err(Failure::usage)?;
         Ok(opts)
@@ -86,7 +94,7 @@ pub struct RenderArgs {
 
     /// M×M subpixels a pixel (M² rays a pixel on average for --sampler adaptive), 1..32,
     /// in place of the deck's `mask` for this run [default: the deck's].
-    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_MASK)))]
+    #[arg(long, value_name = "M", value_parser = parse_mask)]
     pub mask: Option<u16>,
 
     /// The image's width and height in pixels, WxH (each 1..8192), in place of the deck's
@@ -97,13 +105,8 @@ pub struct RenderArgs {
     /// Worker threads, 1..256, or 0 for one per core [default: one per core]. The image
     /// is the same for any number; rows are shared out, so more threads than cores only
     /// cost start-up time, and more than 256 is refused as a slip.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=i64::from(MAX_THREADS)))]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<u16>,
-
-    /// How the objects a ray may meet are found; the image is the same with each
-    /// (docs/scale.md).
-    #[arg(long, value_enum, default_value_t)]
-    pub accel: Accel,
 
     /// Make each pixel from its own and its neighbours' samples, weighted by how alike their
     /// colours, surface colours and normals are: a smooth picture from few rays (e.g.
@@ -119,7 +122,8 @@ pub struct RenderArgs {
     pub coherence: Option<u32>,
 }
 
-/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
+/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`]. Every program
+/// that takes a size reads it with this.
 pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
     let (w, h) = text
         .split_once(['x', 'X', '×'])
@@ -129,6 +133,72 @@ pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
         _ => Err(format!("the {what} '{v}' is not a whole number in 1..={MAX_SIDE}")),
     };
     Ok((side(w, "width")?, side(h, "height")?))
+}
+
+/// A whole number in `range`, or the message every flag of the kind gives.
+fn whole_in(text: &str, range: std::ops::RangeInclusive<u16>) -> Result<u16, String> {
+    match text.trim().parse::<u16>() {
+        Ok(n) if range.contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{text}' is not a whole number in {}..={}",
+            range.start(),
+            range.end()
+        )),
+    }
+}
+
+/// `--mask M`: M×M subpixels a pixel, M in 1..=[`MAX_MASK`]; outside it
+/// refused, never clamped. Every program that takes a mask reads it with
+/// this.
+pub fn parse_mask(text: &str) -> Result<u16, String> {
+    whole_in(text, 1..=MAX_MASK)
+}
+
+/// `--threads N`: N in 0..=[`MAX_THREADS`], 0 for one per core; outside
+/// it refused. Every program that takes threads reads them with this.
+pub fn parse_threads(text: &str) -> Result<u16, String> {
+    whole_in(text, 0..=MAX_THREADS)
+}
+
+/// The pool of `threads` workers, 0 for one per core.
+pub fn thread_pool(threads: u16) -> Result<rayon::ThreadPool, Failure> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(usize::from(threads))
+        .build()
+        .map_err(Failure::other)
+}
+
+/// `--screenshot OUT.png` (psout, contour): a usage error (exit 2) unless
+/// `out` is standard output (`-`) or names a PNG; the format follows the
+/// extension, as for `raytrace -o`.
+pub fn check_screenshot_name(out: &Path) -> Result<(), Failure> {
+    use crate::output::STDOUT;
+    use crate::raster::{Format, FormatError};
+    let problem = match Format::of(out) {
+        _ if out.as_os_str() == STDOUT => return Ok(()),
+        Ok(Format::Png) => return Ok(()),
+        Ok(_) | Err(FormatError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
+        Err(e) => e.to_string(),
+    };
+    Err(Failure::usage(format!("--screenshot '{}': {problem}", out.display())))
+}
+
+/// Writes `screen` as a PNG to `--screenshot`'s `out` (a file, or `-` for
+/// standard output) for `program`.
+pub fn write_screenshot(program: &str, out: &Path, screen: &crate::psout::Framebuffer) -> Result<(), Failure> {
+    #[cfg(feature = "png")]
+    {
+        let _ = program;
+        crate::raster::write_png(out, &screen.to_raster())
+            .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
+    }
+    #[cfg(not(feature = "png"))]
+    {
+        let _ = (out, screen);
+        Err(Failure::other(format!(
+            "this {program} was built without the `png` feature, so --screenshot is not available"
+        )))
+    }
 }
 
 impl RenderArgs {
@@ -142,7 +212,7 @@ impl RenderArgs {
             let m = self.mask.map_or(scene.image.masksize, usize::from);
             scene.resize(w, h, m);
         }
-        Prepared::with_accel(scene, *opts, self.accel).map_err(Failure::input)
+        Prepared::new(scene, *opts).map_err(Failure::input)
     }
 
     /// How the pixels are made from their samples (`--denoise`,
@@ -164,10 +234,7 @@ impl RenderArgs {
 
     /// The pool of `--threads` workers (one per core without it, or with 0).
     pub fn thread_pool(&self) -> Result<rayon::ThreadPool, Failure> {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(self.threads.map_or(0, usize::from))
-            .build()
-            .map_err(Failure::other)
+        thread_pool(self.threads.unwrap_or(0))
     }
 }
 
@@ -198,7 +265,7 @@ impl FarmArgs {
         let Some(tile) = self.tile else {
             return Ok(0..height);
         };
-        if prepared.options().sampler == TimeSampler::Adaptive {
+        if !prepared.options().sampler.renders_windows() {
             return Err(Failure::usage(format!(
                 "--tile {tile}: --sampler adaptive deals its rays over the whole image by need, so a \
                  band rendered alone would be another picture; render the image whole, or use \
@@ -303,8 +370,9 @@ mod tests {
         let sobol = parse(&["--sampler", "sobol"]).unwrap().options.options().unwrap();
         assert_eq!(sobol.sampler, TimeSampler::Sobol);
         assert!(parse(&["--sampler", "halton"]).is_err());
-        assert_eq!(parse(&["--accel", "octree"]).unwrap().accel, Accel::Octree);
-        assert_eq!(parse(&[]).unwrap().accel, Accel::Auto);
+        let octree = parse(&["--accel", "octree"]).unwrap().options.options().unwrap();
+        assert_eq!(octree.accel, Accel::Octree);
+        assert_eq!(parse(&[]).unwrap().options.options().unwrap().accel, Accel::Auto);
     }
 
     #[test]
