@@ -11,7 +11,6 @@
 //! feature `cli`, so the library alone parses no flags, prints nothing and
 //! never ends the process.
 
-use std::ops::Range;
 use std::path::Path;
 use std::process::ExitCode;
 use std::sync::{Mutex, Once, PoisonError};
@@ -253,27 +252,6 @@ pub struct FarmArgs {
     /// is not, so a task run again renders only what is missing.
     #[arg(long)]
     pub resume: bool,
-}
-
-impl FarmArgs {
-    /// The rows of `prepared`'s image a render covers: band K of N, or the
-    /// whole image. A usage error (exit 2) for more bands than rows, and
-    /// for a band of the adaptive sampler, which deals its rays over the
-    /// whole image (its band would be another picture).
-    pub fn rows(&self, prepared: &Prepared) -> Result<Range<usize>, Failure> {
-        let height = prepared.scene().image.height;
-        let Some(tile) = self.tile else {
-            return Ok(0..height);
-        };
-        if !prepared.options().sampler.renders_windows() {
-            return Err(Failure::usage(format!(
-                "--tile {tile}: --sampler adaptive deals its rays over the whole image by need, so a \
-                 band rendered alone would be another picture; render the image whole, or use \
-                 --sampler table, random or stratified"
-            )));
-        }
-        tile.band(height).map_err(Failure::usage)
-    }
 }
 
 /// The end of a program's `main`: success, or the failure's message
