@@ -19,7 +19,7 @@ pub const DEFAULT_FOLDER: &str = "raster";
 pub struct Outputs {
     /// The image file, its format by its extension, `-` for standard
     /// output; a film's frames are named after it. `None`:
-    /// raster/<deck stem>.ras (raster/<stem>.K-of-N.ras for a band).
+    /// `raster/<deck stem>.ras` (`raster/<stem>.K-of-N.ras` for a band).
     pub output: Option<PathBuf>,
     /// The image also as a PNG (a still).
     pub png: Option<PathBuf>,
