@@ -53,11 +53,17 @@ impl Hooks for Told {
 
 /// Runs `deck` with `outputs` on one thread; the summary and what was told.
 fn run(deck: &DeckInput, outputs: &Outputs) -> (Summary, Told) {
+    let (summary, told, _) = run_film(deck, outputs);
+    (summary, told)
+}
+
+/// As [`run`], and the film's first and last frame the run planned.
+fn run_film(deck: &DeckInput, outputs: &Outputs) -> (Summary, Told, Option<(u32, u32)>) {
     let scene = deck.initialize(Options::default().fidelity).unwrap();
     let prepared = Prepared::new(scene, Options::default()).unwrap();
     let mut told = Told::default();
     let run = Run::start(&prepared, deck, outputs, Default::default(), &mut told).unwrap();
-    let rows = run.rows_to_render();
+    let (rows, film) = (run.rows_to_render(), run.film());
     let counted = std::sync::atomic::AtomicU64::new(0);
     let progress = || {
         counted.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -67,7 +73,7 @@ fn run(deck: &DeckInput, outputs: &Outputs) -> (Summary, Told) {
         panic!("the run ends done");
     };
     assert_eq!(counted.into_inner(), rows, "progress once a row rendered");
-    (summary, told)
+    (summary, told, film)
 }
 
 #[test]
@@ -78,8 +84,10 @@ fn a_films_frames_are_written_then_resumed() {
         output: Some(dir.path().join("f.ras")),
         ..Outputs::default()
     };
-    let (summary, told) = run(&deck, &outputs);
+    let (summary, told, film) = run_film(&deck, &outputs);
+    assert_eq!(film, Some((1, 3)));
     assert_eq!((summary.rendered, summary.kept), (3, 0));
+    assert!(summary.rays >= 3 * 12 * 8 * 4, "{} rays", summary.rays);
     assert_eq!(told.written, [1, 2, 3]);
     assert_eq!(
         told.started,
@@ -136,7 +144,7 @@ fn a_stills_band_is_its_rows() {
     );
     let band = dir.path().join("band.ras");
     let tile = Tile::parse("2/2").unwrap();
-    let (summary, told) = run(
+    let (summary, told, film) = run_film(
         &deck,
         &Outputs {
             output: Some(band.clone()),
@@ -145,6 +153,7 @@ fn a_stills_band_is_its_rows() {
         },
     );
     assert!(told.written.is_empty(), "a still is no film's frame");
+    assert_eq!(film, None);
     assert_eq!(summary.band.as_ref().map(|(_, rows)| rows.clone()), Some(4..8));
     let (whole, band) = (read_raster_file(&whole).unwrap(), read_raster_file(&band).unwrap());
     assert_eq!(band.pixels, whole.pixels[4 * 12..]);
@@ -180,6 +189,14 @@ fn bad_outputs_are_usage_errors_before_anything_is_written() {
                 ..Outputs::default()
             },
             "only one output",
+        ),
+        (
+            Outputs {
+                output: Some(still.clone()),
+                apng: Some(dir.path().join("a.gif")),
+                ..Outputs::default()
+            },
+            "--apng writes an animated PNG, so the name must end in .png",
         ),
         (
             Outputs {
