@@ -3,13 +3,17 @@
 //! of [`Options`] (`--fidelity`, `--solver`, `--sampler`, the library's own
 //! enums), the image's size and the threads (`--mask`, `--size`,
 //! `--threads`), how pixels are made from samples (`--denoise`,
-//! `--coherence`), a task of a farm (`--tile`, `--resume`), and the deck a
-//! command names (a file, or `-` for standard input). Each flattens into a program's `clap` parser; what goes wrong is
-//! a [`Failure`] whose kind gives the exit status. The port's.
+//! `--coherence`), a task of a farm (`--tile`, `--resume`). Each flattens
+//! into a program's `clap` parser; what goes wrong is a [`Failure`] whose
+//! kind gives the exit status. Also what only a program does: print its
+//! failure and end with its status ([`exit_code`]), and end on SIGINT and
+//! SIGTERM ([`remove_temp_files_on_signals`]). The port's; behind the
+//! feature `cli`, so the library alone parses no flags, prints nothing and
+//! never ends the process.
 
-use std::io::Read;
-use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use std::process::ExitCode;
+use std::sync::{Mutex, Once, PoisonError};
 
 use clap::Args;
 
@@ -19,7 +23,7 @@ use crate::exit::Failure;
 use crate::options::{Fidelity, Options, Solver, TimeSampler};
 use crate::raytrace::Prepared;
 use crate::reconstruct::Reconstruction;
-use crate::scene::Scene;
+use crate::run::DeckInput;
 use crate::tile::Tile;
 
 /// `--fidelity`: the listing or the thesis.
@@ -31,7 +35,8 @@ pub struct FidelityArg {
     pub fidelity: Fidelity,
 }
 
-/// `--fidelity`, `--solver`, `--sampler`: the [`Options`] of a render.
+/// `--fidelity`, `--solver`, `--sampler`, `--accel`: the [`Options`] of a
+/// render.
 #[derive(Args, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct OptionArgs {
     #[command(flatten)]
@@ -45,6 +50,11 @@ pub struct OptionArgs {
     /// table is the thesis's.
     #[arg(long, value_enum, default_value_t)]
     pub sampler: TimeSampler,
+
+    /// How the objects a ray may meet are found; the image is the same with each
+    /// (docs/scale.md).
+    #[arg(long, value_enum, default_value_t)]
+    pub accel: Accel,
 }
 
 impl OptionArgs {
@@ -55,6 +65,7 @@ impl OptionArgs {
             fidelity: self.fidelity.fidelity,
             solver: self.solver,
             sampler: self.sampler,
+            accel: self.accel,
         };
         crate::adaptive::check(&opts).map_err(Failure::usage)?;
         Ok(opts)
@@ -82,7 +93,7 @@ pub struct RenderArgs {
 
     /// M×M subpixels a pixel (M² rays a pixel on average for --sampler adaptive), 1..32,
     /// in place of the deck's `mask` for this run [default: the deck's].
-    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u16).range(1..=i64::from(MAX_MASK)))]
+    #[arg(long, value_name = "M", value_parser = parse_mask)]
     pub mask: Option<u16>,
 
     /// The image's width and height in pixels, WxH (each 1..8192), in place of the deck's
@@ -93,13 +104,8 @@ pub struct RenderArgs {
     /// Worker threads, 1..256, or 0 for one per core [default: one per core]. The image
     /// is the same for any number; rows are shared out, so more threads than cores only
     /// cost start-up time, and more than 256 is refused as a slip.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=i64::from(MAX_THREADS)))]
+    #[arg(long, value_name = "N", value_parser = parse_threads)]
     pub threads: Option<u16>,
-
-    /// How the objects a ray may meet are found; the image is the same with each
-    /// (docs/scale.md).
-    #[arg(long, value_enum, default_value_t)]
-    pub accel: Accel,
 
     /// Make each pixel from its own and its neighbours' samples, weighted by how alike their
     /// colours, surface colours and normals are: a smooth picture from few rays (e.g.
@@ -115,7 +121,8 @@ pub struct RenderArgs {
     pub coherence: Option<u32>,
 }
 
-/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`].
+/// `--size WxH`: two whole numbers in 1..=[`MAX_SIDE`]. Every program
+/// that takes a size reads it with this.
 pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
     let (w, h) = text
         .split_once(['x', 'X', '×'])
@@ -125,6 +132,72 @@ pub fn parse_size(text: &str) -> Result<(usize, usize), String> {
         _ => Err(format!("the {what} '{v}' is not a whole number in 1..={MAX_SIDE}")),
     };
     Ok((side(w, "width")?, side(h, "height")?))
+}
+
+/// A whole number in `range`, or the message every flag of the kind gives.
+fn whole_in(text: &str, range: std::ops::RangeInclusive<u16>) -> Result<u16, String> {
+    match text.trim().parse::<u16>() {
+        Ok(n) if range.contains(&n) => Ok(n),
+        _ => Err(format!(
+            "'{text}' is not a whole number in {}..={}",
+            range.start(),
+            range.end()
+        )),
+    }
+}
+
+/// `--mask M`: M×M subpixels a pixel, M in 1..=[`MAX_MASK`]; outside it
+/// refused, never clamped. Every program that takes a mask reads it with
+/// this.
+pub fn parse_mask(text: &str) -> Result<u16, String> {
+    whole_in(text, 1..=MAX_MASK)
+}
+
+/// `--threads N`: N in 0..=[`MAX_THREADS`], 0 for one per core; outside
+/// it refused. Every program that takes threads reads them with this.
+pub fn parse_threads(text: &str) -> Result<u16, String> {
+    whole_in(text, 0..=MAX_THREADS)
+}
+
+/// The pool of `threads` workers, 0 for one per core.
+pub fn thread_pool(threads: u16) -> Result<rayon::ThreadPool, Failure> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(usize::from(threads))
+        .build()
+        .map_err(Failure::other)
+}
+
+/// `--screenshot OUT.png` (psout, contour): a usage error (exit 2) unless
+/// `out` is standard output (`-`) or names a PNG; the format follows the
+/// extension, as for `raytrace -o`.
+pub fn check_screenshot_name(out: &Path) -> Result<(), Failure> {
+    use crate::output::STDOUT;
+    use crate::raster::{Format, FormatError};
+    let problem = match Format::of(out) {
+        _ if out.as_os_str() == STDOUT => return Ok(()),
+        Ok(Format::Png) => return Ok(()),
+        Ok(_) | Err(FormatError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
+        Err(e) => e.to_string(),
+    };
+    Err(Failure::usage(format!("--screenshot '{}': {problem}", out.display())))
+}
+
+/// Writes `screen` as a PNG to `--screenshot`'s `out` (a file, or `-` for
+/// standard output) for `program`.
+pub fn write_screenshot(program: &str, out: &Path, screen: &crate::psout::Framebuffer) -> Result<(), Failure> {
+    #[cfg(feature = "png")]
+    {
+        let _ = program;
+        crate::raster::write_png(out, &screen.to_raster())
+            .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
+    }
+    #[cfg(not(feature = "png"))]
+    {
+        let _ = (out, screen);
+        Err(Failure::other(format!(
+            "this {program} was built without the `png` feature, so --screenshot is not available"
+        )))
+    }
 }
 
 impl RenderArgs {
@@ -138,7 +211,7 @@ impl RenderArgs {
             let m = self.mask.map_or(scene.image.masksize, usize::from);
             scene.resize(w, h, m);
         }
-        Prepared::with_accel(scene, *opts, self.accel).map_err(Failure::input)
+        Prepared::new(scene, *opts).map_err(Failure::input)
     }
 
     /// How the pixels are made from their samples (`--denoise`,
@@ -160,10 +233,7 @@ impl RenderArgs {
 
     /// The pool of `--threads` workers (one per core without it, or with 0).
     pub fn thread_pool(&self) -> Result<rayon::ThreadPool, Failure> {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(self.threads.map_or(0, usize::from))
-            .build()
-            .map_err(Failure::other)
+        thread_pool(self.threads.unwrap_or(0))
     }
 }
 
@@ -184,90 +254,71 @@ pub struct FarmArgs {
     pub resume: bool,
 }
 
-impl FarmArgs {
-    /// The rows of `prepared`'s image a render covers: band K of N, or the
-    /// whole image. A usage error (exit 2) for more bands than rows, and
-    /// for a band of the adaptive sampler, which deals its rays over the
-    /// whole image (its band would be another picture).
-    pub fn rows(&self, prepared: &Prepared) -> Result<Range<usize>, Failure> {
-        let height = prepared.scene().image.height;
-        let Some(tile) = self.tile else {
-            return Ok(0..height);
-        };
-        if prepared.options().sampler == TimeSampler::Adaptive {
-            return Err(Failure::usage(format!(
-                "--tile {tile}: --sampler adaptive deals its rays over the whole image by need, so a \
-                 band rendered alone would be another picture; render the image whole, or use \
-                 --sampler table, random or stratified"
-            )));
+/// The end of a program's `main`: success, or the failure's message
+/// printed to stderr as `PROGRAM: MESSAGE` and its kind's status
+/// ([`crate::exit`]).
+pub fn exit_code(program: &str, result: Result<(), Failure>) -> ExitCode {
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            eprintln!("{program}: {}", f.message);
+            ExitCode::from(f.kind.status())
         }
-        tile.band(height).map_err(Failure::usage)
     }
 }
 
-/// The deck argument that means standard input.
-pub const STDIN: &str = "-";
+/// What the program does last when a signal stops it, after the temporary
+/// files are removed and before it exits: [`on_signal`].
+type LastWord = Box<dyn Fn(i32) + Send>;
 
-/// The name a deck read from standard input has in errors.
-pub const STDIN_NAME: &str = "<stdin>";
+static LAST_WORD: Mutex<Option<LastWord>> = Mutex::new(None);
 
-/// A deck as a command names it, read: its text, the name its errors give,
-/// the folder its files (textures) are relative to, and the stem the
-/// default output is named by.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct DeckInput {
-    pub source: Vec<u8>,
-    /// The file name as the user gave it, or [`STDIN_NAME`].
-    pub name: String,
-    /// The deck's folder; the current folder for standard input.
-    pub dir: PathBuf,
-    /// The file name without its extension; `stdin` for standard input.
-    pub stem: String,
+/// Sets what the program does last when SIGINT or SIGTERM stops it (after
+/// [`remove_temp_files_on_signals`] has removed the temporary files, before
+/// the exit): `raytrace` says what was kept and the command that goes on.
+/// The call gets the signal. A later call replaces an earlier one.
+pub fn on_signal(last_word: impl Fn(i32) + Send + 'static) {
+    *LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(last_word));
 }
 
-impl DeckInput {
-    /// Reads the deck at `path`, or standard input for `-` ([`STDIN`]),
-    /// at most one byte past the reader's limit ([`crate::deck::MAX_DECK_BYTES`]).
-    /// A deck that cannot be read is an input error naming it.
-    pub fn read(path: &Path) -> Result<DeckInput, Failure> {
-        if path.as_os_str() == STDIN {
-            return DeckInput::from_reader(std::io::stdin().lock(), STDIN_NAME, Path::new(""), "stdin")
-                .map_err(|e| Failure::input(format!("{STDIN_NAME}: {e}")));
-        }
-        let source =
-            crate::deck::read_deck_file(path).map_err(|e| Failure::input(format!("{}: {e}", path.display())))?;
-        Ok(DeckInput {
-            source,
-            name: path.display().to_string(),
-            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
-            stem: path
-                .file_stem()
-                .map_or("out".into(), |s| s.to_string_lossy().into_owned()),
-        })
-    }
-
-    /// The deck's text as bytes from any reader (standard input, a test's
-    /// buffer), named `name` in errors, its files relative to `dir`.
-    pub fn from_reader(reader: impl Read, name: &str, dir: &Path, stem: &str) -> std::io::Result<DeckInput> {
-        Ok(DeckInput {
-            source: crate::deck::read_deck(reader)?,
-            name: name.to_string(),
-            dir: dir.to_path_buf(),
-            stem: stem.to_string(),
-        })
-    }
-
-    /// The scene the deck describes ([`crate::deck::initialize`]); an
-    /// error is an input error at its FILE:LINE:COLUMN.
-    pub fn initialize(&self, fidelity: Fidelity) -> Result<Scene, Failure> {
-        crate::deck::initialize(&self.source, &self.name, &self.dir, fidelity).map_err(Failure::input)
-    }
+/// Makes SIGINT and SIGTERM remove this process's temporary files
+/// ([`crate::output::remove_temp_files`]), say the program's last word
+/// ([`on_signal`]) and exit with 128 + the signal (130, 143). For the
+/// programs' `main`; a second call does nothing.
+///
+/// The signals are taken by `signal-hook`'s iterator on a thread of its
+/// own, so the removal runs as ordinary code, not inside a signal handler.
+pub fn remove_temp_files_on_signals() -> Result<(), Failure> {
+    static INSTALLED: Once = Once::new();
+    let mut result = Ok(());
+    INSTALLED.call_once(|| {
+        result = (|| {
+            use signal_hook::consts::{SIGINT, SIGTERM};
+            let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
+            std::thread::Builder::new()
+                .name("output-signals".into())
+                .spawn(move || {
+                    if let Some(signal) = signals.forever().next() {
+                        // Held until exit: no temporary file is made or
+                        // renamed after this.
+                        let _removed = crate::output::remove_temp_files();
+                        if let Some(last_word) = LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
+                            last_word(signal);
+                        }
+                        std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
+                    }
+                })?;
+            Ok(())
+        })();
+    });
+    result.map_err(|e: std::io::Error| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use clap::Parser;
+    use std::path::PathBuf;
 
     #[derive(Parser, Debug)]
     struct Cli {
@@ -297,8 +348,9 @@ mod tests {
         let sobol = parse(&["--sampler", "sobol"]).unwrap().options.options().unwrap();
         assert_eq!(sobol.sampler, TimeSampler::Sobol);
         assert!(parse(&["--sampler", "halton"]).is_err());
-        assert_eq!(parse(&["--accel", "octree"]).unwrap().accel, Accel::Octree);
-        assert_eq!(parse(&[]).unwrap().accel, Accel::Auto);
+        let octree = parse(&["--accel", "octree"]).unwrap().options.options().unwrap();
+        assert_eq!(octree.accel, Accel::Octree);
+        assert_eq!(parse(&[]).unwrap().options.options().unwrap().accel, Accel::Auto);
     }
 
     #[test]
@@ -392,22 +444,5 @@ mod tests {
         // --mask 2 makes it fit.
         let args = parse(&["--mask", "2"]).unwrap();
         assert!(args.scene(&deck, &Options::default()).is_ok());
-    }
-
-    #[test]
-    fn a_deck_from_a_reader_keeps_its_name_folder_and_stem() {
-        let deck = DeckInput::from_reader(&b"view"[..], STDIN_NAME, Path::new(""), "stdin").unwrap();
-        assert_eq!(deck.source, b"view");
-        assert_eq!((deck.dir.as_os_str(), deck.stem.as_str()), ("".as_ref(), "stdin"));
-        let e = deck.initialize(Fidelity::Thesis).unwrap_err();
-        assert_eq!(e.kind, crate::exit::Kind::Input);
-        assert!(e.message.starts_with("<stdin>:1:"), "{e}");
-    }
-
-    #[test]
-    fn a_missing_deck_file_is_an_input_error_naming_it() {
-        let e = DeckInput::read(Path::new("/nonexistent/x.deck")).unwrap_err();
-        assert_eq!(e.kind, crate::exit::Kind::Input);
-        assert!(e.message.starts_with("/nonexistent/x.deck: "), "{e}");
     }
 }

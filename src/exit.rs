@@ -1,5 +1,6 @@
 //! How the programs end: a failure's kind decides its exit status, in one
-//! place for `raytrace`, `psout` and the tools. The port's (the thesis's
+//! place for `raytrace`, `psout` and the tools (which print it and end:
+//! `cli::exit_code`). The port's (the thesis's
 //! program has no exit statuses to speak of).
 //!
 //! | kind | status | |
@@ -10,7 +11,6 @@
 //! | [`Kind::Signal`] | 128 + the signal | stopped by SIGINT (130) or SIGTERM (143), as a shell reports it |
 
 use std::fmt;
-use std::process::ExitCode;
 
 /// What went wrong, as far as the exit status is concerned.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,18 +70,6 @@ impl Failure {
 impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.message)
-    }
-}
-
-/// The end of a program's `main`: success, or the failure's message
-/// printed to stderr as `PROGRAM: MESSAGE` and its kind's status.
-pub fn exit_code(program: &str, result: Result<(), Failure>) -> ExitCode {
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(f) => {
-            eprintln!("{program}: {}", f.message);
-            ExitCode::from(f.kind.status())
-        }
     }
 }
 

@@ -106,6 +106,12 @@ fn check_size(width: u32, height: u32) -> Result<(usize, usize), RasterError> {
     Ok((w, h))
 }
 
+/// A PNG, in a build without the `png` feature: refused as such.
+#[cfg(not(feature = "png"))]
+fn read_png(_reader: impl BufRead) -> Result<Raster, RasterError> {
+    Err(RasterError::PngNotBuilt)
+}
+
 /// A reader that cannot seek, for the PNG decoder, which asks for `Seek`
 /// and does not use it: so a PNG reads from a pipe.
 #[cfg(feature = "png")]

@@ -86,11 +86,13 @@
 
 pub mod accel;
 pub mod adaptive;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod coherence;
 pub mod deck;
 pub mod distributed;
 pub mod drt;
+#[cfg(feature = "editor")]
 pub mod editor;
 pub mod exit;
 pub mod film;
@@ -107,6 +109,7 @@ pub mod raster;
 pub mod raytrace;
 pub mod reconstruct;
 pub mod robust;
+pub mod run;
 pub mod sampler;
 pub mod scene;
 pub mod shapes;

@@ -24,10 +24,10 @@
 //!   as it would have, quietly, as a Unix filter does.
 //! - No folder is created here; a missing folder, or a file where a folder
 //!   should be, is an error that names it.
-//! - [`remove_temp_files_on_signals`]: SIGINT or SIGTERM removes the
-//!   temporary files, does what the program set with [`on_signal`] (its
-//!   last word), and exits with 130 or 143 (128 + the signal, as a shell
-//!   reports it). A SIGKILL cannot be caught: the next write of the
+//! - [`remove_temp_files`]: what a program stopped by SIGINT or SIGTERM
+//!   calls before it exits (the programs' `cli::remove_temp_files_on_signals`
+//!   does, then exits with 130 or 143, 128 + the signal, as a shell reports
+//!   it; the library never ends the process). A SIGKILL cannot be caught: the next write of the
 //!   same target removes the temporary files of processes that no longer
 //!   run (on Linux, where /proc tells which do), and only those this host
 //!   wrote: another host's PIDs are not in this host's /proc.
@@ -42,7 +42,7 @@ use std::fs::{self, File};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Mutex, MutexGuard, Once, PoisonError};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// The file name that means standard output.
 pub const STDOUT: &str = "-";
@@ -468,53 +468,22 @@ fn stale_temp_files(dir: &Path) -> Vec<StaleTempFile> {
     stale
 }
 
-/// What the program does last when a signal stops it, after the temporary
-/// files are removed and before it exits: [`on_signal`].
-type LastWord = Box<dyn Fn(i32) + Send>;
+/// The temporary files of this process removed, and no more made or
+/// renamed while this is held: what a program does when a signal stops
+/// it, before it exits (`cli::remove_temp_files_on_signals`, the
+/// programs'). Hold it until the process ends.
+pub struct TempFilesRemoved(#[expect(dead_code, reason = "held for its lock")] MutexGuard<'static, Vec<PathBuf>>);
 
-static LAST_WORD: Mutex<Option<LastWord>> = Mutex::new(None);
-
-/// Sets what the program does last when SIGINT or SIGTERM stops it (after
-/// [`remove_temp_files_on_signals`] has removed the temporary files, before
-/// the exit): `raytrace` says what was kept and the command that goes on.
-/// The call gets the signal. A later call replaces an earlier one.
-pub fn on_signal(last_word: impl Fn(i32) + Send + 'static) {
-    *LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner) = Some(Box::new(last_word));
-}
-
-/// Makes SIGINT and SIGTERM remove this process's temporary files and exit
-/// with 128 + the signal (130, 143). For the programs' `main`; a second call
-/// does nothing.
-///
-/// The signals are taken by `signal-hook`'s iterator on a thread of its
-/// own, so the removal runs as ordinary code, not inside a signal handler.
-pub fn remove_temp_files_on_signals() -> io::Result<()> {
-    static INSTALLED: Once = Once::new();
-    let mut result = Ok(());
-    INSTALLED.call_once(|| {
-        result = (|| {
-            use signal_hook::consts::{SIGINT, SIGTERM};
-            let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])?;
-            std::thread::Builder::new()
-                .name("output-signals".into())
-                .spawn(move || {
-                    if let Some(signal) = signals.forever().next() {
-                        // Held until exit: no temporary file is made or
-                        // renamed after this.
-                        let registry = temp_files();
-                        for temp in registry.iter() {
-                            let _ = fs::remove_file(temp);
-                        }
-                        if let Some(last_word) = LAST_WORD.lock().unwrap_or_else(PoisonError::into_inner).as_ref() {
-                            last_word(signal);
-                        }
-                        std::process::exit(i32::from(crate::exit::Kind::Signal(signal).status()));
-                    }
-                })?;
-            Ok(())
-        })();
-    });
-    result
+/// Removes every temporary file this process is writing, and keeps any
+/// other from being made or renamed while the result is held. The library
+/// never ends the process: the program that stops on a signal calls this
+/// first.
+pub fn remove_temp_files() -> TempFilesRemoved {
+    let registry = temp_files();
+    for temp in registry.iter() {
+        let _ = fs::remove_file(temp);
+    }
+    TempFilesRemoved(registry)
 }
 
 #[cfg(test)]

@@ -12,7 +12,6 @@ use std::ops::Range;
 use std::path::Path;
 use std::time::SystemTime;
 
-use crate::options::TimeSampler;
 use crate::raster::Raster;
 use crate::raytrace::{render, Prepared, Render, RenderError, Request};
 use crate::reconstruct::Reconstruction;
@@ -42,7 +41,7 @@ pub fn render_in_bands(
 ) -> Result<Option<Render>, RenderError> {
     let height = prepared.scene().image.height;
     let whole = request.rows.clone().unwrap_or(0..height);
-    if prepared.options().sampler == TimeSampler::Adaptive || request.reconstruction != Reconstruction::Box {
+    if !prepared.options().sampler.renders_windows() || request.reconstruction != Reconstruction::Box {
         let r = render(prepared, request)?;
         return Ok(on_band(&r).then_some(r));
     }

@@ -93,7 +93,7 @@ fn bits(h: &LocalHit) -> [u64; 7] {
 fn each_accel(scene: &Scene, opts: Options) -> Vec<Prepared> {
     [Accel::None, Accel::Bvh, Accel::Octree]
         .into_iter()
-        .map(|a| Prepared::with_accel(scene.clone(), opts, a).unwrap_or_else(|e| panic!("{e}")))
+        .map(|accel| Prepared::new(scene.clone(), Options { accel, ..opts }).unwrap_or_else(|e| panic!("{e}")))
         .collect()
 }
 

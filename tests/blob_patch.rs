@@ -298,7 +298,14 @@ fn the_same_image_for_any_threads_and_accel() {
     let mut images = Vec::new();
     for accel in [Accel::None, Accel::Bvh, Accel::Octree] {
         for threads in [1, 3] {
-            let prepared = Prepared::with_accel(scene.clone(), Options::default(), accel).unwrap();
+            let prepared = Prepared::new(
+                scene.clone(),
+                Options {
+                    accel,
+                    ..Options::default()
+                },
+            )
+            .unwrap();
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             images.push(pool.install(|| render(&prepared, &Request::STILL).unwrap().raster));
         }

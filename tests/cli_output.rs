@@ -550,7 +550,7 @@ fn exr_holds_the_radiance_before_quantisation() {
     let bytes = std::fs::read(&out).unwrap();
     assert_eq!(bytes[..4], [0x76, 0x2f, 0x31, 0x01], "the OpenEXR magic number");
 
-    let input = raytrace::cli::DeckInput::read(&deck).unwrap();
+    let input = raytrace::run::DeckInput::read(&deck).unwrap();
     let opts = raytrace::options::Options::default();
     let prepared = raytrace::raytrace::Prepared::new(input.initialize(opts.fidelity).unwrap(), opts).unwrap();
     let r = raytrace::raytrace::render(&prepared, &raytrace::raytrace::Request::STILL).unwrap();

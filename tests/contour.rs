@@ -7,10 +7,10 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use raytrace::cli::DeckInput;
 use raytrace::editor::document::{sweeps, Document, Target};
 use raytrace::editor::model::Edit;
 use raytrace::options::Fidelity;
+use raytrace::run::DeckInput;
 use raytrace::types::{CurveKind, PrimitiveClass};
 
 fn decks() -> PathBuf {

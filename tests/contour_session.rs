@@ -6,13 +6,13 @@
 
 use std::path::{Path, PathBuf};
 
-use raytrace::cli::DeckInput;
 use raytrace::editor::document::Document;
 use raytrace::editor::layout::{PLANE, SLIDER};
 use raytrace::editor::model::Edit;
 use raytrace::editor::screen::{draw, Preview};
 use raytrace::editor::session::{Button, Editor, Effect, Key};
 use raytrace::options::Fidelity;
+use raytrace::run::DeckInput;
 use raytrace::types::{CurveKind, PrimitiveClass};
 
 fn deck(name: &str) -> PathBuf {

@@ -6,10 +6,10 @@
 
 use std::path::Path;
 
-use raytrace::cli::DeckInput;
 use raytrace::film::Frame;
 use raytrace::options::{Fidelity, Options, TimeSampler};
 use raytrace::raytrace::{render, Prepared, Request};
+use raytrace::run::DeckInput;
 use raytrace::show::{render_in_bands, Progressive, BAND_ROWS};
 
 fn prepared(deck: &str, opts: Options, size: usize) -> Prepared {

@@ -27,42 +27,8 @@ pub use bvh::Bvh;
 pub use octree::{findnode_digit, Found, Octree, MAX_DEPTH};
 pub use time::{Bounds, Hierarchy, Segments, Timed, USE_UNION};
 
+pub use crate::options::{Accel, THRESHOLD};
 use crate::types::{BoundingBox, DVec3, Ray};
-
-/// `--accel`: how the objects a ray may meet are found.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, clap::ValueEnum)]
-pub enum Accel {
-    /// The loop below 9 objects, the bounding volume hierarchy from there (as
-    /// POV-Ray's Bounding_Threshold).
-    #[default]
-    Auto,
-    /// The original's loop: every object in turn, behind its bounding sphere.
-    None,
-    /// A bounding volume hierarchy: the thesis's clusters (Fig. 2.12); not the
-    /// thesis's code.
-    Bvh,
-    /// The thesis's space subdivision (Fig. 2.15), an octree searched by
-    /// LISTING 1's `findnode`.
-    Octree,
-}
-
-/// From this many objects `auto` takes the hierarchy; below, the loop.
-/// Measured (docs/scale.md): on random spheres and on fig5_6's stars over
-/// a floor, the loop is faster up to 7 objects, the two are even at 8, and
-/// the hierarchy is faster from 9 (by 20 % at 13).
-pub const THRESHOLD: usize = 9;
-
-impl Accel {
-    /// What `auto` means for a scene of `objects` objects; the others as
-    /// they are.
-    pub fn resolve(self, objects: usize) -> Accel {
-        match self {
-            Accel::Auto if objects < THRESHOLD => Accel::None,
-            Accel::Auto => Accel::Bvh,
-            other => other,
-        }
-    }
-}
 
 /// A box as the structures keep it: its least and greatest corners.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -16,13 +16,15 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
-use raytrace::cli::{DeckInput, FidelityArg};
+use raytrace::cli::exit_code;
+use raytrace::cli::FidelityArg;
 use raytrace::editor::document::Document;
 use raytrace::editor::screen;
 use raytrace::editor::session::{Editor, KEYS_HELP};
-use raytrace::exit::{exit_code, Failure};
+use raytrace::exit::Failure;
 use raytrace::output::{write_atomically, OutputError};
 use raytrace::psout;
+use raytrace::run::DeckInput;
 
 /// Edit a sweep of a scene deck: its control points, curve and sweep kind,
 /// seen at once as the curve and as the rendered object.
@@ -53,8 +55,8 @@ struct Args {
     #[arg(short, long, value_name = "NEW.deck")]
     output: Option<PathBuf>,
 
-    /// Write the editor's 1024×864 screen (with the finer preview) to OUT.png and exit,
-    /// without a window.
+    /// Write the editor's 1024×864 screen (with the finer preview) to OUT.png (or - for
+    /// standard output) and exit, without a window.
     #[arg(long, value_name = "OUT.png")]
     screenshot: Option<PathBuf>,
 
@@ -87,8 +89,7 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
-    raytrace::output::remove_temp_files_on_signals()
-        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    raytrace::cli::remove_temp_files_on_signals()?;
     let headless = args.output.is_some() || args.screenshot.is_some() || args.list;
     if args.script.is_some() && !headless {
         return Err(Failure::usage(
@@ -96,7 +97,7 @@ fn run(args: &Args) -> Result<(), Failure> {
         ));
     }
     if let Some(out) = &args.screenshot {
-        check_png_name(out)?;
+        raytrace::cli::check_screenshot_name(out)?;
     }
     let mut editor = Editor::new(open(args)?);
     if editor.chain.is_some() {
@@ -122,7 +123,7 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
     if let Some(out) = &args.screenshot {
         let screen = screen::screenshot(&editor);
-        write_png(out, &screen)?;
+        raytrace::cli::write_screenshot("contour", out, &screen)?;
     }
     Ok(())
 }
@@ -140,30 +141,6 @@ fn list(editor: &Editor) -> Result<(), Failure> {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure::other(format!("standard output: {e}"))),
         _ => Ok(()),
     }
-}
-
-/// A usage error (exit 2) unless `out` names a PNG.
-fn check_png_name(out: &Path) -> Result<(), Failure> {
-    match out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-        true => Ok(()),
-        false => Err(Failure::usage(format!(
-            "--screenshot '{}': a screenshot is a PNG, so the name must end in .png",
-            out.display()
-        ))),
-    }
-}
-
-#[cfg(feature = "png")]
-fn write_png(out: &Path, screen: &psout::Framebuffer) -> Result<(), Failure> {
-    raytrace::raster::write_png(out, &screen.to_raster())
-        .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
-}
-
-#[cfg(not(feature = "png"))]
-fn write_png(_out: &Path, _screen: &psout::Framebuffer) -> Result<(), Failure> {
-    Err(Failure::other(
-        "this contour was built without the `png` feature, so --screenshot is not available",
-    ))
 }
 
 /// The document the command line names: DECK at NAME, or a new deck.

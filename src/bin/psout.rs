@@ -14,7 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Parser;
-use raytrace::exit::{exit_code, Failure};
+use raytrace::cli::exit_code;
+use raytrace::exit::Failure;
 use raytrace::image_file::read_image_file;
 use raytrace::psout;
 
@@ -35,7 +36,8 @@ struct Args {
     /// N from 2 to 256.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(2..=256))]
     lut: Option<u16>,
-    /// Write the 1024×864 screen to OUT.png and exit, without a window.
+    /// Write the 1024×864 screen to OUT.png (or - for standard output) and exit, without a
+    /// window.
     #[arg(long, value_name = "OUT.png")]
     screenshot: Option<PathBuf>,
     /// A film: the frame (1-based) to write with --screenshot, or to start
@@ -57,10 +59,9 @@ fn main() -> ExitCode {
 }
 
 fn run(args: &Args) -> Result<(), Failure> {
-    raytrace::output::remove_temp_files_on_signals()
-        .map_err(|e| Failure::other(format!("cannot watch for SIGINT and SIGTERM: {e}")))?;
+    raytrace::cli::remove_temp_files_on_signals()?;
     if let Some(out) = &args.screenshot {
-        check_screenshot_name(out)?;
+        raytrace::cli::check_screenshot_name(out)?;
     }
     let lut = args.lut.map(usize::from);
     let bad = Failure::input;
@@ -91,20 +92,6 @@ fn run(args: &Args) -> Result<(), Failure> {
     }
 }
 
-/// A usage error (exit 2) unless `out` is standard output (`-`) or names
-/// a PNG: the format follows the extension, as for `raytrace -o`.
-fn check_screenshot_name(out: &Path) -> Result<(), Failure> {
-    use raytrace::output::STDOUT;
-    use raytrace::raster::{Format, FormatError};
-    let problem = match Format::of(out) {
-        _ if out.as_os_str() == STDOUT => return Ok(()),
-        Ok(Format::Png) => return Ok(()),
-        Ok(_) | Err(FormatError::UnknownFormat(_)) => "a screenshot is a PNG, so the name must end in .png".to_string(),
-        Err(e) => e.to_string(),
-    };
-    Err(Failure::usage(format!("--screenshot '{}': {problem}", out.display())))
-}
-
 /// Reads the picture (a Sun raster, PNG or PPM), in lookup-table mode
 /// quantised; the message names the file.
 fn load(path: &Path, lut: Option<usize>) -> Result<Raster, String> {
@@ -115,18 +102,9 @@ fn load(path: &Path, lut: Option<usize>) -> Result<Raster, String> {
     })
 }
 
-#[cfg(feature = "png")]
+/// `--screenshot`: the screen psout would show, as a PNG.
 fn screenshot(out: &Path, raster: &Raster, zoom: Option<u32>) -> Result<(), Failure> {
-    let screen = psout::compose(raster, zoom, (0, 0));
-    raytrace::raster::write_png(out, &screen.to_raster())
-        .map_err(|e| Failure::other(format!("cannot write {}: {e}", out.display())))
-}
-
-#[cfg(not(feature = "png"))]
-fn screenshot(_out: &Path, _raster: &Raster, _zoom: Option<u32>) -> Result<(), Failure> {
-    Err(Failure::other(
-        "this psout was built without the `png` feature, so --screenshot is not available",
-    ))
+    raytrace::cli::write_screenshot("psout", out, &psout::compose(raster, zoom, (0, 0)))
 }
 
 /// The error when no window can be opened: names both ways out.

@@ -6,10 +6,10 @@ use std::path::Path;
 
 use super::model::{Contour, Refusal};
 use super::record::SweepRecord;
-use crate::cli::DeckInput;
 use crate::exit::Failure;
 use crate::options::{Fidelity, Options};
 use crate::raytrace::Prepared;
+use crate::run::DeckInput;
 use crate::scene::Scene;
 use crate::types::{ObjectRecord, Shape, SweepShape};
 

@@ -115,7 +115,7 @@ fn contour_of(pair: &PaperPair, t: f64, obj: &mut SweepShape) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::DeckInput;
+    use crate::run::DeckInput;
 
     fn fig5_10() -> Scene {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks/fig5_10.deck");

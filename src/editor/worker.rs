@@ -149,9 +149,9 @@ fn render_pass(job: &Job, pass: Pass, inbox: &Receiver<(u64, Job)>) -> Result<Re
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cli::DeckInput;
     use crate::editor::document::Document;
     use crate::options::Fidelity;
+    use crate::run::DeckInput;
 
     fn job() -> Job {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks/fig5_6.deck");

@@ -12,9 +12,8 @@ use super::tracer::Tracer;
 use super::{Prepared, RenderError, Traced};
 use crate::coherence::{reconstruct, Lattice, Value};
 use crate::film::Frame;
-use crate::options::TimeSampler;
 use crate::reconstruct::Gathered;
-use crate::sampler::{GridKind, GridSampler, Sampler};
+use crate::sampler::{GridKind, GridSampler, Layout, Sampler};
 use crate::trace::TraceStats;
 use crate::types::Intensity;
 
@@ -30,11 +29,11 @@ pub(super) fn render(
     step: u32,
     progress: &(dyn Fn() + Sync),
 ) -> Result<Traced, RenderError> {
-    if prepared.options().sampler == TimeSampler::Adaptive {
+    let Layout::Grid(kind) = Layout::of(prepared.options().sampler) else {
         return Err(RenderError::Options(
             "--coherence traces some pixels whole and interpolates the rest; --sampler adaptive deals its rays over every pixel by need: use one or the other".into(),
         ));
-    }
+    };
     if !(1..=crate::coherence::MAX_STEP).contains(&step) {
         return Err(RenderError::Options(format!(
             "--coherence {step}: the step is 1..={}",
@@ -50,7 +49,7 @@ pub(super) fn render(
     let window = lattice.rows(&rows);
     let mut stats = TraceStats::default();
     let values = reconstruct(&lattice, window.clone(), |at| {
-        let (values, s) = trace_pixels(prepared, frame, window.start, at);
+        let (values, s) = trace_pixels(prepared, kind, frame, window.start, at);
         stats += s;
         values
     });
@@ -68,8 +67,15 @@ pub(super) fn render(
 }
 
 /// The pixels `at` ((column, row) pairs, the rows counted from `first`),
-/// each traced whole: row by row in parallel, each row's pixels in turn.
-fn trace_pixels(prepared: &Prepared, frame: Frame, first: usize, at: &[(usize, usize)]) -> (Vec<Value>, TraceStats) {
+/// each traced whole by the grid sampler `kind`: row by row in parallel,
+/// each row's pixels in turn.
+fn trace_pixels(
+    prepared: &Prepared,
+    kind: GridKind,
+    frame: Frame,
+    first: usize,
+    at: &[(usize, usize)],
+) -> (Vec<Value>, TraceStats) {
     let mut order: Vec<usize> = (0..at.len()).collect();
     order.sort_by_key(|&k| (at[k].1, at[k].0));
     let rows: Vec<&[usize]> = order.chunk_by(|&a, &b| at[a].1 == at[b].1).collect();
@@ -77,7 +83,7 @@ fn trace_pixels(prepared: &Prepared, frame: Frame, first: usize, at: &[(usize, u
         .par_iter()
         .map(|ks| {
             let row = first + at[ks[0]].1;
-            let mut pixel = PixelTracer::new(prepared, frame, row);
+            let mut pixel = PixelTracer::new(prepared, kind, frame, row);
             let values = ks.iter().map(|&k| pixel.trace(at[k].0)).collect();
             (values, pixel.tracer.stats)
         })
@@ -103,10 +109,9 @@ struct PixelTracer<'p> {
 }
 
 impl<'p> PixelTracer<'p> {
-    fn new(prepared: &'p Prepared, frame: Frame, row: usize) -> Self {
+    fn new(prepared: &'p Prepared, kind: GridKind, frame: Frame, row: usize) -> Self {
         let opts = prepared.options();
         let img = &prepared.scene().image;
-        let kind = GridKind::of(opts.sampler).unwrap_or(GridKind::Table);
         let mut sampler = GridSampler::new(
             prepared.tables(),
             kind,

@@ -42,10 +42,9 @@ pub use lens::Lens;
 pub use prepare::{key_frame_chains, time_table, Prepared};
 
 use crate::film::Frame;
-use crate::options::TimeSampler;
 use crate::raster::{rgbtochars, Raster};
 use crate::reconstruct::{denoise, Reconstruction};
-use crate::sampler::{GridKind, GridSampler};
+use crate::sampler::{GridKind, GridSampler, Layout};
 use crate::scene::Pos;
 use crate::trace::TraceStats;
 use crate::types::{Intensity, IntersectionRecord, Ray};
@@ -197,17 +196,22 @@ pub fn render(prepared: &Prepared, request: &Request) -> Result<Render, RenderEr
         )));
     }
     let progress = request.progress.unwrap_or(&|| {});
-    let adaptive = prepared.options().sampler == TimeSampler::Adaptive;
-    if adaptive && rows != (0..img.height) {
+    let sampler = prepared.options().sampler;
+    if !sampler.renders_windows() && rows != (0..img.height) {
         return Err(RenderError::Window(
             "--sampler adaptive deals its rays over the whole image, so a window of it would be another picture: render the whole image".into(),
         ));
     }
-    let traced = match request.reconstruction {
-        Reconstruction::Box if adaptive => passes::render_adaptive(prepared, request.frame, progress),
-        Reconstruction::Box => scanline::render_grid(prepared, request.frame, rows.clone(), progress),
-        Reconstruction::Denoise => denoised(prepared, request.frame, rows.clone(), progress),
-        Reconstruction::Coherence(step) => coherent::render(prepared, request.frame, rows.clone(), step, progress)?,
+    let layout = Layout::of(sampler);
+    let traced = match (request.reconstruction, layout) {
+        (Reconstruction::Box, Layout::Adaptive) => passes::render_adaptive(prepared, request.frame, progress),
+        (Reconstruction::Box, Layout::Grid(kind)) => {
+            scanline::render_grid(prepared, kind, request.frame, rows.clone(), progress)
+        }
+        (Reconstruction::Denoise, _) => denoised(prepared, layout, request.frame, rows.clone(), progress),
+        (Reconstruction::Coherence(step), _) => {
+            coherent::render(prepared, request.frame, rows.clone(), step, progress)?
+        }
     };
     let nonfinite = traced.colours.iter().filter(|c| !c.is_finite()).count();
     let raster = Raster {
@@ -229,18 +233,25 @@ pub fn render(prepared: &Prepared, request: &Request) -> Result<Render, RenderEr
 /// its neighbours' ([`denoise`]): the rows within the filter's reach
 /// ([`denoise::REACH`]) above and below are rendered too and cut, so a
 /// band is the whole image's band.
-fn denoised(prepared: &Prepared, frame: Frame, rows: Range<usize>, progress: &(dyn Fn() + Sync)) -> Traced {
+fn denoised(
+    prepared: &Prepared,
+    layout: Layout,
+    frame: Frame,
+    rows: Range<usize>,
+    progress: &(dyn Fn() + Sync),
+) -> Traced {
     let img = &prepared.scene().image;
     let w = img.width;
-    let (gathered, stats, window) = match prepared.options().sampler {
-        TimeSampler::Adaptive => {
+    let (gathered, stats, window) = match layout {
+        Layout::Adaptive => {
             let (gathered, traced) = passes::gather_adaptive(prepared, frame, progress);
             (gathered, traced.stats, 0..img.height)
         }
-        _ => {
+        Layout::Grid(kind) => {
             let reach = denoise::REACH;
             let window = rows.start.saturating_sub(reach)..(rows.end + reach).min(img.height);
-            let (gathered, stats) = scanline::gather_grid(prepared, frame, window.clone(), rows.clone(), progress);
+            let (gathered, stats) =
+                scanline::gather_grid(prepared, kind, frame, window.clone(), rows.clone(), progress);
             (gathered, stats, window)
         }
     };
@@ -256,10 +267,14 @@ fn denoised(prepared: &Prepared, frame: Frame, rows: Range<usize>, progress: &(d
 /// `raytrace` of one primary ray `aray` with the scene at film time `time`
 /// (at rest when nothing moves), as the scanline loop traces a subpixel's
 /// ray; its further dimensions are those of the image's first subpixel.
-/// For tests and tools that look at single rays.
+/// For tests and tools that look at single rays. The adaptive sampler
+/// lays no grid: its single ray takes the thesis's table's.
 pub fn trace_ray(prepared: &Prepared, aray: &Ray, time: f64) -> (Intensity, TraceStats) {
     let img = &prepared.scene().image;
-    let kind = GridKind::of(prepared.options().sampler).unwrap_or(GridKind::Table);
+    let kind = match Layout::of(prepared.options().sampler) {
+        Layout::Grid(kind) => kind,
+        Layout::Adaptive => GridKind::Table,
+    };
     let mut sampler = GridSampler::new(
         prepared.tables(),
         kind,

@@ -56,14 +56,9 @@ impl Prepared {
     /// `goahead`'s widening of `tbox`); `goahead` for each key-frame pair,
     /// the in-between object's bounding sphere widened to hold its contour
     /// at every time; the motion table; the shapes' caches; the camera;
-    /// the structure over the objects `--accel auto` chooses.
-    pub fn new(scene: Scene, opts: Options) -> Result<Prepared, RenderError> {
-        Prepared::with_accel(scene, opts, Accel::Auto)
-    }
-
-    /// As [`Prepared::new`], the objects a ray may meet found as `accel`
-    /// says (`--accel`): the picture is the same whichever it is.
-    pub fn with_accel(mut scene: Scene, opts: Options, accel: Accel) -> Result<Prepared, RenderError> {
+    /// the structure over the objects `opts.accel` chooses (`--accel`: the
+    /// picture is the same whichever it is).
+    pub fn new(mut scene: Scene, opts: Options) -> Result<Prepared, RenderError> {
         crate::adaptive::check(&opts).map_err(RenderError::Options)?;
         let fidelity = opts.fidelity;
         let times = time_table(&scene, fidelity)?;
@@ -98,7 +93,7 @@ impl Prepared {
             Tables::new(times),
             moving,
             caches,
-            accel,
+            opts.accel,
         ))
     }
 

@@ -21,6 +21,7 @@ use crate::types::{Intensity, Ray};
 /// (from worker threads).
 pub(super) fn render_grid(
     prepared: &Prepared,
+    kind: GridKind,
     frame: Frame,
     rows: Range<usize>,
     progress: &(dyn Fn() + Sync),
@@ -30,7 +31,7 @@ pub(super) fn render_grid(
     let mut pixels = vec![Intensity::ZERO; w * rows.len()];
     let stats = by_rows(&mut pixels, w, rows, |out, row| {
         let mut virtual_rows = vec![Intensity::ZERO; m * w];
-        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, sub, scancol| {
+        let stats = scan_row(prepared, kind, frame, row, |tracer, aray, sampler, sub, scancol| {
             let acolor = tracer.shoot(aray, sampler);
             if scancol >= 1 {
                 virtual_rows[sub * w + (scancol - 1) / m] += acolor;
@@ -52,6 +53,7 @@ pub(super) fn render_grid(
 /// `progress` is called for each finished row in `told`.
 pub(super) fn gather_grid(
     prepared: &Prepared,
+    kind: GridKind,
     frame: Frame,
     rows: Range<usize>,
     told: Range<usize>,
@@ -61,7 +63,7 @@ pub(super) fn gather_grid(
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Gathered::default(); w * rows.len()];
     let stats = by_rows(&mut pixels, w, rows, |out, row| {
-        let stats = scan_row(prepared, frame, row, |tracer, aray, sampler, _, scancol| {
+        let stats = scan_row(prepared, kind, frame, row, |tracer, aray, sampler, _, scancol| {
             let (colour, features) = tracer.shoot_features(aray, sampler);
             if scancol >= 1 {
                 out[(scancol - 1) / m].add(colour, &features);
@@ -95,8 +97,8 @@ fn by_rows<T: Send>(
     stats
 }
 
-/// Traces the subpixels of row `row` of final pixels in the listing's
-/// order (its `masksize` scanlines, each from the first column), posing
+/// Traces the subpixels of row `row` of final pixels, laid by the grid
+/// sampler `kind`, in the listing's order (its `masksize` scanlines, each from the first column), posing
 /// the scene at each one's time: `shoot` traces each primary ray, given
 /// the subpixel's scanline within the row and its column (0: erratum
 /// 13's extra one). The row's counts.
@@ -107,6 +109,7 @@ fn by_rows<T: Send>(
 /// `thesis` fidelity starts at 1.
 fn scan_row(
     prepared: &Prepared,
+    kind: GridKind,
     frame: Frame,
     row: usize,
     mut shoot: impl FnMut(&mut Tracer, &Ray, &mut GridSampler, usize, usize),
@@ -114,8 +117,6 @@ fn scan_row(
     let opts = prepared.options();
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
-    // `render` sends the adaptive sampler to its own loop.
-    let kind = GridKind::of(opts.sampler).unwrap_or(GridKind::Table);
     let camera = prepared.camera();
     let first_col = match opts.fidelity {
         Fidelity::Listing => 0,

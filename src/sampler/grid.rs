@@ -70,16 +70,24 @@ pub enum GridKind {
     Sobol,
 }
 
-impl GridKind {
-    /// The grid sampler of `--sampler`; `None` for the adaptive sampler,
-    /// which is not laid out on the subpixel grid.
-    pub fn of(sampler: TimeSampler) -> Option<GridKind> {
+/// Where a render's samples fall: on the subpixel grid, by one of its
+/// samplers, or dealt out over the image by each pixel's need (the
+/// adaptive sampler, [`crate::adaptive`]). Every `--sampler` is one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layout {
+    Grid(GridKind),
+    Adaptive,
+}
+
+impl Layout {
+    /// The layout of `--sampler`.
+    pub fn of(sampler: TimeSampler) -> Layout {
         match sampler {
-            TimeSampler::Table => Some(GridKind::Table),
-            TimeSampler::Random => Some(GridKind::Random),
-            TimeSampler::Stratified => Some(GridKind::Stratified),
-            TimeSampler::Sobol => Some(GridKind::Sobol),
-            TimeSampler::Adaptive => None,
+            TimeSampler::Table => Layout::Grid(GridKind::Table),
+            TimeSampler::Random => Layout::Grid(GridKind::Random),
+            TimeSampler::Stratified => Layout::Grid(GridKind::Stratified),
+            TimeSampler::Sobol => Layout::Grid(GridKind::Sobol),
+            TimeSampler::Adaptive => Layout::Adaptive,
         }
     }
 }

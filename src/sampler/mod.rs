@@ -42,7 +42,7 @@ mod pixel;
 pub mod sobol;
 mod warp;
 
-pub use grid::{GridKind, GridSampler, Tables, TABLE_DIMENSIONS};
+pub use grid::{GridKind, GridSampler, Layout, Tables, TABLE_DIMENSIONS};
 pub use keys::{random_time, strata, stratified_time};
 pub use pixel::{further_dimension, sample, PixelSampler, PixelSamples, Sample, SHIFT_BLOCK};
 pub use warp::{concentric_disk, uniform_cone};

@@ -46,21 +46,25 @@ pub const OPTS: [Options; 4] = [
         fidelity: Fidelity::Thesis,
         solver: Solver::Laguerre,
         sampler: TimeSampler::Table,
+        accel: Accel::Auto,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Laguerre,
         sampler: TimeSampler::Table,
+        accel: Accel::Auto,
     },
     Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Robust,
         sampler: TimeSampler::Table,
+        accel: Accel::Auto,
     },
     Options {
         fidelity: Fidelity::Listing,
         solver: Solver::Robust,
         sampler: TimeSampler::Table,
+        accel: Accel::Auto,
     },
 ];
 
@@ -68,11 +72,13 @@ pub const ROBUST: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Robust,
     sampler: TimeSampler::Table,
+    accel: Accel::Auto,
 };
 pub const LAGUERRE: Options = Options {
     fidelity: Fidelity::Thesis,
     solver: Solver::Laguerre,
     sampler: TimeSampler::Table,
+    accel: Accel::Auto,
 };
 
 pub fn scene_with(objects: Vec<ObjectRecord>) -> Scene {

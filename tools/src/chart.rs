@@ -128,12 +128,13 @@ fn opts(fidelity: Fidelity, solver: Solver, sampler: TimeSampler) -> Options {
         fidelity,
         solver,
         sampler,
+        accel: Default::default(),
     }
 }
 
 /// Panels 1 and 2's measurements: the error of each render, then the times,
 /// `runs` interleaved rounds over every render.
-pub fn measure_blur(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<BlurPoint>, String> {
+pub fn measure_blur(size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<Vec<BlurPoint>, String> {
     let mut out = Vec::new();
     let mut jobs: Vec<Prepared> = Vec::new();
     for &deck in BLUR_DECKS {
@@ -141,7 +142,7 @@ pub fn measure_blur(size: usize, runs: usize, cache: Option<&Path>) -> Result<Ve
         for (si, s) in SAMPLINGS.iter().enumerate() {
             let o = opts(s.fidelity, Solver::Laguerre, s.sampler);
             for mask in BLUR_MASKS {
-                let scene = prepared(deck, &o, Some((size, size, mask)))?;
+                let scene = prepared(deck, &o, Some((size.0, size.1, mask)))?;
                 let e = rmse(&still(&scene).colours, &reference);
                 out.push(BlurPoint {
                     deck,
@@ -182,12 +183,12 @@ fn sweeps_of(scene: &Scene) -> Vec<usize> {
 }
 
 /// Panel 3's measurements.
-pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, String> {
+pub fn measure_solvers(size: (usize, usize), runs: usize) -> Result<Vec<SolverPoint>, String> {
     let one = crate::measure::one_thread()?;
     let mut out = Vec::new();
     for &deck in SOLVER_DECKS {
         let robust = opts(Fidelity::Thesis, Solver::Robust, TimeSampler::Table);
-        let ref_scene = prepared(deck, &robust, Some((size, size, SOLVER_REFERENCE_MASK)))?;
+        let ref_scene = prepared(deck, &robust, Some((size.0, size.1, SOLVER_REFERENCE_MASK)))?;
         eprintln!("{deck}: reference, robust at {SOLVER_REFERENCE_MASK}×{SOLVER_REFERENCE_MASK}");
         let reference = still(&ref_scene).colours;
         let sweeps = sweeps_of(ref_scene.scene());
@@ -200,8 +201,8 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
         // interleaved.
         let solver_opts = [Solver::Laguerre, Solver::Robust].map(|s| opts(Fidelity::Thesis, s, TimeSampler::Table));
         let (lag, rob) = (
-            prepared(deck, &solver_opts[0], Some((size, size, TIMING_MASK)))?,
-            prepared(deck, &solver_opts[1], Some((size, size, TIMING_MASK)))?,
+            prepared(deck, &solver_opts[0], Some((size.0, size.1, TIMING_MASK)))?,
+            prepared(deck, &solver_opts[1], Some((size.0, size.1, TIMING_MASK)))?,
         );
         let rays = [&lag, &rob].map(|p| still(p).stats.rays.max(1));
         let secs = one.install(|| {
@@ -214,10 +215,10 @@ pub fn measure_solvers(size: usize, runs: usize) -> Result<Vec<SolverPoint>, Str
         });
         let per_ray = [secs[0] / rays[0] as f64, secs[1] / rays[1] as f64];
         for mask in SOLVER_MASKS {
-            let robust_img = still(&prepared(deck, &robust, Some((size, size, mask)))?).colours;
+            let robust_img = still(&prepared(deck, &robust, Some((size.0, size.1, mask)))?).colours;
             for (k, solver) in [Solver::Laguerre, Solver::Robust].into_iter().enumerate() {
                 let o = opts(Fidelity::Thesis, solver, TimeSampler::Table);
-                let img = still(&prepared(deck, &o, Some((size, size, mask)))?).colours;
+                let img = still(&prepared(deck, &o, Some((size.0, size.1, mask)))?).colours;
                 let d_ref = differing(&img, &reference, DIFFER);
                 let d_same = differing(&img, &robust_img, DIFFER);
                 let p = SolverPoint {
@@ -420,8 +421,9 @@ pub fn draw<DB: DrawingBackend>(
     blur: &[BlurPoint],
     solvers: &[SolverPoint],
     recon: &[Point],
-    size: usize,
+    size: (usize, usize),
 ) -> Result<(), String> {
+    let (w, h) = size;
     root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
     let (top, bottom) = root.split_vertically(HEIGHT / 2);
     draw_reconstructions(&bottom, recon, size)?;
@@ -453,7 +455,7 @@ pub fn draw<DB: DrawingBackend>(
         "RMSE against 1024 samples a pixel",
         &blur_series(&|p| p.secs),
         None,
-        &format!("{size}×{size} pixels; left to right on each line: 1, 4, 16, 64 samples a pixel"),
+        &format!("{w}×{h} pixels; left to right on each line: 1, 4, 16, 64 samples a pixel"),
         Some(SeriesLabelPosition::LowerLeft),
         1.0,
     )?;
@@ -509,7 +511,7 @@ pub fn draw<DB: DrawingBackend>(
         &s2,
         floor.is_finite().then_some(floor / 2.0),
         &format!(
-            "{size}×{size}; top to bottom on each line: 1, 4, 16, 64 rays a pixel; reference: robust, 256 rays a pixel; 0 drawn at the bottom"
+            "{w}×{h}; top to bottom on each line: 1, 4, 16, 64 rays a pixel; reference: robust, 256 rays a pixel; 0 drawn at the bottom"
         ),
         Some(SeriesLabelPosition::UpperRight),
         3.0,
@@ -519,7 +521,7 @@ pub fn draw<DB: DrawingBackend>(
 
 /// Measures, prints the figures, and writes `dir`/speed_accuracy.png and
 /// .svg; `cache` keeps the blur decks' references between runs.
-pub fn run(dir: &Path, size: usize, runs: usize, cache: Option<&Path>) -> Result<(), String> {
+pub fn run(dir: &Path, size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<(), String> {
     crate::fonts::register()?;
     let blur = measure_blur(size, runs, cache)?;
     let solvers = measure_solvers(size, runs)?;
@@ -545,10 +547,11 @@ pub fn run(dir: &Path, size: usize, runs: usize, cache: Option<&Path>) -> Result
 }
 
 /// The measurements as Markdown tables.
-pub fn tables(blur: &[BlurPoint], solvers: &[SolverPoint], size: usize) -> String {
+pub fn tables(blur: &[BlurPoint], solvers: &[SolverPoint], size: (usize, usize)) -> String {
+    let (w, h) = size;
     use std::fmt::Write;
     let mut s = String::new();
-    let _ = writeln!(s, "\nTime samplers, {size}×{size} (render time: median, all threads)\n");
+    let _ = writeln!(s, "\nTime samplers, {w}×{h} (render time: median, all threads)\n");
     let _ = writeln!(s, "| deck | sampler | samples a pixel | render time (s) | RMSE |");
     let _ = writeln!(s, "|---|---|---|---|---|");
     for p in blur {
@@ -562,7 +565,7 @@ pub fn tables(blur: &[BlurPoint], solvers: &[SolverPoint], size: usize) -> Strin
             p.rmse
         );
     }
-    let _ = writeln!(s, "\nRoot solvers, {size}×{size} (time per ray: median, one thread)\n");
+    let _ = writeln!(s, "\nRoot solvers, {w}×{h} (time per ray: median, one thread)\n");
     let _ = writeln!(
         s,
         "| deck | solver | mask | µs a ray | silhouette pixels | differ from reference | same rays as robust: differ | all pixels differing |"
@@ -648,7 +651,7 @@ mod tests {
                 secs: 0.002 * (mask * mask) as f64,
             })
             .to_vec();
-        draw(&root, &blur, &solvers, &recon, 96).unwrap();
+        draw(&root, &blur, &solvers, &recon, (96, 96)).unwrap();
         drop(root);
         // Something other than white was drawn: the axes, text, lines.
         assert!(buf.iter().any(|&b| b < 128));

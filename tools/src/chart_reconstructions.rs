@@ -72,7 +72,7 @@ const COLOURS: [RGBColor; 5] = [
 ];
 
 /// Every way of [`WAYS`] at every mask, on every deck of [`decks`].
-pub fn measure_reconstructions(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<Point>, String> {
+pub fn measure_reconstructions(size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<Vec<Point>, String> {
     let ways: Vec<Way> = WAYS
         .iter()
         .flat_map(|w| BLUR_MASKS.map(|mask| Way { mask, ..*w }))
@@ -103,8 +103,9 @@ fn series(points: &[Point], x: &dyn Fn(&Point) -> f64) -> Vec<Series> {
 pub fn draw_reconstructions<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     points: &[Point],
-    size: usize,
+    size: (usize, usize),
 ) -> Result<(), String> {
+    let (w, h) = size;
     let (left, right) = area.split_horizontally(area.dim_in_pixel().0 / 2);
     let markers = "markers by deck: circle fig5_3, triangle fig5_9, cross fig5_10, square fig5_12, ring cook";
     panel(
@@ -114,7 +115,7 @@ pub fn draw_reconstructions<DB: DrawingBackend>(
         "RMSE against 1024 samples a pixel",
         &series(points, &|p| p.secs),
         None,
-        &format!("{size}×{size}; left to right on each line: 1, 4, 16, 64 rays a pixel; {markers}"),
+        &format!("{w}×{h}; left to right on each line: 1, 4, 16, 64 rays a pixel; {markers}"),
         Some(SeriesLabelPosition::LowerLeft),
         1.0,
     )?;
@@ -132,9 +133,10 @@ pub fn draw_reconstructions<DB: DrawingBackend>(
 }
 
 /// The lower panels' measurements as a Markdown table.
-pub fn recon_table(points: &[Point], size: usize) -> String {
+pub fn recon_table(points: &[Point], size: (usize, usize)) -> String {
+    let (w, h) = size;
     let mut s = format!(
-        "\nReconstructions, {size}×{size} (CPU: median, one thread)\n\n\
+        "\nReconstructions, {w}×{h} (CPU: median, one thread)\n\n\
          | deck | way | rays a pixel | CPU s | RMSE |\n|---|---|---|---|---|\n"
     );
     for p in points {
@@ -177,7 +179,7 @@ mod tests {
         assert!(s.iter().all(|l| l.points.len() == BLUR_MASKS.len()));
         assert_eq!(s.iter().filter(|l| !l.label.is_empty()).count(), WAYS.len());
         assert_eq!(
-            recon_table(&points, 96)
+            recon_table(&points, (96, 96))
                 .lines()
                 .filter(|l| l.starts_with("| cook"))
                 .count(),

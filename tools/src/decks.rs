@@ -38,7 +38,7 @@ pub fn generated(name: &str) -> Option<Result<String, String>> {
             crate::scale::scenes::Kind::Sphere,
             1000,
             crate::scale::scenes::Frame {
-                size: 128,
+                size: (128, 128),
                 mask: 1,
                 travel: 2.0,
             },

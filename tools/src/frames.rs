@@ -8,7 +8,13 @@ use raytrace::raster::Raster;
 /// Writes the [`filmstrip`] of `deck` to the PNG `out`; without `out`,
 /// to `raster/<deck name>_frames.png` (the folder the renders go to, which
 /// git ignores).
-pub fn frames(deck: &Path, out: Option<&Path>, times: &[f64], size: usize, fidelity: Fidelity) -> Result<(), String> {
+pub fn frames(
+    deck: &Path,
+    out: Option<&Path>,
+    times: &[f64],
+    size: (usize, usize),
+    fidelity: Fidelity,
+) -> Result<(), String> {
     let strip = filmstrip(deck, times, size, fidelity)?;
     let out = match out {
         Some(out) => out.to_path_buf(),
@@ -30,8 +36,8 @@ pub fn default_out(deck: &Path) -> PathBuf {
 
 /// The scene of `deck` at each instant of `times`: every moving object at
 /// its pose then, every key-frame object at its in-between shape and pose,
-/// rendered still, `size`×`size` pixels, and laid side by side.
-pub fn filmstrip(deck: &Path, times: &[f64], size: usize, fidelity: Fidelity) -> Result<Raster, String> {
+/// rendered still, `size` (W×H) pixels each, and laid side by side.
+pub fn filmstrip(deck: &Path, times: &[f64], size: (usize, usize), fidelity: Fidelity) -> Result<Raster, String> {
     let source = std::fs::read_to_string(deck).map_err(|e| format!("{}: {e}", deck.display()))?;
     let dir = deck.parent().unwrap_or(Path::new("."));
     let opts = Options {
@@ -40,19 +46,20 @@ pub fn filmstrip(deck: &Path, times: &[f64], size: usize, fidelity: Fidelity) ->
     };
     let mut scene =
         raytrace::deck::initialize(&source, &deck.display().to_string(), dir, fidelity).map_err(|e| e.to_string())?;
-    scene.image.width = size;
-    scene.image.height = size;
+    let (w, h) = size;
+    scene.image.width = w;
+    scene.image.height = h;
     let prepared = crate::decks::prepare(scene, &opts)?;
     let mut strip = Raster {
-        width: size * times.len().max(1),
-        height: size,
-        pixels: vec![[0; 3]; size * size * times.len().max(1)],
+        width: w * times.len().max(1),
+        height: h,
+        pixels: vec![[0; 3]; w * h * times.len().max(1)],
     };
     for (i, &t) in times.iter().enumerate() {
         let r = crate::decks::still(&prepared.still_at(t)).raster;
-        for y in 0..size {
-            let row = y * strip.width + i * size;
-            strip.pixels[row..row + size].copy_from_slice(&r.pixels[y * size..(y + 1) * size]);
+        for y in 0..h {
+            let row = y * strip.width + i * w;
+            strip.pixels[row..row + w].copy_from_slice(&r.pixels[y * w..(y + 1) * w]);
         }
     }
     Ok(strip)

@@ -115,7 +115,7 @@ fn still(scene: &Prepared, way: &Way) -> Vec<Intensity> {
 pub fn measure(
     decks: &[String],
     ways: &[Way],
-    size: usize,
+    size: (usize, usize),
     runs: usize,
     cache: Option<&Path>,
 ) -> Result<Vec<Point>, String> {
@@ -125,7 +125,7 @@ pub fn measure(
         let reference = reference(deck, size, cache)?;
         let scenes: Vec<Prepared> = ways
             .iter()
-            .map(|w| prepared(deck, &opts(w.sampler), Some((size, size, w.mask))))
+            .map(|w| prepared(deck, &opts(w.sampler), Some((size.0, size.1, w.mask))))
             .collect::<Result<_, _>>()?;
         let errors: Vec<f64> = scenes
             .iter()
@@ -233,7 +233,7 @@ pub fn report(points: &[Point]) -> String {
 }
 
 /// `tools frontier`: measures and prints the table and the goals.
-pub fn run(decks: &[String], size: usize, runs: usize, cache: Option<&Path>) -> Result<(), String> {
+pub fn run(decks: &[String], size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<(), String> {
     let decks: Vec<String> = if decks.is_empty() {
         FRONTIER_DECKS.iter().map(|d| d.to_string()).collect()
     } else {

@@ -25,7 +25,7 @@ use crate::compare::{Look, Panel, THESIS};
 pub enum Drawing {
     /// The deck's render, as `raytrace DECK --png FILE` writes it.
     Render,
-    /// The filmstrip `tools frames DECK --times T,… --size N` writes: the
+    /// The filmstrip `tools frames DECK --times T,… --size NxN` writes: the
     /// scene still at each instant, `size`×`size` pixels a frame.
     Frames { times: &'static [f64], size: usize },
     /// The render with `laguerre` (left) and with `--solver robust`
@@ -290,7 +290,7 @@ impl Picture {
             Drawing::Frames { times, size } => {
                 let times: Vec<String> = times.iter().map(f64::to_string).collect();
                 format!(
-                    "cargo run -p tools --release -- frames {deck} --times {} --size {size} --out {image}",
+                    "cargo run -p tools --release -- frames {deck} --times {} --size {size}x{size} --out {image}",
                     times.join(",")
                 )
             }
@@ -303,7 +303,9 @@ impl Picture {
                 )
             }
             Drawing::Heatmap { size, mask } => {
-                format!("cargo run -p tools --release -- heatmap {deck} --size {size} --mask {mask} --out {image}")
+                format!(
+                    "cargo run -p tools --release -- heatmap {deck} --size {size}x{size} --mask {mask} --out {image}"
+                )
             }
             Drawing::Compare { panels } => {
                 let shown: Vec<String> = panels.iter().map(Panel::describe).collect();
@@ -325,7 +327,7 @@ impl Picture {
         let deck = root.join(self.deck);
         match self.drawing {
             Drawing::Render => render_deck(&deck, Solver::Laguerre),
-            Drawing::Frames { times, size } => crate::frames::filmstrip(&deck, times, size, Fidelity::Thesis),
+            Drawing::Frames { times, size } => crate::frames::filmstrip(&deck, times, (size, size), Fidelity::Thesis),
             Drawing::Solvers => {
                 let left = render_deck(&deck, Solver::Laguerre)?;
                 let right = render_deck(&deck, Solver::Robust)?;
@@ -338,7 +340,7 @@ impl Picture {
                 let picked: Vec<&Raster> = frames.iter().step_by(every.max(1)).collect();
                 Ok(crate::join::strip_of(&picked))
             }
-            Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, size, mask)?.0),
+            Drawing::Heatmap { size, mask } => Ok(crate::heatmap::draw(&deck, (size, size), mask)?.0),
             Drawing::Editor { sweep, script, time } => editor_screen(&deck, sweep, script, time),
             Drawing::Compare { panels } => crate::compare::draw(&deck.display().to_string(), panels),
         }
@@ -348,7 +350,7 @@ impl Picture {
 /// The contour editor's screen, as `contour --screenshot` draws it.
 fn editor_screen(deck: &Path, sweep: &str, script: &str, time: Option<f64>) -> Result<Raster, String> {
     use raytrace::editor::{document::Document, screen::screenshot, session::Editor};
-    let input = raytrace::cli::DeckInput::read(deck).map_err(|e| e.message)?;
+    let input = raytrace::run::DeckInput::read(deck).map_err(|e| e.message)?;
     let mut editor = Editor::new(Document::open(input, sweep, Fidelity::Thesis).map_err(|e| e.message)?);
     if let Some(t) = time {
         editor.time = t;
@@ -777,7 +779,7 @@ mod tests {
         assert_eq!(
             frames.command(),
             "cargo run -p tools --release -- frames legacy_pascal/decks/nec_morph.deck \
-             --times 0,0.125,0.25,0.375,0.5,0.625,0.75,0.875,1 --size 112 --out docs/img/nec_morph_frames.png"
+             --times 0,0.125,0.25,0.375,0.5,0.625,0.75,0.875,1 --size 112x112 --out docs/img/nec_morph_frames.png"
         );
         assert_eq!(
             GALLERY[0].command(),

@@ -42,15 +42,17 @@ pub fn opts(sampler: TimeSampler) -> Options {
         fidelity: Fidelity::Thesis,
         solver: Solver::Laguerre,
         sampler,
+        accel: Default::default(),
     }
 }
 
 /// The chart's reference of `deck` at `size`², read from `cache` when it
 /// holds one, else rendered (and written there).
-pub fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<Intensity>, String> {
-    let file = cache.map(|d| d.join(format!("{deck}_{size}_{BLUR_REFERENCE_MASK}.f64")));
+pub fn reference(deck: &str, size: (usize, usize), cache: Option<&Path>) -> Result<Vec<Intensity>, String> {
+    let (w, h) = size;
+    let file = cache.map(|d| d.join(format!("{deck}_{w}x{h}_{BLUR_REFERENCE_MASK}.f64")));
     if let Some(bytes) = file.as_ref().and_then(|f| std::fs::read(f).ok()) {
-        if bytes.len() == size * size * 24 {
+        if bytes.len() == w * h * 24 {
             let f: Vec<f64> = bytes
                 .chunks_exact(8)
                 .map(|b| f64::from_le_bytes(b.try_into().unwrap_or([0; 8])))
@@ -59,7 +61,7 @@ pub fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<In
         }
     }
     let o = opts(TimeSampler::Stratified);
-    let scene = prepared(deck, &o, Some((size, size, BLUR_REFERENCE_MASK)))?;
+    let scene = prepared(deck, &o, Some((size.0, size.1, BLUR_REFERENCE_MASK)))?;
     eprintln!("{deck}: reference, {BLUR_REFERENCE_MASK}×{BLUR_REFERENCE_MASK} stratified");
     let colours = still(&scene).colours;
     if let Some(f) = &file {
@@ -77,15 +79,15 @@ pub fn reference(deck: &str, size: usize, cache: Option<&Path>) -> Result<Vec<In
 }
 
 /// Measures the goal's table at `size`² with `runs` timed rounds.
-pub fn measure(size: usize, runs: usize, cache: Option<&Path>) -> Result<Vec<GoalRow>, String> {
+pub fn measure(size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<Vec<GoalRow>, String> {
     let one = crate::measure::one_thread()?;
     let (table, adaptive) = (opts(TimeSampler::Table), opts(TimeSampler::Adaptive));
     let mut rows = Vec::new();
     for &deck in BLUR_DECKS {
         let reference = reference(deck, size, cache)?;
         for mask in GOAL_MASKS {
-            let t_scene = prepared(deck, &table, Some((size, size, mask)))?;
-            let a_scene = prepared(deck, &adaptive, Some((size, size, mask)))?;
+            let t_scene = prepared(deck, &table, Some((size.0, size.1, mask)))?;
+            let a_scene = prepared(deck, &adaptive, Some((size.0, size.1, mask)))?;
             let rmse_table = rmse(&still(&t_scene).colours, &reference);
             let rmse_adaptive = rmse(&still(&a_scene).colours, &reference);
             let secs = cpu_medians(&one, &[&t_scene, &a_scene], runs);
@@ -151,7 +153,7 @@ pub fn table(rows: &[GoalRow]) -> String {
 }
 
 /// `tools goal`: measures and prints the table.
-pub fn run(size: usize, runs: usize, cache: Option<&Path>) -> Result<(), String> {
+pub fn run(size: (usize, usize), runs: usize, cache: Option<&Path>) -> Result<(), String> {
     let rows = measure(size, runs, cache)?;
     print!("{}", table(&rows));
     Ok(())

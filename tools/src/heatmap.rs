@@ -40,29 +40,29 @@ pub fn side_by_side(image: &Raster, counts: &[u32]) -> Raster {
     Raster { width, height, pixels }
 }
 
-/// Renders `deck` with `--sampler adaptive` at `size`×`size` pixels and a
+/// Renders `deck` with `--sampler adaptive` at `size` (W×H) pixels and a
 /// budget of `mask`² rays a pixel: the image beside its heat map, and the
 /// rays each pixel got.
-pub fn draw(deck: &Path, size: usize, mask: usize) -> Result<(Raster, Vec<u32>), String> {
+pub fn draw(deck: &Path, (width, height): (usize, usize), mask: usize) -> Result<(Raster, Vec<u32>), String> {
     let opts = Options {
         fidelity: Fidelity::Thesis,
         sampler: TimeSampler::Adaptive,
         ..Options::default()
     };
     let name = deck.to_string_lossy();
-    let scene = crate::decks::prepared(&name, &opts, Some((size, size, mask)))?;
+    let scene = crate::decks::prepared(&name, &opts, Some((width, height, mask)))?;
     let render = crate::decks::still(&scene);
     let (colours, counts) = (render.colours, render.counts);
     let image = Raster {
-        width: size,
-        height: size,
+        width,
+        height,
         pixels: colours.iter().map(|&c| rgbtochars(c)).collect(),
     };
     Ok((side_by_side(&image, &counts), counts))
 }
 
 /// [`draw`], written to `out` (PNG). Prints the counts' range.
-pub fn run(deck: &Path, out: &Path, size: usize, mask: usize) -> Result<(), String> {
+pub fn run(deck: &Path, out: &Path, size: (usize, usize), mask: usize) -> Result<(), String> {
     let (picture, counts) = draw(deck, size, mask)?;
     raytrace::raster::write_png(out, &picture).map_err(|e| format!("{}: {e}", out.display()))?;
     let (lo, hi) = (
@@ -71,8 +71,10 @@ pub fn run(deck: &Path, out: &Path, size: usize, mask: usize) -> Result<(), Stri
     );
     let at_first = counts.iter().filter(|&&n| n == lo).count();
     println!(
-        "wrote {}: {size}×{size}, {} rays a pixel on average, {lo} to {hi} a pixel ({:.0} % of the pixels at {lo})",
+        "wrote {}: {}×{}, {} rays a pixel on average, {lo} to {hi} a pixel ({:.0} % of the pixels at {lo})",
         out.display(),
+        size.0,
+        size.1,
         mask * mask,
         100.0 * at_first as f64 / counts.len() as f64
     );

@@ -15,8 +15,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use raytrace::cli::{DeckInput, FidelityArg, RenderArgs};
-use raytrace::exit::{exit_code, Failure};
+use raytrace::cli::{exit_code, parse_mask, parse_size, parse_threads, FidelityArg, RenderArgs};
+use raytrace::exit::Failure;
+use raytrace::run::DeckInput;
 
 #[derive(Parser)]
 #[command(name = "tools", version, about = "Tools of the TR-88-036 port")]
@@ -45,9 +46,9 @@ enum Command {
         /// The instants, in [0, 1].
         #[arg(long, value_delimiter = ',', default_value = "0,0.25,0.5,0.75,1")]
         times: Vec<f64>,
-        /// Width and height of each frame, in pixels.
-        #[arg(long, default_value_t = 160)]
-        size: usize,
+        /// Width and height of each frame in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "160x160")]
+        size: (usize, usize),
         #[command(flatten)]
         fidelity: FidelityArg,
     },
@@ -92,9 +93,9 @@ enum Command {
         /// Timed edits (after one untimed).
         #[arg(long, default_value_t = 21)]
         runs: usize,
-        /// Render threads (the goal is for one core).
-        #[arg(long, default_value_t = 1)]
-        threads: usize,
+        /// Render threads, 1..256, or 0 for one per core (the goal is for one core).
+        #[arg(long, value_name = "N", value_parser = parse_threads, default_value = "1")]
+        threads: u16,
     },
     /// Draw the speed/accuracy chart: time samplers (error against render
     /// time) and root solvers (silhouette pixels wrong against time per ray).
@@ -102,9 +103,9 @@ enum Command {
         /// Where to write speed_accuracy.png and speed_accuracy.svg.
         #[arg(long, default_value = "docs")]
         dir: PathBuf,
-        /// The width and height of every render of the chart, in pixels.
-        #[arg(long, default_value_t = 96)]
-        size: usize,
+        /// The width and height of every render of the chart in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "96x96")]
+        size: (usize, usize),
         /// Timed renders a point (the median is plotted).
         #[arg(long, default_value_t = 5)]
         runs: usize,
@@ -115,9 +116,9 @@ enum Command {
     /// The adaptive sampler's goal: RMSE and one-thread CPU time of `--sampler adaptive`
     /// over the thesis table's, at 16 and 64 rays a pixel, on the chart's blur decks.
     Goal {
-        /// The width and height of every render, in pixels.
-        #[arg(long, default_value_t = 96)]
-        size: usize,
+        /// The width and height of every render in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "96x96")]
+        size: (usize, usize),
         /// Timed rounds (the medians are compared).
         #[arg(long, default_value_t = 5)]
         runs: usize,
@@ -132,9 +133,9 @@ enum Command {
         /// The decks (shipped names, `spheres`, `ball`, or paths) [default: fig5_3, fig5_10,
         /// spheres, ball].
         decks: Vec<String>,
-        /// The width and height of every render, in pixels.
-        #[arg(long, default_value_t = 128)]
-        size: usize,
+        /// The width and height of every render in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "128x128")]
+        size: (usize, usize),
         /// Timed rounds (the medians are compared); 0 for the errors alone.
         #[arg(long, default_value_t = 5)]
         runs: usize,
@@ -150,12 +151,12 @@ enum Command {
         /// The PNG to write.
         #[arg(long, default_value = "docs/img/adaptive_heatmap.png")]
         out: PathBuf,
-        /// Width and height of the image, in pixels.
-        #[arg(long, default_value_t = 256)]
-        size: usize,
-        /// The budget: mask² rays a pixel on average.
-        #[arg(long, default_value_t = 4)]
-        mask: usize,
+        /// Width and height of the image in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "256x256")]
+        size: (usize, usize),
+        /// The budget: M² rays a pixel on average, M in 1..32.
+        #[arg(long, value_name = "M", value_parser = parse_mask, default_value = "4")]
+        mask: u16,
     },
     /// Join a film's frame rasters (in the order given, e.g. raster/nec.*.ras) into one
     /// animated PNG; with --strip also a still strip of every Nth frame (docs/film.md).
@@ -205,12 +206,13 @@ enum Command {
         /// The decks (paths or shipped names).
         #[arg(default_values_t = ["fig5_6".to_string(), "fig5_7".to_string(), "fig5_8".to_string()])]
         decks: Vec<String>,
-        /// Width and height in pixels.
-        #[arg(long, default_value_t = 256)]
-        size: usize,
-        /// M×M samples a pixel on both sides.
-        #[arg(long, default_value_t = 4)]
-        mask: usize,
+        /// Width and height in pixels, WxH (each 1..8192).
+        #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "256x256")]
+        size: (usize, usize),
+        /// M×M samples a pixel on both sides, M in 1..32 (POV-Ray's antialiasing depth
+        /// goes to 9).
+        #[arg(long, value_name = "M", value_parser = parse_mask, default_value = "4")]
+        mask: u16,
         /// Timed rounds (the medians are printed).
         #[arg(long, default_value_t = 5)]
         runs: usize,
@@ -240,11 +242,12 @@ enum Command {
         /// spheres and 1, 10 sweeps, one round (the flags below still apply).
         #[arg(long)]
         quick: bool,
-        /// Width and height of every render, in pixels [default: 256].
-        #[arg(long, value_parser = clap::value_parser!(u16).range(8..=4096))]
-        size: Option<u16>,
-        /// M×M samples a pixel on both sides [default: 2].
-        #[arg(long, value_parser = clap::value_parser!(u16).range(1..=8))]
+        /// Width and height of every render in pixels, WxH (each 1..8192) [default: 256x256].
+        #[arg(long, value_name = "WxH", value_parser = parse_size)]
+        size: Option<(usize, usize)>,
+        /// M×M samples a pixel on both sides, M in 1..32 (POV-Ray's antialiasing depth goes
+        /// to 9) [default: 2].
+        #[arg(long, value_name = "M", value_parser = parse_mask)]
         mask: Option<u16>,
         /// Timed rounds, after one untimed (the medians are plotted) [default: 5].
         #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
@@ -335,7 +338,7 @@ fn run(command: Command) -> Result<(), Failure> {
             fidelity,
         } => {
             readable(&deck, fidelity.fidelity)?;
-            tools::frames::frames(&deck, out.as_deref(), &times, size.clamp(8, 1024), fidelity.fidelity)
+            tools::frames::frames(&deck, out.as_deref(), &times, size, fidelity.fidelity)
         }
         Command::Gallery { only, check, list } => {
             if list {
@@ -346,19 +349,17 @@ fn run(command: Command) -> Result<(), Failure> {
             }
             tools::gallery::run(&tools::gallery::checkout(), &only, check)
         }
-        Command::Chart { dir, size, runs, cache } => {
-            tools::chart::run(&dir, size.max(8), runs.max(1), cache.as_deref())
-        }
-        Command::Goal { size, runs, cache } => tools::goal::run(size.max(8), runs, cache.as_deref()),
+        Command::Chart { dir, size, runs, cache } => tools::chart::run(&dir, size, runs.max(1), cache.as_deref()),
+        Command::Goal { size, runs, cache } => tools::goal::run(size, runs, cache.as_deref()),
         Command::Frontier {
             decks,
             size,
             runs,
             cache,
-        } => tools::frontier::run(&decks, size.max(8), runs, cache.as_deref()),
+        } => tools::frontier::run(&decks, size, runs, cache.as_deref()),
         Command::Heatmap { deck, out, size, mask } => {
             readable(&deck, Default::default())?;
-            tools::heatmap::run(&deck, &out, size.clamp(8, 2048), mask.clamp(1, 32))
+            tools::heatmap::run(&deck, &out, size, usize::from(mask))
         }
         Command::Stability { out } => tools::stability::run(&out),
         Command::Scale {
@@ -378,7 +379,7 @@ fn run(command: Command) -> Result<(), Failure> {
             } else {
                 tools::scale::Settings::full()
             };
-            set.size = size.map_or(set.size, usize::from);
+            set.size = size.unwrap_or(set.size);
             set.mask = mask.map_or(set.mask, usize::from);
             set.runs = runs.map_or(set.runs, usize::from);
             set.loop_max = loop_max.unwrap_or(set.loop_max);
@@ -400,7 +401,7 @@ fn run(command: Command) -> Result<(), Failure> {
             threads,
         } => {
             readable(&deck, Default::default())?;
-            tools::preview::run(&deck, &name, point, runs.max(1), threads.clamp(1, 256))
+            tools::preview::run(&deck, &name, point, runs.max(1), threads)
         }
         Command::Fuzz {
             target,
@@ -433,8 +434,8 @@ fn run(command: Command) -> Result<(), Failure> {
             shapes,
         } => {
             let set = tools::vs_povray::Settings {
-                size: size.clamp(8, 4096),
-                mask: mask.clamp(1, 16),
+                size,
+                mask: usize::from(mask),
                 runs: runs.max(1),
             };
             if depth_of_field {

@@ -9,26 +9,24 @@
 
 use std::time::Instant;
 
-use raytrace::cli::DeckInput;
 use raytrace::editor::document::Document;
 use raytrace::editor::model::Edit;
 use raytrace::editor::preview::{render_rows, QUICK};
 use raytrace::editor::screen::{draw, Preview};
 use raytrace::editor::session::Editor;
 use raytrace::options::Fidelity;
+use raytrace::run::DeckInput;
 
 /// Times `runs` edits of point `point` (from 1) of the sweep `name` of
-/// `deck`, each followed by the quick preview on `threads` threads.
-pub fn run(deck: &std::path::Path, name: &str, point: usize, runs: usize, threads: usize) -> Result<(), String> {
+/// `deck`, each followed by the quick preview on `threads` threads (0: one
+/// per core).
+pub fn run(deck: &std::path::Path, name: &str, point: usize, runs: usize, threads: u16) -> Result<(), String> {
     let input = DeckInput::read(deck).map_err(|e| e.message)?;
     let doc = Document::open(input, name, Fidelity::Thesis).map_err(|e| e.message)?;
     let mut editor = Editor::new(doc);
     let k = point.checked_sub(1).filter(|&k| k < editor.contour.points.len());
     let k = k.ok_or_else(|| format!("{name} has no point {point}"))?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| e.to_string())?;
+    let pool = raytrace::cli::thread_pool(threads).map_err(|e| e.message)?;
     let step = 1.0 / editor.plane.scale;
     let (mut total, mut render) = (Vec::new(), Vec::new());
     for run in 0..=runs {

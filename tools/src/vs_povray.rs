@@ -31,12 +31,15 @@ use crate::pov::scene_sdl;
 #[derive(Clone, Debug)]
 pub struct Settings {
     /// Width and height in pixels.
-    pub size: usize,
+    pub size: (usize, usize),
     /// M: M×M samples a pixel on both sides.
     pub mask: usize,
     /// Timed rounds (each renders ours with each solver, then POV-Ray's).
     pub runs: usize,
 }
+
+/// The deepest antialiasing POV-Ray takes (`+R1` to `+R9`).
+pub const POVRAY_MAX_MASK: usize = 9;
 
 /// Fails with a clear message when `povray` cannot be run.
 pub fn check_povray() -> Result<(), String> {
@@ -102,12 +105,12 @@ pub fn reported_cpu(report: &str, name: &str) -> Option<f64> {
     before.split_whitespace().last()?.parse().ok()
 }
 
-/// POV-Ray's arguments to render `pov` on one thread at `size`², `mask`²
-/// samples a pixel (1: no anti-aliasing), into `out` (PPM).
-pub fn povray_args(pov: &Path, out: &Path, size: usize, mask: usize) -> Vec<String> {
+/// POV-Ray's arguments to render `pov` on one thread at `size` (W×H),
+/// `mask`² samples a pixel (1: no anti-aliasing), into `out` (PPM).
+pub fn povray_args(pov: &Path, out: &Path, (width, height): (usize, usize), mask: usize) -> Vec<String> {
     let mut args = vec![format!("+I{}", pov.display()), format!("+O{}", out.display())];
     args.extend(["+FP", "-D", "-V", "+WT1"].map(String::from));
-    args.extend([format!("+W{size}"), format!("+H{size}")]);
+    args.extend([format!("+W{width}"), format!("+H{height}")]);
     if mask > 1 {
         args.extend(["+A0.0", "+AM1", "-J"].map(String::from));
         args.push(format!("+R{mask}"));
@@ -118,7 +121,13 @@ pub fn povray_args(pov: &Path, out: &Path, size: usize, mask: usize) -> Vec<Stri
 }
 
 /// Renders `pov` with POV-Ray as [`povray_args`] says; returns what it cost.
-pub fn povray(pov: &Path, out: &Path, size: usize, mask: usize) -> Result<PovRun, String> {
+pub fn povray(pov: &Path, out: &Path, size: (usize, usize), mask: usize) -> Result<PovRun, String> {
+    if mask > POVRAY_MAX_MASK {
+        return Err(format!(
+            "--mask {mask}: POV-Ray's antialiasing depth (+R) goes to {POVRAY_MAX_MASK}, so it cannot take {mask}×{mask} \
+             samples a pixel; use a mask of at most {POVRAY_MAX_MASK}"
+        ));
+    }
     let mut cmd = Command::new("povray");
     cmd.args(povray_args(pov, out, size, mask));
     let before = cpu_seconds()?.1;
@@ -227,7 +236,7 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
         ..Options::default()
     };
     let mut base = load(deck, Options::default().fidelity)?;
-    base.resize(set.size, set.size, set.mask);
+    base.resize(set.size.0, set.size.1, set.mask);
     let stem = deck_path(deck)
         .file_stem()
         .map(|s| s.to_string_lossy().to_string())
@@ -253,15 +262,15 @@ fn compare(deck: &str, set: &Settings, pool: &rayon::ThreadPool, dir: &Path) -> 
 
     // Silhouettes at one sample a pixel.
     let mut sil = silhouette_scene(&base);
-    sil.resize(set.size, set.size, 1);
+    sil.resize(set.size.0, set.size.1, 1);
     let sil_pov = dir.join(format!("{stem}_silhouette.pov"));
     std::fs::write(&sil_pov, scene_sdl(&sil, Options::default().fidelity))
         .map_err(|e| format!("{}: {e}", sil_pov.display()))?;
     povray(&sil_pov, &ppm, set.size, 1)?;
     let bytes = std::fs::read(&ppm).map_err(|e| format!("{}: {e}", ppm.display()))?;
     let (w, h, theirs) = read_ppm(&bytes)?;
-    if (w, h) != (set.size, set.size) {
-        return Err(format!("povray wrote {w}×{h}, not {}²", set.size));
+    if (w, h) != set.size {
+        return Err(format!("povray wrote {w}×{h}, not {}×{}", set.size.0, set.size.1));
     }
     let mut agree = Vec::new();
     for s in solvers {
@@ -294,8 +303,9 @@ pub fn run(decks: &[PathBuf], set: &Settings) -> Result<(), String> {
     let pool = crate::measure::one_thread()?;
     let dir = crate::measure::scratch_dir("vs-povray")?;
     println!(
-        "{}², {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps, blobs and patches at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
-        set.size,
+        "{}×{}, {} samples a pixel, one thread each, CPU seconds (median of {}, interleaved); silhouettes of the sweeps, blobs and patches at 1 sample a pixel: pixels that differ of the pixels either shows.\n",
+        set.size.0,
+        set.size.1,
         set.mask * set.mask,
         set.runs
     );
@@ -340,14 +350,14 @@ fn cpu_at(points: &[(f64, f64)], target: f64) -> Option<f64> {
 
 /// The depth-of-field scene: `cook.deck` (its `lens` focused on the
 /// middle letter) with its sphere of light a point and its gloss 0, so
-/// that the lens is the only effect, `size`² pixels.
-fn dof_scene(size: usize, rays_side: usize) -> Result<Scene, String> {
+/// that the lens is the only effect, `size` (W×H) pixels.
+fn dof_scene(size: (usize, usize), rays_side: usize) -> Result<Scene, String> {
     let mut s = load("cook", Options::default().fidelity)?;
     s.lights.iter_mut().for_each(|l| l.radius = 0.0);
     s.surfaces.iter_mut().for_each(|f| f.gloss = 0.0);
     s.motions.clear();
     s.keyframes.clear();
-    s.resize(size, size, rays_side);
+    s.resize(size.0, size.1, rays_side);
     Ok(s)
 }
 
@@ -362,7 +372,7 @@ type DofRender = (f64, Option<f64>, Vec<[u8; 3]>);
 /// trace) and the pixels.
 fn dof_render(
     sampler: Option<TimeSampler>,
-    size: usize,
+    size: (usize, usize),
     rays_side: usize,
     pool: &rayon::ThreadPool,
     dir: &Path,
@@ -415,8 +425,8 @@ pub fn depth_of_field(set: &Settings, samplers: &[TimeSampler]) -> Result<(), St
         let (.., ref_ours) = dof_render(Some(TimeSampler::Stratified), set.size, side, &pool, &dir)?;
         let (.., ref_pov) = dof_render(None, set.size, side, &pool, &dir)?;
         println!(
-            "cook.deck, lens only, {}², one thread each; RMSE (0..1) against each renderer's own {REFERENCE_RAYS}-ray render (ours: stratified); CPU seconds, median of {} interleaved rounds: ours the render (its thread's CPU clock), POV-Ray its process (/proc, 10 ms ticks) and its reported trace.\n",
-            set.size, set.runs
+            "cook.deck, lens only, {}×{}, one thread each; RMSE (0..1) against each renderer's own {REFERENCE_RAYS}-ray render (ours: stratified); CPU seconds, median of {} interleaved rounds: ours the render (its thread's CPU clock), POV-Ray its process (/proc, 10 ms ticks) and its reported trace.\n",
+            set.size.0, set.size.1, set.runs
         );
         let mut rows = Vec::new();
         for m in DOF_SIDES {

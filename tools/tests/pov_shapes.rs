@@ -70,7 +70,7 @@ fn povray_renders_the_export() {
     let pov = dir.path().join("shapes.pov");
     std::fs::write(&pov, scene_sdl(&scene, Fidelity::Thesis)).unwrap();
     let out = dir.path().join("shapes.ppm");
-    tools::vs_povray::povray(&pov, &out, 32, 1).unwrap();
+    tools::vs_povray::povray(&pov, &out, (32, 32), 1).unwrap();
     let (w, h, pixels) = tools::vs_povray::read_ppm(&std::fs::read(&out).unwrap()).unwrap();
     assert_eq!((w, h), (32, 32));
     assert!(

@@ -3,11 +3,14 @@
 //! bands), stays until a key, and under `--watch` waits for the deck file
 //! to change. Nothing is decided here but what the window's keys mean.
 
-use raytrace::cli::{DeckInput, RenderArgs};
+use raytrace::cli::RenderArgs;
 use raytrace::exit::Failure;
 use raytrace::options::{Options, TimeSampler};
 use raytrace::psout;
-use raytrace::raytrace::{Prepared, Render, RenderError};
+use raytrace::raytrace::Prepared;
+use raytrace::run::DeckInput;
+#[cfg(not(feature = "window"))]
+use raytrace::run::Rendered;
 use raytrace::show::quick_size;
 
 /// The error when no window can be opened (as psout gives it).
@@ -68,20 +71,6 @@ pub fn overlay_error(fb: &mut psout::Framebuffer, error: &str) {
     }
 }
 
-/// How a render in the window ended.
-#[cfg_attr(
-    not(feature = "window"),
-    expect(dead_code, reason = "without the window feature no render is shown")
-)]
-pub enum Shown {
-    /// It finished (or failed): the render.
-    Done(Result<Render, RenderError>),
-    /// q or Esc was pressed (or, under --watch, the window was closed).
-    Quit,
-    /// The watched deck changed.
-    Changed,
-}
-
 #[cfg(not(feature = "window"))]
 pub struct Screen;
 
@@ -96,8 +85,8 @@ impl Screen {
         _r: &raytrace::raytrace::Request,
         _pool: &rayon::ThreadPool,
         _what: &str,
-    ) -> Shown {
-        Shown::Quit
+    ) -> Rendered {
+        Rendered::Quit
     }
     pub fn quick(&mut self, _p: &Prepared, _size: (usize, usize)) {}
     pub fn failed(&mut self, _error: &str) {}
@@ -127,7 +116,8 @@ mod window {
     use raytrace::raytrace::{Prepared, Request};
     use raytrace::show::{render_in_bands, stamp, Progressive};
 
-    use super::{no_display, overlay_error, watching_title, Shown};
+    use super::{no_display, overlay_error, watching_title};
+    use raytrace::run::Rendered;
 
     /// The window, the picture so far, and the deck it watches.
     pub struct Screen {
@@ -260,7 +250,7 @@ mod window {
             request: &Request,
             pool: &rayon::ThreadPool,
             what: &str,
-        ) -> Shown {
+        ) -> Rendered {
             let img = &prepared.scene().image;
             if (self.picture.raster.width, self.picture.raster.height) != (img.width, img.height) {
                 self.picture = Progressive::new(img.width, img.height);
@@ -288,7 +278,7 @@ mod window {
                     }
                     let quit = matches!(self.look(redraw), Look::Quit) && (!self.closed || self.watched.is_some());
                     if stopped.is_none() && (quit || self.deck_changed()) {
-                        stopped = Some(if quit { Shown::Quit } else { Shown::Changed });
+                        stopped = Some(if quit { Rendered::Quit } else { Rendered::Changed });
                         stop.store(true, Ordering::Relaxed);
                     }
                     if worker.is_finished() {
@@ -303,9 +293,9 @@ mod window {
             self.look(true);
             match (stopped, result) {
                 (Some(s), _) => s,
-                (None, Ok(Ok(Some(r)))) => Shown::Done(Ok(r)),
-                (None, Ok(Ok(None))) => Shown::Quit,
-                (None, Ok(Err(e))) => Shown::Done(Err(e)),
+                (None, Ok(Ok(Some(r)))) => Rendered::Done(Ok(r)),
+                (None, Ok(Ok(None))) => Rendered::Quit,
+                (None, Ok(Err(e))) => Rendered::Done(Err(e)),
                 (None, Err(panic)) => std::panic::resume_unwind(panic),
             }
         }

@@ -1,5 +1,5 @@
 //! What `raytrace` says when SIGINT (Ctrl-C) or SIGTERM stops it, after
-//! the temporary files are removed (`raytrace::output::on_signal`): what
+//! the temporary files are removed (`raytrace::cli::on_signal`): what
 //! was kept — a film's frames written whole so far; a still is written
 //! whole at its end, so nothing — and the command that goes on: the same
 //! one with `--resume` where that checks the outputs (Sun rasters), else a
@@ -32,7 +32,7 @@ fn kept() -> std::sync::MutexGuard<'static, Option<Kept>> {
 /// has a signal print it.
 pub fn start(kept_now: Kept) {
     *kept() = Some(kept_now);
-    raytrace::output::on_signal(|signal| {
+    raytrace::cli::on_signal(|signal| {
         if let Some(k) = kept().as_ref() {
             eprintln!("\nraytrace: {}", k.note(signal));
         }

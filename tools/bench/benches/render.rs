@@ -180,7 +180,7 @@ fn scale(c: &mut Criterion) {
     let mut g = c.benchmark_group("scale");
     modest(&mut g);
     let frame = Frame {
-        size: 256,
+        size: (256, 256),
         mask: 2,
         travel: 0.0,
     };

@@ -87,7 +87,7 @@ pub fn measure(set: &Settings, tmp: &Path) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
     for (kind, n) in scenes(set) {
         let frame = Frame {
-            size: SIDE,
+            size: (SIDE, SIDE),
             mask: set.mask,
             travel: 0.0,
         };
@@ -117,7 +117,7 @@ pub fn measure(set: &Settings, tmp: &Path) -> Result<Vec<Row>, String> {
                 std::fs::write(&sdl, crate::pov::scene_sdl(&scene, Fidelity::Thesis))
                     .map_err(|e| format!("{}: {e}", sdl.display()))?;
                 let ppm = tmp.join("instructions.ppm");
-                let povray = |side| irefs(Path::new("povray"), &povray_args(&sdl, &ppm, side, set.mask));
+                let povray = |side| irefs(Path::new("povray"), &povray_args(&sdl, &ppm, (side, side), set.mask));
                 Some((povray(SIDE)? as f64 - povray(1)? as f64) / samples)
             }
         };

@@ -41,7 +41,7 @@ use scenes::{Frame, Kind};
 #[derive(Clone, Debug)]
 pub struct Settings {
     /// Width and height of every render, in pixels.
-    pub size: usize,
+    pub size: (usize, usize),
     /// M: M×M samples a pixel on both sides.
     pub mask: usize,
     /// Timed rounds (after one untimed).
@@ -75,7 +75,7 @@ impl Settings {
             n
         };
         Settings {
-            size: 256,
+            size: (256, 256),
             mask: 2,
             runs: 5,
             sphere_ns: decades(100_000),
@@ -91,7 +91,7 @@ impl Settings {
     /// A run small enough for a test: 24×24 at one sample a pixel, a few N.
     pub fn quick() -> Settings {
         Settings {
-            size: 24,
+            size: (24, 24),
             mask: 1,
             runs: 1,
             sphere_ns: vec![1, 10, 100],
@@ -128,7 +128,7 @@ impl Settings {
 
     /// Samples an image: width·height·mask².
     pub fn samples(&self) -> f64 {
-        (self.size * self.size * self.mask * self.mask) as f64
+        (self.size.0 * self.size.1 * self.mask * self.mask) as f64
     }
 }
 
@@ -226,7 +226,14 @@ fn measure_scene(
     for m in &methods {
         if let Method::Ours(accel) = *m {
             let t = Instant::now();
-            let p = Prepared::with_accel(base.clone(), Options::default(), accel).map_err(|e| e.to_string())?;
+            let p = Prepared::new(
+                base.clone(),
+                Options {
+                    accel,
+                    ..Options::default()
+                },
+            )
+            .map_err(|e| e.to_string())?;
             setup.push(t.elapsed().as_secs_f64());
             prepared.push((accel, p));
         }
@@ -425,8 +432,8 @@ pub fn tables(m: &Measured, set: &Settings) -> String {
         s,
         "\nµs a sample (CPU, one thread, median of {} interleaved rounds), {}×{}, {} samples a pixel\n",
         set.runs,
-        set.size,
-        set.size,
+        set.size.0,
+        set.size.1,
         set.mask * set.mask
     );
     let head: Vec<String> = methods.iter().map(|x| x.label()).collect();

@@ -65,8 +65,8 @@ pub fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, m: &Measured, set
         let note = match k {
             0 => format!(
                 "{}×{}, {} samples a pixel; CPU, one thread, median of {} interleaved rounds{loop_note}",
-                set.size,
-                set.size,
+                set.size.0,
+                set.size.1,
                 set.mask * set.mask,
                 set.runs
             ),

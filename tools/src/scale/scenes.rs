@@ -106,7 +106,8 @@ fn contour(deck: &str) -> Result<Contour, String> {
 /// moves over the shutter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
-    pub size: usize,
+    /// Width and height in pixels.
+    pub size: (usize, usize),
     pub mask: usize,
     /// Each object moves this many of its radii (half widths) in a random
     /// direction across z, with `blur 1`; 0: at rest, no `blur`.
@@ -138,7 +139,7 @@ pub fn deck(kind: Kind, n: usize, frame: Frame) -> Result<String, String> {
         }
     );
     s.push_str("view eye 0 -10.5 7 look 0 0 1.2 screen 3.8 distance 5\n");
-    let _ = writeln!(s, "image {0} {0} mask {1}", frame.size, frame.mask);
+    let _ = writeln!(s, "image {} {} mask {}", frame.size.0, frame.size.1, frame.mask);
     s.push_str(
         "background 0.1 0.1 0.2\n\
          light sun 5 -6 10 1 1 1\n\
@@ -203,7 +204,7 @@ mod tests {
 
     fn scene(kind: Kind, n: usize, moving: bool) -> raytrace::scene::Scene {
         let frame = Frame {
-            size: 16,
+            size: (16, 16),
             mask: 1,
             travel: if moving { 2.0 } else { 0.0 },
         };
@@ -260,7 +261,7 @@ mod tests {
     #[test]
     fn scenes_are_reproducible() {
         let f = Frame {
-            size: 8,
+            size: (8, 8),
             mask: 1,
             travel: 0.0,
         };
