@@ -77,6 +77,7 @@
 //! | [`distributed`] | Cook's soft shadows and blurred reflection |
 //! | [`robust`], [`hash`] | the second root solver; the uniform from a key |
 //! | [`film`], [`tile`] | a film's frames, a still's bands of rows, each rendered by any process |
+//! | [`run`] | a render's jobs, called in-process by every program: the deck read, a film's frames or a still's files reserved, kept (`--resume`), written, summed up |
 //! | [`output`], [`image_file`] | writing every output file (a temporary file renamed); reading the pictures psout shows |
 //! | [`cli`], [`exit`] | the command line's words for a render and the exit statuses, shared by every program |
 //! | [`show`], [`editor`] | the picture as it renders (`--show`); the contour editor behind `contour` |
