@@ -264,6 +264,11 @@ fn a_screenshot_and_the_list_are_made_without_a_window() {
     assert!(lines[1].starts_with("1\t1.5\t1\t"), "{list}");
     let png = raytrace::image_file::read_image_file(&dir.path().join("s.png")).unwrap();
     assert_eq!((png.width, png.height), (1024, 864));
+    // `--screenshot -` writes the PNG to standard output, as psout's does.
+    let o = contour(&[deck.to_str().unwrap(), "last", "--screenshot", "-"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let png = raytrace::image_file::read_image(&o.stdout[..], None).unwrap();
+    assert_eq!((png.width, png.height), (1024, 864));
     let o = contour(&[deck.to_str().unwrap(), "last", "--screenshot", "s.ppm"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     let o = contour(&[deck.to_str().unwrap(), "last", "--list", "--time", "2"], dir.path());

@@ -165,45 +165,31 @@ fn bad_outputs_are_usage_errors_before_anything_is_written() {
     let scene = deck(0).initialize(Options::default().fidelity).unwrap();
     let prepared = Prepared::new(scene, Options::default()).unwrap();
     let still = dir.path().join("s.ras");
+    let still_and = |edit: &dyn Fn(&mut Outputs)| {
+        let mut outputs = Outputs {
+            output: Some(still.clone()),
+            ..Outputs::default()
+        };
+        edit(&mut outputs);
+        outputs
+    };
+    let dash = || Some(PathBuf::from("-"));
     for (outputs, says) in [
         (
-            Outputs {
-                output: Some(still.clone()),
-                apng: Some(dir.path().join("a.png")),
-                ..Outputs::default()
-            },
+            still_and(&|o| o.apng = Some(dir.path().join("a.png"))),
             "--apng is for a film",
         ),
+        (still_and(&|o| o.png = Some(dir.path().join("p.ras"))), "--png"),
         (
-            Outputs {
-                output: Some(still.clone()),
-                png: Some(dir.path().join("p.ras")),
-                ..Outputs::default()
-            },
-            "--png",
-        ),
-        (
-            Outputs {
-                output: Some("-".into()),
-                debug: Some("-".into()),
-                ..Outputs::default()
-            },
+            still_and(&|o| (o.output, o.debug) = (dash(), dash())),
             "only one output",
         ),
         (
-            Outputs {
-                output: Some(still.clone()),
-                apng: Some(dir.path().join("a.gif")),
-                ..Outputs::default()
-            },
+            still_and(&|o| o.apng = Some(dir.path().join("a.gif"))),
             "--apng writes an animated PNG, so the name must end in .png",
         ),
         (
-            Outputs {
-                output: Some(dir.path().join("s.png")),
-                resume: true,
-                ..Outputs::default()
-            },
+            still_and(&|o| (o.output, o.resume) = (Some(dir.path().join("s.png")), true)),
             "--resume",
         ),
     ] {

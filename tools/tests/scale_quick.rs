@@ -157,6 +157,12 @@ fn bad_flags_exit_2() {
         &["scale", "--mask", "0"][..],
         &["scale", "--max", "0"],
         &["scale", "--size", "4"],
+        // raytrace's parsers and ranges: refused, never clamped.
+        &["scale", "--mask", "33"],
+        &["scale", "--size", "0x8"],
+        &["vs-povray", "--mask", "0"],
+        &["heatmap", "--size", "9000x8", "x.deck"],
+        &["preview", "--threads", "257"],
     ] {
         let out = tools(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}");
