@@ -11,7 +11,7 @@ use super::DeckError;
 
 /// A word of the deck outside comments, or a line end that ends a record.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(crate) struct Lexeme {
+pub struct Lexeme {
     /// The word; `None` for a line end.
     pub word: Option<String>,
     /// The 1-based line the lexeme stands on.
@@ -22,7 +22,7 @@ pub(crate) struct Lexeme {
 
 /// The lexemes of `source` in order, up to its end, or the deck's error
 /// where a comment is left open or a byte outside comments is not ASCII.
-pub(crate) fn lexemes(source: &[u8], file: &str) -> Result<Vec<Lexeme>, DeckError> {
+pub fn lexemes(source: &[u8], file: &str) -> Result<Vec<Lexeme>, DeckError> {
     let mut lexer = Lexer::new(Bytes::Borrowed(source), file.into());
     let mut out = Vec::new();
     loop {

@@ -38,6 +38,7 @@ pub fn quick(render: &RenderArgs, deck: &DeckInput, opts: &Options) -> Result<Pr
 
 /// The window's title while `--watch` waits for the deck to change: with
 /// the last error, until a good deck clears it.
+#[cfg(any(feature = "window", test))]
 pub fn watching_title(deck: &str, error: Option<&str>) -> String {
     match error {
         None => format!("raytrace — {deck}: watching for changes, q quits"),
@@ -46,11 +47,13 @@ pub fn watching_title(deck: &str, error: Option<&str>) -> String {
 }
 
 /// Lines of the error on the screen, at most: the rest is cut.
+#[cfg(any(feature = "window", test))]
 const ERROR_LINES: usize = 4;
 
 /// The error of a deck that failed under `--watch`, over the bottom of the
 /// screen: white on dark red, wrapped to the screen's width, the last
 /// picture left above it.
+#[cfg(any(feature = "window", test))]
 pub fn overlay_error(fb: &mut psout::Framebuffer, error: &str) {
     use raytrace::editor::draw::{fill, text, wrap, Rect, CHAR};
     let margin = CHAR;
