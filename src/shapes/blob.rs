@@ -509,6 +509,34 @@ mod tests {
     use super::*;
     use crate::options::Solver;
 
+    /// `field` is POV-Ray's sum, each component s·(1 − r²/R²)² inside its
+    /// sphere, less T, and its gradient −4·s·q/R²·(p − c): values worked by
+    /// hand at a point two components reach and a third does not (the
+    /// other tests read `field` as their oracle, so it is pinned here).
+    #[test]
+    fn field_is_the_sum_of_the_components_less_the_threshold() {
+        let c = |centre: DVec3, radius: f64, strength: f64| BlobComponent {
+            centre,
+            radius,
+            strength,
+        };
+        let shape = BlobShape {
+            threshold: 0.3,
+            components: vec![
+                c(DVec3::X, 2.0, 1.5),
+                c(DVec3::Y, 1.0, -0.5),
+                c(DVec3::new(5.0, 0.0, 0.0), 1.0, 2.0),
+            ],
+        };
+        // q = 0.875 and 0.5: 1.5·0.875² − 0.5·0.5² − 0.3; the gradients
+        // −1.3125·(−0.5, 0.5, 0) and 1.0·(0.5, −0.5, 0).
+        let (f, grad) = field(&shape, DVec3::new(0.5, 0.5, 0.0));
+        assert!((f - 0.7234375).abs() < 1e-15, "{f}");
+        assert!((grad - DVec3::new(1.15625, -1.15625, 0.0)).length() < 1e-15, "{grad}");
+        // Outside every sphere the field is −T and flat.
+        assert_eq!(field(&shape, DVec3::new(0.0, -3.0, 0.0)), (-0.3, DVec3::ZERO));
+    }
+
     fn one(radius: f64, strength: f64, threshold: f64) -> BlobShape {
         BlobShape {
             threshold,
