@@ -121,6 +121,11 @@ fn bad_blobs_are_refused_where_they_go_wrong() {
             "blob b red at 0 0 0 threshold 1\n 0 0 0 1 2e7\nend\n",
             "t.deck:6:10: blob 'b': expected a number in -1e7..1e7 for STRENGTH, found '2e7'",
         ),
+        // The next record where the blob's `end` belongs.
+        (
+            "blob b red at 0 0 0 threshold 1\n 0 0 0 1 1\nsphere s red at 0 0 0 radius 1\n",
+            "t.deck:7:1: blob 'b': expected a component 'X Y Z RADIUS STRENGTH' or 'end', found 'sphere'",
+        ),
     ];
     for (blob, want) in cases {
         assert_eq!(error(&format!("{HEAD}{blob}")), want, "{blob}");
@@ -153,6 +158,14 @@ fn bad_patches_are_refused_where_they_go_wrong() {
     assert_eq!(
         error(&format!("{HEAD}patch p red at 0 0 0\n 1 2\n 3\nend\n")),
         "t.deck:6:5: patch 'p': expected a number for a control point's X Y Z, found end of line"
+    );
+    // The next record where the patch's `end` belongs.
+    assert_eq!(
+        error(&format!(
+            "{HEAD}patch p red at 0 0 0\n{}sphere s red at 0 0 0 radius 1\n",
+            rows(16)
+        )),
+        "t.deck:22:1: patch 'p': expected a control point 'X Y Z' or 'end', found 'sphere'"
     );
     assert_eq!(
         error(&format!("{HEAD}patch p red at 0 0 0 axis x\n{}end\n", rows(16))),
