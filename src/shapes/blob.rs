@@ -122,6 +122,9 @@ struct End {
 
 // A component's index fits the byte its chord's end keeps it in.
 const _: () = assert!(MAXCOMPONENTS <= u8::MAX as usize + 1);
+// A component's index is a bit of the `u64` [`chords_of`] gathers a
+// [`BlobCache`]'s components in.
+const _: () = assert!(MAXCOMPONENTS <= u64::BITS as usize);
 
 /// The nearest hit of a ray with the blob beyond `tmin`, in its local
 /// frame (see the module doc); `reach` is the radius of a sphere about the
@@ -331,10 +334,15 @@ fn chords_of(
     };
     match cache {
         Some(cache) => {
-            cache.visit(&Ray::new(o, d), tmin, &mut chord);
-            // In the components' order, as the loop over all finds them:
-            // the sums below are then the same to the bit.
-            out[..count].sort_unstable_by_key(|c| c.k);
+            // The leaves' components gathered as bits, then taken in the
+            // components' order, as the loop over all finds them: the sums
+            // below are then the same to the bit (and no chords sorted).
+            let mut met = 0u64;
+            cache.visit(&Ray::new(o, d), tmin, &mut |k| met |= 1 << k);
+            while met != 0 {
+                chord(met.trailing_zeros() as usize);
+                met &= met - 1;
+            }
         }
         None => (0..shape.components.len().min(MAXCOMPONENTS))
             .filter(|&k| counts(&shape.components[k]))
