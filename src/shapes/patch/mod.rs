@@ -413,6 +413,29 @@ mod tests {
         }
     }
 
+    /// `patch_point`'s normal: Pᵤ × Pᵥ made unit where it is not 0; on a
+    /// collapsed edge, the normal a step toward the middle; `None` on a
+    /// patch collapsed to a point.
+    #[test]
+    fn normals_are_exact_and_collapsed_edges_take_the_next() {
+        let bent = square(0.5);
+        let (_, pu, pv) = eval(&bent.points, 0.3, 0.6);
+        let exact = pu.cross(pv) / pu.cross(pv).length();
+        let (_, n) = patch_point(&bent, 0.3, 0.6);
+        assert!((n.unwrap() - exact).length() < 1e-14, "{n:?} against {exact}");
+        // The first row drawn to one point: a flat fan in z = 0 whose edge
+        // v = 0 has no Pᵤ.
+        let mut fan = square(0.0);
+        fan.points[..4].fill(DVec3::new(0.0, -1.0, 0.0));
+        let (_, n) = patch_point(&fan, 0.3, 0.0);
+        let n = n.expect("a normal from beside the edge");
+        assert!((n.z.abs() - 1.0).abs() < 1e-12 && n.is_finite(), "{n}");
+        let point = PatchShape {
+            points: [DVec3::ONE; 16],
+        };
+        assert_eq!(patch_point(&point, 0.3, 0.6).1, None);
+    }
+
     fn hit(p: &PatchShape, ray: &Ray) -> Option<LocalHit> {
         intersect_patch(p, Some(&PatchCache::new(p)), patch_reach(p), ray, 1e-9, &mut 0)
     }
