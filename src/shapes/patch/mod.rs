@@ -436,6 +436,24 @@ mod tests {
         assert_eq!(patch_point(&point, 0.3, 0.6).1, None);
     }
 
+    /// `change`, the bound on the second derivatives that makes Newton's
+    /// root a piece's only one, is exact on z = 3u² + 2uv over the unit
+    /// square (Bernstein coefficients 3·[0, 0, 1/3, 1] in u, 2·(c/3)(r/3)):
+    /// |P_uu| = 6, |P_uv| = 2, P_vv = 0, so ½·√((6 + 2)² + (2 + 0)²) = √17.
+    #[test]
+    fn change_bounds_the_second_derivatives_exactly_on_a_quadratic() {
+        let u2 = [0.0, 0.0, 1.0 / 3.0, 1.0];
+        let net: [DVec3; 16] = std::array::from_fn(|k| {
+            let (r, c) = ((k / 4) as f64, (k % 4) as f64);
+            DVec3::new(c / 3.0, r / 3.0, 3.0 * u2[k % 4] + 2.0 * (c / 3.0) * (r / 3.0))
+        });
+        let m = change(&net, DVec3::length_squared);
+        assert!((m - 17f64.sqrt()).abs() < 1e-12, "{m}");
+        // Turned a quarter (u and v swapped), the same bound.
+        let turned: [DVec3; 16] = std::array::from_fn(|k| net[4 * (k % 4) + k / 4]);
+        assert!((change(&turned, DVec3::length_squared) - 17f64.sqrt()).abs() < 1e-12);
+    }
+
     fn hit(p: &PatchShape, ray: &Ray) -> Option<LocalHit> {
         intersect_patch(p, Some(&PatchCache::new(p)), patch_reach(p), ray, 1e-9, &mut 0)
     }
