@@ -446,40 +446,48 @@ pub fn pair_at<P>(pairs: &[P], time: f64) -> (&P, f64) {
     (&pairs[k.min(pairs.len() - 1)], local)
 }
 
-/// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k,
-/// numbered from 1, goes from the k-th shape to the next. The in-between object is A's
-/// record; each pair's pose goes from its first shape's pose to its last's.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PaperChain {
-    /// At least one pair (the constructors refuse an empty chain).
-    pairs: Vec<PaperPair>,
+/// A pair of key shapes as a chain walks it: where the in-between object
+/// stands at the pair's own time (0 to 1 over the pair). The sweeps'
+/// [`PaperPair`] and the blobs' and patches' [`PointPair`] alike.
+pub trait KeyPair {
+    /// The pose at the pair's own time `local`.
+    fn pose(&self, local: f64) -> Pose;
+    /// The origin of [`KeyPair::pose`] at `local`, the same to the bit.
+    fn centre(&self, local: f64) -> DVec3;
 }
 
-impl PaperChain {
-    /// `goahead` for every consecutive couple of `first, rest[0], rest[1], …`.
-    pub fn new(
-        first: &ObjectRecord,
-        rest: &[ObjectRecord],
-        expander: Expander,
-        fidelity: Fidelity,
-    ) -> Result<PaperChain, PaperError> {
-        let pairs = chain_pairs(first, rest, |int, from, to| goahead(int, from, to, expander, fidelity))?;
-        Ok(PaperChain { pairs })
+impl KeyPair for PaperPair {
+    fn pose(&self, local: f64) -> Pose {
+        PaperPair::pose(self, local)
     }
-
-    /// The chain of a deck's `keyframe` record: FIRST from `scene.objects`,
-    /// the later shapes from the record.
-    pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PaperChain, PaperError> {
-        PaperChain::new(keyframe_first(scene, record)?, &record.rest, record.expander, fidelity)
+    #[inline]
+    fn centre(&self, local: f64) -> DVec3 {
+        PaperPair::centre(self, local)
     }
+}
 
+/// The pairs of a key-frame chain `keyframe A B C …` (§1.2): pair k,
+/// numbered from 1, goes from the k-th shape to the next. The in-between
+/// object is A's record; each pair's pose goes from its first shape's pose
+/// to its last's. Of sweeps, [`PaperChain`]; of blobs or patches,
+/// [`PointChain`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chain<P> {
+    /// At least one pair (the constructors refuse an empty chain).
+    pairs: Vec<P>,
+}
+
+/// The chain of a `keyframe` record of sweeps: `goahead`'s pairs.
+pub type PaperChain = Chain<PaperPair>;
+
+impl<P: KeyPair> Chain<P> {
     /// The pairs, pair k (from 1) at index k − 1.
-    pub fn pairs(&self) -> &[PaperPair] {
+    pub fn pairs(&self) -> &[P] {
         &self.pairs
     }
 
     /// The pair and local time of shutter time `time` ([`pair_at`]).
-    pub fn locate(&self, time: f64) -> (&PaperPair, f64) {
+    pub fn locate(&self, time: f64) -> (&P, f64) {
         pair_at(&self.pairs, time)
     }
 
@@ -490,7 +498,7 @@ impl PaperChain {
     }
 
     /// The in-between object's origin at shutter time `time`, as
-    /// [`PaperChain::pose`] puts it.
+    /// [`Chain::pose`] puts it.
     pub fn centre(&self, time: f64) -> DVec3 {
         let (pair, local) = self.locate(time);
         pair.centre(local)
@@ -499,12 +507,31 @@ impl PaperChain {
     /// The box the in-between object's origin (`sphereo`) stays in over
     /// the shutter times `t0` ≤ t ≤ `t1`: the port's, for bounds over the
     /// shutter. Within a pair the origin moves along a straight line
-    /// ([`PaperPair::pose`]: FIRST's place plus t·`diff`), so the box of
+    /// ([`keyed_pose`]: FIRST's place plus t·`diff`), so the box of
     /// its places at `t0`, `t1` and at both sides of each pair boundary
     /// between holds every place (times past the ends extrapolate the
     /// first or last pair, as [`chain_time`] does).
     pub fn centre_bounds(&self, t0: f64, t1: f64) -> BoundingBox {
         chain_centre_bounds(self.pairs.len(), |k, local| self.pairs[k].pose(local), t0, t1)
+    }
+}
+
+impl Chain<PaperPair> {
+    /// `goahead` for every consecutive couple of `first, rest[0], rest[1], …`.
+    pub fn new(
+        first: &ObjectRecord,
+        rest: &[ObjectRecord],
+        expander: Expander,
+        fidelity: Fidelity,
+    ) -> Result<PaperChain, PaperError> {
+        let pairs = chain_pairs(first, rest, |int, from, to| goahead(int, from, to, expander, fidelity))?;
+        Ok(Chain { pairs })
+    }
+
+    /// The chain of a deck's `keyframe` record: FIRST from `scene.objects`,
+    /// the later shapes from the record.
+    pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PaperChain, PaperError> {
+        PaperChain::new(keyframe_first(scene, record)?, &record.rest, record.expander, fidelity)
     }
 
     /// The in-between contour at shutter time `time`, into `obj`

@@ -37,8 +37,8 @@
 //! and the in-between is that shape, to the bit, moving from pose to pose.
 
 use super::{
-    chain_centre_bounds, chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_centre, keyed_pose,
-    keyframe_first, pair_at, reparam, Distarray, PaperError, Sdirection,
+    chain_pairs, cubic_range, difference, getmatrix, getpath, keyed_centre, keyed_pose, keyframe_first, reparam, Chain,
+    Distarray, KeyPair, PaperError, Sdirection,
 };
 use crate::options::Fidelity;
 use crate::scene::{KeyframeRecord, Scene};
@@ -368,47 +368,30 @@ impl PointPair {
     }
 }
 
-/// The pairs of a chain `keyframe A B C …` of blobs or of patches: pair k
-/// from the k-th shape to the next (as [`super::PaperChain`] for sweeps).
-#[derive(Clone, Debug, PartialEq)]
-pub struct PointChain {
-    /// At least one pair.
-    pairs: Vec<PointPair>,
+impl KeyPair for PointPair {
+    fn pose(&self, local: f64) -> Pose {
+        PointPair::pose(self, local)
+    }
+    #[inline]
+    fn centre(&self, local: f64) -> DVec3 {
+        PointPair::centre(self, local)
+    }
 }
 
-impl PointChain {
+/// The chain of a `keyframe` record of blobs or of patches: pair k from
+/// the k-th shape to the next (as [`super::PaperChain`] for sweeps).
+pub type PointChain = Chain<PointPair>;
+
+impl Chain<PointPair> {
     /// `goahead` for every consecutive couple of `first, rest[0], …`.
     pub fn new(first: &ObjectRecord, rest: &[ObjectRecord], fidelity: Fidelity) -> Result<PointChain, PaperError> {
         let pairs = chain_pairs(first, rest, |int, from, to| PointPair::new(int, from, to, fidelity))?;
-        Ok(PointChain { pairs })
+        Ok(Chain { pairs })
     }
 
     /// The chain of a deck's `keyframe` record of blobs or patches.
     pub fn from_keyframe(scene: &Scene, record: &KeyframeRecord, fidelity: Fidelity) -> Result<PointChain, PaperError> {
         PointChain::new(keyframe_first(scene, record)?, &record.rest, fidelity)
-    }
-
-    /// The pairs, pair k (from 1) at index k − 1.
-    pub fn pairs(&self) -> &[PointPair] {
-        &self.pairs
-    }
-
-    /// The pair and local time of shutter time `time` ([`pair_at`]).
-    pub fn locate(&self, time: f64) -> (&PointPair, f64) {
-        pair_at(&self.pairs, time)
-    }
-
-    /// The in-between object's pose at shutter time `time`.
-    pub fn pose(&self, time: f64) -> Pose {
-        let (pair, local) = self.locate(time);
-        pair.pose(local)
-    }
-
-    /// The in-between object's origin at shutter time `time`, as
-    /// [`PointChain::pose`] puts it.
-    pub fn centre(&self, time: f64) -> DVec3 {
-        let (pair, local) = self.locate(time);
-        pair.centre(local)
     }
 
     /// The in-between shape at shutter time `time`, into `out`.
@@ -420,12 +403,6 @@ impl PointChain {
     /// Scratch big enough for every pair.
     pub fn scratch(&self) -> Shape {
         self.pairs[0].scratch()
-    }
-
-    /// The box the in-between object's origin stays in over the shutter
-    /// times `t0` ≤ t ≤ `t1`.
-    pub fn centre_bounds(&self, t0: f64, t1: f64) -> BoundingBox {
-        chain_centre_bounds(self.pairs.len(), |k, local| self.pairs[k].pose(local), t0, t1)
     }
 
     /// Each pair the shutter times `t0` ≤ t ≤ `t1` reach, with the part of
