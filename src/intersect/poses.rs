@@ -80,6 +80,29 @@ impl Movers<'_> {
         f.is_finite().then_some((g, f))
     }
 
+    /// Every moving object's pose at `time`, the instant, in its place
+    /// among `slots` (found from the time's bits: [`Now::All`]) unless it
+    /// holds them already; returns the place. Apart from [`Poses::at`],
+    /// so that a structure's instant, which poses nothing, costs little.
+    #[inline(never)]
+    fn pose_all(&self, slots: &mut [(Option<u64>, Vec<Pose>)], time: f64) -> usize {
+        let bits = time.to_bits();
+        // A multiplicative hash's top bits: the times of a table land in
+        // different places.
+        let k = match slots.len() {
+            1 => 0,
+            n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
+        };
+        let (at, all) = &mut slots[k];
+        if *at != Some(bits) {
+            for (m, moving) in self.moving.iter().enumerate() {
+                self.pose_into(m, time, &mut all[moving.object]);
+            }
+            *at = Some(bits);
+        }
+        k
+    }
+
     /// Moving object `m`'s pose at `time`, the instant, written over
     /// `pose`.
     #[inline(always)]
@@ -214,23 +237,7 @@ impl<'a> Poses<'a> {
         self.time = Some(time);
         self.movers.at(time);
         match &mut self.now {
-            Now::All { slots, current } => {
-                let bits = time.to_bits();
-                // A multiplicative hash's top bits: the times of a table
-                // land in different places.
-                let k = match slots.len() {
-                    1 => 0,
-                    n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
-                };
-                *current = k;
-                let (at, all) = &mut slots[k];
-                if *at != Some(bits) {
-                    for (k, m) in self.movers.moving.iter().enumerate() {
-                        self.movers.pose_into(k, time, &mut all[m.object]);
-                    }
-                    *at = Some(bits);
-                }
-            }
+            Now::All { slots, current } => *current = self.movers.pose_all(slots, time),
             Now::Lazy { instant, made, .. } => {
                 *instant += 1;
                 made.set(0);
