@@ -401,3 +401,72 @@ fn intersection(a: &BoundingBox, b: &BoundingBox) -> BoundingBox {
         zmax: a.zmax.min(b.zmax),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scene of moving objects: straight glides under each law (one
+    /// turned at rest about two axes), and two that do not glide: turning, and on a curve; a turn of
+    /// zeros (−0 among them) is no turn.
+    fn scene() -> Scene {
+        let deck = "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\n\
+            image 8 8 mask 1\n\
+            surface s opaque color 1 1 1 ka 0.1 kd 0.8 ks 0.1 kt 0\n\
+            sphere a s at 0.3 0.1 -0.2 radius 0.5\n\
+            block b s at -1 0.2 0.4 size 1 2 0.5\n\
+            rotate b x 90\n\
+            rotate b z -90\n\
+            sphere c s at 1 1 1 radius 0.2\n\
+            sphere d s at 2 -1 0 radius 0.2\n\
+            sphere e s at -2 -1 0 radius 0.2\n\
+            sphere f s at 0 2 0 radius 0.2\n\
+            sphere g s at 0 -2 1 radius 0.2\n\
+            motion a to 1.3 0.1 -0.2\n\
+            motion b to -1 1.7 0.4 law accelerate\n\
+            motion c to 1 0 1 law decelerate\n\
+            motion d to 2 -1 3 law smooth\n\
+            motion e to -2 0 0 turn 0 0 30\n\
+            motion f to 1 2 0 via 0 3 0 1 3 0\n\
+            motion g to 0 -2 2 turn 0 -0 0\n\
+            blur 1\n";
+        crate::deck::initialize(deck, "glides.deck", std::path::Path::new("."), Fidelity::Thesis).unwrap()
+    }
+
+    /// Bits of a pose, to compare them exactly.
+    fn bits(p: &Pose) -> Vec<u64> {
+        let (t, i) = (p.transfm.to_cols_array(), p.inverse.to_cols_array());
+        let s = p.sphereo.to_array();
+        t.iter().chain(&i).chain(&s).map(|v| v.to_bits()).collect()
+    }
+
+    /// A glide poses its object and places its origin as `motionblur`
+    /// does, to the bit, under each law, at times in and past the shutter;
+    /// what turns, curves, or is read in listing fidelity does not glide.
+    #[test]
+    fn a_glide_is_posed_as_motionblur_poses_it() {
+        let scene = scene();
+        let moving = paths(&scene);
+        assert_eq!(moving.len(), 7);
+        let glides = Glides::of(&moving, &scene.objects, Fidelity::Thesis);
+        let gliding: Vec<bool> = glides.each.iter().map(Option::is_some).collect();
+        assert_eq!(gliding, [true, true, true, true, false, false, true]);
+        assert_eq!(glides.laws, 0b1111);
+        let listing = Glides::of(&moving, &scene.objects, Fidelity::Listing);
+        assert!(listing.each.iter().all(Option::is_none) && listing.laws == 0);
+        for (m, g) in moving.iter().zip(&glides.each) {
+            let Some(g) = g else { continue };
+            let rest = &scene.objects[m.object];
+            for k in 0..=30 {
+                let time = k as f64 / 20.0;
+                let f = crate::drt::LAW(g.law(), 1.0, time);
+                let want = m.pose(rest, time, Fidelity::Thesis);
+                let mut got = Pose::IDENTITY;
+                g.pose_into(f, &mut got);
+                assert_eq!(bits(&got), bits(&want), "object {} at {time}", m.object);
+                assert_eq!(g.centre(f).to_array().map(f64::to_bits), want.sphereo.to_array().map(f64::to_bits));
+                assert_eq!(want.sphereo, m.centre(rest, time, Fidelity::Thesis));
+            }
+        }
+    }
+}
