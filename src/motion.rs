@@ -199,10 +199,7 @@ pub struct Glides {
 impl Glides {
     /// The glides of `moving`, which moves `objects` (at rest).
     pub fn of(moving: &[Moving], objects: &[ObjectRecord], fidelity: Fidelity) -> Glides {
-        let each: Vec<Option<Glide>> = moving
-            .iter()
-            .map(|m| m.glide(&objects[m.object], fidelity))
-            .collect();
+        let each: Vec<Option<Glide>> = moving.iter().map(|m| m.glide(&objects[m.object], fidelity)).collect();
         let laws = each.iter().flatten().fold(0, |b, g| b | 1 << g.law as u8);
         Glides { each, laws }
     }
@@ -464,7 +461,10 @@ mod tests {
                 let mut got = Pose::IDENTITY;
                 g.pose_into(f, &mut got);
                 assert_eq!(bits(&got), bits(&want), "object {} at {time}", m.object);
-                assert_eq!(g.centre(f).to_array().map(f64::to_bits), want.sphereo.to_array().map(f64::to_bits));
+                assert_eq!(
+                    g.centre(f).to_array().map(f64::to_bits),
+                    want.sphereo.to_array().map(f64::to_bits)
+                );
                 assert_eq!(want.sphereo, m.centre(rest, time, Fidelity::Thesis));
             }
         }
