@@ -520,13 +520,20 @@ mod tests {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
         let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
         let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
-        let rest = rest_poses(&scene);
-        let moving = crate::motion::paths(&scene);
+        let (rest, moving, moving_of) = moved(&scene);
+        (scene, rest, moving, moving_of)
+    }
+
+    /// A scene's objects at rest, its motions, and each object's motion by
+    /// index.
+    fn moved(scene: &Scene) -> (Vec<Pose>, Vec<Moving>, Vec<Option<usize>>) {
+        let rest = rest_poses(scene);
+        let moving = crate::motion::paths(scene);
         let mut moving_of = vec![None; scene.objects.len()];
         for (k, m) in moving.iter().enumerate() {
             moving_of[m.object] = Some(k);
         }
-        (scene, rest, moving, moving_of)
+        (rest, moving, moving_of)
     }
 
     /// The loop over poses made when asked (a structure's, at an instant
@@ -679,26 +686,12 @@ mod tests {
     #[test]
     fn gliding_poses_are_the_motions_own() {
         let scene = glides_scene();
-        let rest = rest_poses(&scene);
-        let moving = crate::motion::paths(&scene);
-        let mut moving_of = vec![None; scene.objects.len()];
-        for (k, m) in moving.iter().enumerate() {
-            moving_of[m.object] = Some(k);
-        }
+        let (rest, moving, moving_of) = moved(&scene);
         let glides = crate::motion::Glides::of(&moving, &scene.objects, Fidelity::Thesis);
         assert!(glides.each.iter().filter(|g| g.is_some()).count() >= 4);
+        let (objects, moved) = (&scene.objects, &moving_of);
         for eager in [true, false] {
-            let new = || {
-                Poses::new(
-                    &scene.objects,
-                    &rest,
-                    &moving,
-                    &moving_of,
-                    Fidelity::Thesis,
-                    eager,
-                    false,
-                )
-            };
+            let new = || Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, eager, false);
             let (mut gliding, mut plain) = (new().gliding(&glides), new());
             for k in 0..=30 {
                 let t = k as f64 / 20.0;
