@@ -520,13 +520,20 @@ mod tests {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("legacy_pascal/decks");
         let src = std::fs::read_to_string(dir.join("fig5_1.deck")).unwrap();
         let scene = crate::deck::initialize(&src, "fig5_1.deck", &dir, Fidelity::Thesis).unwrap();
-        let rest = rest_poses(&scene);
-        let moving = crate::motion::paths(&scene);
+        let (rest, moving, moving_of) = moved(&scene);
+        (scene, rest, moving, moving_of)
+    }
+
+    /// A scene's objects at rest, its motions, and each object's motion by
+    /// index.
+    fn moved(scene: &Scene) -> (Vec<Pose>, Vec<Moving>, Vec<Option<usize>>) {
+        let rest = rest_poses(scene);
+        let moving = crate::motion::paths(scene);
         let mut moving_of = vec![None; scene.objects.len()];
         for (k, m) in moving.iter().enumerate() {
             moving_of[m.object] = Some(k);
         }
-        (scene, rest, moving, moving_of)
+        (rest, moving, moving_of)
     }
 
     /// The loop over poses made when asked (a structure's, at an instant
@@ -600,6 +607,109 @@ mod tests {
                 let bits = |p: &Pose| p.transfm.to_cols_array().map(f64::to_bits);
                 assert_eq!(bits(&a), bits(&b), "instant {n}, time {t}, object {i}");
                 assert_eq!(a.sphereo, b.sphereo);
+            }
+        }
+    }
+
+    /// A scene of moving objects: straight glides under each law (one
+    /// turned at rest about two axes, one whose turn is of zeros, −0
+    /// among them), and two that do not glide: turning, and on a curve.
+    fn glides_scene() -> Scene {
+        let deck = "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\n\
+            image 8 8 mask 1\n\
+            surface s opaque color 1 1 1 ka 0.1 kd 0.8 ks 0.1 kt 0\n\
+            sphere a s at 0.3 0.1 -0.2 radius 0.5\n\
+            block b s at -1 0.2 0.4 size 1 2 0.5\n\
+            rotate b x 90\n\
+            rotate b z -90\n\
+            sphere c s at 1 1 1 radius 0.2\n\
+            sphere d s at 2 -1 0 radius 0.2\n\
+            sphere e s at -2 -1 0 radius 0.2\n\
+            sphere f s at 0 2 0 radius 0.2\n\
+            sphere g s at 0 -2 1 radius 0.2\n\
+            motion a to 1.3 0.1 -0.2\n\
+            motion b to -1 1.7 0.4 law accelerate\n\
+            motion c to 1 0 1 law decelerate\n\
+            motion d to 2 -1 3 law smooth\n\
+            motion e to -2 0 0 turn 0 0 30\n\
+            motion f to 1 2 0 via 0 3 0 1 3 0\n\
+            motion g to 0 -2 2 turn 0 -0 0\n\
+            blur 1\n";
+        crate::deck::initialize(deck, "glides.deck", std::path::Path::new("."), Fidelity::Thesis).unwrap()
+    }
+
+    /// Bits of a pose, to compare them exactly.
+    fn pose_bits(p: &Pose) -> Vec<u64> {
+        let (t, i) = (p.transfm.to_cols_array(), p.inverse.to_cols_array());
+        let s = p.sphereo.to_array();
+        t.iter().chain(&i).chain(&s).map(|v| v.to_bits()).collect()
+    }
+
+    /// A glide poses its object and places its origin as `motionblur`
+    /// does, to the bit, under each law, at times in and past the shutter;
+    /// what turns, curves, or is read in listing fidelity does not glide.
+    #[test]
+    fn a_glide_is_posed_as_motionblur_poses_it() {
+        let scene = glides_scene();
+        let moving = crate::motion::paths(&scene);
+        assert_eq!(moving.len(), 7);
+        let glides = crate::motion::Glides::of(&moving, &scene.objects, Fidelity::Thesis);
+        let gliding: Vec<bool> = glides.each.iter().map(Option::is_some).collect();
+        assert_eq!(gliding, [true, true, true, true, false, false, true]);
+        assert_eq!(glides.laws, 0b1111);
+        let listing = crate::motion::Glides::of(&moving, &scene.objects, Fidelity::Listing);
+        assert!(listing.each.iter().all(Option::is_none) && listing.laws == 0);
+        for (m, g) in moving.iter().zip(&glides.each) {
+            let Some(g) = g else { continue };
+            let rest = &scene.objects[m.object];
+            for k in 0..=30 {
+                let time = k as f64 / 20.0;
+                let f = crate::drt::LAW(g.law(), 1.0, time);
+                let want = m.pose(rest, time, Fidelity::Thesis);
+                let mut got = Pose::IDENTITY;
+                g.pose_into(f, &mut got);
+                assert_eq!(pose_bits(&got), pose_bits(&want), "object {} at {time}", m.object);
+                assert_eq!(
+                    g.centre(f).to_array().map(f64::to_bits),
+                    want.sphereo.to_array().map(f64::to_bits)
+                );
+                assert_eq!(want.sphereo, m.centre(rest, time, Fidelity::Thesis));
+            }
+        }
+    }
+
+    /// Poses given the glides ([`Poses::gliding`]) put every object, and
+    /// every moving object's origin, where poses made by the motions
+    /// alone put them, to the bit: at times in and past the shutter, for
+    /// the loop (all at once) and for a structure (each when asked,
+    /// origins first), the laws of every glide found for each instant.
+    #[test]
+    fn gliding_poses_are_the_motions_own() {
+        let scene = glides_scene();
+        let (rest, moving, moving_of) = moved(&scene);
+        let glides = crate::motion::Glides::of(&moving, &scene.objects, Fidelity::Thesis);
+        assert!(glides.each.iter().filter(|g| g.is_some()).count() >= 4);
+        let (objects, moved) = (&scene.objects, &moving_of);
+        for eager in [true, false] {
+            let new = || Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, eager, false);
+            let (mut gliding, mut plain) = (new().gliding(&glides), new());
+            for k in 0..=30 {
+                let t = k as f64 / 20.0;
+                gliding.at(t);
+                plain.at(t);
+                for (m, mover) in moving.iter().enumerate() {
+                    if !eager {
+                        let (a, b) = (gliding.centre(m, t), plain.centre(m, t));
+                        assert_eq!(a.to_array().map(f64::to_bits), b.to_array().map(f64::to_bits));
+                    }
+                    let want = mover.pose(&scene.objects[mover.object], t, Fidelity::Thesis);
+                    assert_eq!(
+                        pose_bits(&gliding.get(mover.object)),
+                        pose_bits(&want),
+                        "{eager} {t} {m}"
+                    );
+                    assert_eq!(pose_bits(&plain.get(mover.object)), pose_bits(&want));
+                }
             }
         }
     }

@@ -16,8 +16,8 @@ use crate::accel::{Aabb, Bounds, Segments, USE_UNION};
 use crate::drt::{motion_bounds, motion_place, motionblur, Isblur};
 use crate::options::Fidelity;
 use crate::paper::{KeyChain, PaperChain, PointChain};
-use crate::scene::{MotionRecord, Scene};
-use crate::types::{BoundingBox, DVec3, ObjectRecord, Pose};
+use crate::scene::{Law, MotionRecord, Scene};
+use crate::types::{BoundingBox, DMat3, DVec3, ObjectRecord, Pose};
 
 /// How much wider than the exact bounds [`Moving::centre_bounds`] are,
 /// relative to the size of their coordinates: a path's point is a cubic
@@ -107,6 +107,29 @@ impl Moving {
         }
     }
 
+    /// The object's [`Glide`], if it glides: in `thesis` fidelity, a
+    /// `motion` record with a straight path (no `via`) and no turn.
+    pub fn glide(&self, rest: &ObjectRecord, fidelity: Fidelity) -> Option<Glide> {
+        match (&self.motion, fidelity) {
+            (Motion::Path(record), Fidelity::Thesis)
+                if record.via.is_none() && record.turn.cmpeq(DVec3::ZERO).all() =>
+            {
+                // `motionblur`'s turn is then turn_xyz(0 · f), the identity,
+                // at every time of finite f: its product with the rest
+                // rotation is made once.
+                let r = DMat3::IDENTITY * DMat3::from_mat4(rest.transfm);
+                Some(Glide {
+                    from: rest.sphereo,
+                    delta: record.to - rest.sphereo,
+                    law: record.law,
+                    r,
+                    rt: r.transpose(),
+                })
+            }
+            _ => None,
+        }
+    }
+
     /// The chain, for the in-between object of a key-frame chain of
     /// sweeps.
     pub fn chain(&self) -> Option<&PaperChain> {
@@ -123,6 +146,62 @@ impl Moving {
             Motion::Chain { chain, .. } => Some(KeyChain::Sweep(chain)),
             Motion::Points { chain, .. } => Some(KeyChain::Points(chain)),
         }
+    }
+}
+
+/// A motion that only carries its object along a straight line (the
+/// most common `motion` record: `to` alone, no `via`, no `turn`), kept
+/// ready so that its pose costs what moving it costs: at the fraction f =
+/// LAW(law, 1, t) of the way, its origin is `path_point`'s `from + (to −
+/// from)·f` and its rotation the rest pose's, the same to the bit as
+/// [`crate::drt::motionblur`] makes them for any finite f (the identity's
+/// product with the rest rotation, and its transpose, made once). The
+/// port's: the listing turned and moved every object for every ray.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Glide {
+    from: DVec3,
+    /// `to − from`, as `path_point` takes it.
+    delta: DVec3,
+    law: Law,
+    r: DMat3,
+    rt: DMat3,
+}
+
+impl Glide {
+    /// How far along the path a time is (its LAW).
+    pub fn law(&self) -> Law {
+        self.law
+    }
+
+    /// Where its origin (`sphereo`) stands at the fraction `f` of the way.
+    #[inline(always)]
+    pub fn centre(&self, f: f64) -> DVec3 {
+        self.from + self.delta * f
+    }
+
+    /// Its pose at the fraction `f` of the way (finite), written over
+    /// `pose`: [`Moving::pose_into`]'s, to the bit.
+    #[inline(always)]
+    pub fn pose_into(&self, f: f64, pose: &mut Pose) {
+        pose.place(&self.r, &self.rt, self.centre(f));
+    }
+}
+
+/// Each moving object's [`Glide`], if it glides ([`Moving::glide`]), by
+/// its index among the moving objects, and the laws they follow.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Glides {
+    pub each: Vec<Option<Glide>>,
+    /// Bit l set for each LAW l some glide follows (`Law as u8`).
+    pub laws: u8,
+}
+
+impl Glides {
+    /// The glides of `moving`, which moves `objects` (at rest).
+    pub fn of(moving: &[Moving], objects: &[ObjectRecord], fidelity: Fidelity) -> Glides {
+        let each: Vec<Option<Glide>> = moving.iter().map(|m| m.glide(&objects[m.object], fidelity)).collect();
+        let laws = each.iter().flatten().fold(0, |b, g| b | 1 << g.law as u8);
+        Glides { each, laws }
     }
 }
 

@@ -465,11 +465,19 @@ impl Pose {
         // so R is transfm without its translation, and the new pair is
         // T(sphereo)·R′ and R′ᵀ·T(−sphereo) with R′ = turn·R.
         let r = turn * DMat3::from_mat4(*transfm);
-        let rt = r.transpose();
-        self.transfm = DMat4::from_mat3(r);
+        self.place(&r, &r.transpose(), sphereo);
+    }
+
+    /// This pose made the rigid pose of rotation `r` (`rt` its transpose)
+    /// about the origin moved to `sphereo`: T(sphereo)·r and
+    /// rᵀ·T(−sphereo), as [`Pose::turn_from`] makes them, for a motion
+    /// whose rotation is the same at every time (`crate::motion::Glide`).
+    #[inline(always)]
+    pub fn place(&mut self, r: &DMat3, rt: &DMat3, sphereo: Points) {
+        self.transfm = DMat4::from_mat3(*r);
         self.transfm.w_axis = sphereo.extend(1.0);
-        self.inverse = DMat4::from_mat3(rt);
-        self.inverse.w_axis = (-(rt * sphereo)).extend(1.0);
+        self.inverse = DMat4::from_mat3(*rt);
+        self.inverse.w_axis = (-(*rt * sphereo)).extend(1.0);
         self.sphereo = sphereo;
     }
 }

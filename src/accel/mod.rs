@@ -192,6 +192,7 @@ impl Structure {
 
     /// The time segment of film time `time` ([`Segments::of`]), which a
     /// walk of a ray at that time is given.
+    #[inline]
     pub fn segment(&self, time: f64) -> usize {
         match self {
             Structure::Bvh(h) => h.segment(time),

@@ -66,9 +66,9 @@ impl Segments {
         if n == 1 {
             return 0;
         }
-        // `as usize` saturates: a time before t0, or NaN, gives 0.
-        let mut k = ((time - self.ends[0]) * self.per_time) as usize;
-        k = k.min(n - 1);
+        // `as u32` saturates: a time before t0, or NaN, gives 0 (and it
+        // costs less than `as usize`, whose range a double exceeds).
+        let mut k = (((time - self.ends[0]) * self.per_time) as u32 as usize).min(n - 1);
         if k > 0 && time < self.ends[k] {
             k -= 1;
         } else if k + 1 < n && time > self.ends[k + 1] {
@@ -231,6 +231,7 @@ impl Hierarchy {
     }
 
     /// The time segment of `time` ([`Segments::of`]).
+    #[inline]
     pub fn segment(&self, time: f64) -> usize {
         self.segments.of(time)
     }

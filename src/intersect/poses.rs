@@ -4,7 +4,9 @@
 
 use std::cell::{Cell, Ref, RefCell};
 
-use crate::motion::Moving;
+use crate::drt::LAW;
+use crate::motion::{Glide, Glides, Moving};
+use crate::scene::Law;
 use crate::types::{DVec3, ObjectRecord, Pose};
 
 /// Where each object stands at one instant: an object at rest where the
@@ -16,16 +18,103 @@ use crate::types::{DVec3, ObjectRecord, Pose};
 /// `Poses::centre`), and those no ray comes near cost nothing.
 #[derive(Debug)]
 pub struct Poses<'a> {
-    objects: &'a [ObjectRecord],
     /// Every object at rest, shared by the workers.
     pub(super) rest: &'a [Pose],
-    moving: &'a [Moving],
     /// For each object, its index in `moving` if it moves.
     moving_of: &'a [Option<usize>],
-    fidelity: crate::options::Fidelity,
+    movers: Movers<'a>,
     /// The instant; `None` (every object at rest) before the first.
     time: Option<f64>,
     now: Now,
+}
+
+/// The moving objects and how each is posed at the instant.
+#[derive(Debug)]
+struct Movers<'a> {
+    objects: &'a [ObjectRecord],
+    moving: &'a [Moving],
+    /// For each moving object, its [`Glide`] if it glides (none given:
+    /// each is posed by its motion).
+    glides: &'a [Option<Glide>],
+    /// Bit l set for each LAW l some glide follows.
+    laws: u8,
+    /// LAW(l, 1, t) of the instant's t, for each law of `laws`: the
+    /// fraction of the way every glide of that law has come, found once
+    /// an instant.
+    along: [f64; 4],
+    fidelity: crate::options::Fidelity,
+}
+
+/// The laws, in the order of their bits in [`Movers::laws`].
+const LAWS: [Law; 4] = [Law::Constant, Law::Accelerate, Law::Decelerate, Law::Smooth];
+
+impl Movers<'_> {
+    /// The instant's fractions of the way, for time `time`.
+    #[inline(always)]
+    fn at(&mut self, time: f64) {
+        if self.laws & 1 != 0 {
+            self.along[0] = LAW(Law::Constant, 1.0, time);
+        }
+        if self.laws & !1 != 0 {
+            self.at_other_laws(time);
+        }
+    }
+
+    /// [`Movers::at`] for the laws but the first: apart, so that their
+    /// sines and cosines are not computed where no glide follows them.
+    #[inline(never)]
+    fn at_other_laws(&mut self, time: f64) {
+        for (l, law) in LAWS.into_iter().enumerate().skip(1) {
+            if self.laws & (1 << l) != 0 {
+                self.along[l] = LAW(law, 1.0, time);
+            }
+        }
+    }
+
+    /// Moving object `m`'s glide and the fraction of its way at the
+    /// instant, if it glides and the fraction is finite.
+    #[inline(always)]
+    fn glide(&self, m: usize) -> Option<(&Glide, f64)> {
+        let g = self.glides.get(m)?.as_ref()?;
+        let f = self.along[g.law() as usize];
+        f.is_finite().then_some((g, f))
+    }
+
+    /// Every moving object's pose at `time`, the instant, in its place
+    /// among `slots` (found from the time's bits: [`Now::All`]) unless it
+    /// holds them already; returns the place. Apart from [`Poses::at`],
+    /// so that a structure's instant, which poses nothing, costs little.
+    #[inline(never)]
+    fn pose_all(&self, slots: &mut [(Option<u64>, Vec<Pose>)], time: f64) -> usize {
+        let bits = time.to_bits();
+        // A multiplicative hash's top bits: the times of a table land in
+        // different places.
+        let k = match slots.len() {
+            1 => 0,
+            n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
+        };
+        let (at, all) = &mut slots[k];
+        if *at != Some(bits) {
+            for (m, moving) in self.moving.iter().enumerate() {
+                self.pose_into(m, time, &mut all[moving.object]);
+            }
+            *at = Some(bits);
+        }
+        k
+    }
+
+    /// Moving object `m`'s pose at `time`, the instant, written over
+    /// `pose`.
+    #[inline(always)]
+    fn pose_into(&self, m: usize, time: f64, pose: &mut Pose) {
+        match self.glide(m) {
+            Some((g, f)) => g.pose_into(f, pose),
+            None => {
+                let moving = &self.moving[m];
+                moving.pose_into(&self.objects[moving.object], time, self.fidelity, pose);
+            }
+        }
+    }
 }
 
 /// The poses of the instant, as [`Poses`] keeps them.
@@ -118,38 +207,37 @@ impl<'a> Poses<'a> {
             }
         };
         Poses {
-            objects,
             rest,
-            moving,
             moving_of,
-            fidelity,
+            movers: Movers {
+                objects,
+                moving,
+                glides: &[],
+                laws: 0,
+                along: [0.0; 4],
+                fidelity,
+            },
             time: None,
             now,
         }
+    }
+
+    /// These poses with the moving objects' glides, `glides.each[k]` for
+    /// `moving[k]` ([`Moving::glide`]): a glide is posed from what was
+    /// made ready for it, to the same bits.
+    pub fn gliding(mut self, glides: &'a Glides) -> Poses<'a> {
+        self.movers.glides = &glides.each;
+        self.movers.laws = glides.laws;
+        self
     }
 
     /// A new instant, film time `time`: every moving object's pose is due.
     #[inline]
     pub fn at(&mut self, time: f64) {
         self.time = Some(time);
+        self.movers.at(time);
         match &mut self.now {
-            Now::All { slots, current } => {
-                let bits = time.to_bits();
-                // A multiplicative hash's top bits: the times of a table
-                // land in different places.
-                let k = match slots.len() {
-                    1 => 0,
-                    n => (bits.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - n.trailing_zeros())) as usize,
-                };
-                *current = k;
-                let (at, all) = &mut slots[k];
-                if *at != Some(bits) {
-                    for m in self.moving {
-                        m.pose_into(&self.objects[m.object], time, self.fidelity, &mut all[m.object]);
-                    }
-                    *at = Some(bits);
-                }
-            }
+            Now::All { slots, current } => *current = self.movers.pose_all(slots, time),
             Now::Lazy { instant, made, .. } => {
                 *instant += 1;
                 made.set(0);
@@ -194,13 +282,17 @@ impl<'a> Poses<'a> {
             posed, slot, instant, ..
         } = &self.now
         {
+            // A glide's origin costs less than looking for its pose.
+            if let Some((g, f)) = self.movers.glide(m) {
+                return g.centre(f);
+            }
             let (when, k) = slot[m].get();
             if when == *instant {
                 return posed.borrow()[k as usize].sphereo;
             }
         }
-        let moving = &self.moving[m];
-        moving.centre(&self.objects[moving.object], time, self.fidelity)
+        let moving = &self.movers.moving[m];
+        moving.centre(&self.movers.objects[moving.object], time, self.movers.fidelity)
     }
 
     /// Moving object `m`'s pose at `time`, the instant, posed on first use
@@ -227,8 +319,7 @@ impl<'a> Poses<'a> {
             if k as usize == list.len() {
                 list.push(Pose::IDENTITY);
             }
-            let moving = &self.moving[m];
-            moving.pose_into(&self.objects[moving.object], time, self.fidelity, &mut list[k as usize]);
+            self.movers.pose_into(m, time, &mut list[k as usize]);
             slot[m].set((*instant, k));
         }
         Ref::map(posed.borrow(), |list| &list[k as usize])

@@ -7,7 +7,7 @@ use super::{Camera, RenderError};
 use crate::accel::{Accel, Structure};
 use crate::drt::TimeTable;
 use crate::intersect::{rest_poses, Aggregate, Deforming, Poses};
-use crate::motion::{object_bounds, paths, Motion, Moving};
+use crate::motion::{object_bounds, paths, Glides, Motion, Moving};
 use crate::options::{Fidelity, Options, TimeSampler};
 use crate::paper::{PaperChain, PointChain};
 use crate::sampler::Tables;
@@ -34,6 +34,10 @@ pub struct Prepared {
     deforming_of: Vec<Option<usize>>,
     /// For each object, its index in `moving` if it moves.
     moving_of: Vec<Option<usize>>,
+    /// For each of `moving`, its glide if it glides ([`Moving::glide`]).
+    glides: Glides,
+    /// Where the key-frame chains start in `moving` (after the paths).
+    first_chain: usize,
     /// Every object at rest.
     rest: Vec<Pose>,
     /// What `shapes` prepared for each object's own shape.
@@ -116,6 +120,8 @@ impl Prepared {
         for (k, m) in moving.iter().enumerate() {
             moving_of[m.object] = Some(k);
         }
+        let glides = Glides::of(&moving, &scene.objects, opts.fidelity);
+        let first_chain = moving.iter().take_while(|m| m.key_chain().is_none()).count();
         let span = film_span(&scene, &tables.times);
         let structure = match accel.resolve(scene.objects.len()) {
             Accel::None => None,
@@ -133,6 +139,8 @@ impl Prepared {
             moving,
             deforming_of,
             moving_of,
+            glides,
+            first_chain,
             caches,
             span,
             repeats,
@@ -200,11 +208,14 @@ impl Prepared {
             eager,
             self.repeats,
         )
+        .gliding(&self.glides)
     }
 
     /// A worker's scratch for the deforming objects' contours, one a chain.
     pub fn deforming(&self) -> Vec<Deforming<'_>> {
-        self.moving
+        // (The chains follow the paths: a row's worker need not look at
+        // every path.)
+        self.moving[self.first_chain..]
             .iter()
             .filter_map(|m| m.key_chain().map(|chain| Deforming::new(m.object, chain)))
             .collect()
