@@ -464,10 +464,12 @@ fn blockers_in(
         return ControlFlow::Continue(());
     }
     // Any opaque object stops the ray, whichever is found first (the last
-    // one that stopped a shadow ray is asked first); the crystals it
-    // passes are taken in the table's order.
+    // one that stopped a shadow ray is asked first, and not again in the
+    // walk when it does not); the crystals it passes are taken in the
+    // table's order.
     let last = &snap.scratch.blocker;
-    if last.get().is_some_and(&mut blocks) {
+    let asked = last.get();
+    if asked.is_some_and(&mut blocks) {
         return ControlFlow::Break(());
     }
     let mut crystals = snap.scratch.crystals.borrow_mut();
@@ -486,7 +488,7 @@ fn blockers_in(
                 }
                 ControlFlow::Continue(tmax)
             }
-            Shadow::Opaque if blocks(i) => {
+            Shadow::Opaque if Some(i) != asked && blocks(i) => {
                 last.set(Some(i));
                 ControlFlow::Break(())
             }

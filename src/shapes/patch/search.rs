@@ -261,16 +261,13 @@ pub(super) struct Net {
 
 impl Net {
     fn of(frame: &Frame, piece: &Piece) -> Net {
-        let mut net = Net {
-            xy: [DVec2::ZERO; 16],
-            t: [0.0; 16],
-        };
-        for (k, p) in piece.net.iter().enumerate() {
-            let q = frame.of(*p);
-            net.xy[k] = q.truncate();
-            net.t[k] = q.z;
+        // Made whole, not zeroed and then written (a call to `memset` for
+        // each piece a ray reaches).
+        let q = piece.net.map(|p| frame.of(p));
+        Net {
+            xy: q.map(DVec3::truncate),
+            t: q.map(|q| q.z),
         }
-        net
     }
 }
 
