@@ -29,17 +29,25 @@ pub(super) fn render_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Intensity::ZERO; w * rows.len()];
-    let stats = by_rows(&mut pixels, w, rows, |out, row| {
-        let mut virtual_rows = vec![Intensity::ZERO; m * w];
-        let stats = scan_row(prepared, kind, frame, row, |tracer, aray, sampler, sub, scancol| {
+    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, out, row| {
+        // Each pixel's sum over its m subpixel columns of one scanline,
+        // the scanlines in turn: the sums `antialias` reads, each taken
+        // whole from the pixel's consecutive columns.
+        let mut virtual_rows = Vec::with_capacity(m * w);
+        let (mut sum, mut left) = (Intensity::ZERO, m);
+        scan_row(prepared, tracer, kind, frame, row, |tracer, aray, sampler, scancol| {
             let acolor = tracer.shoot(aray, sampler);
             if scancol >= 1 {
-                virtual_rows[sub * w + (scancol - 1) / m] += acolor;
+                sum += acolor;
+                left -= 1;
+                if left == 0 {
+                    virtual_rows.push(sum);
+                    (sum, left) = (Intensity::ZERO, m);
+                }
             }
         });
         antialias(&virtual_rows, m, out);
         progress();
-        stats
     });
     Traced {
         counts: vec![(m * m) as u32; pixels.len()],
@@ -62,8 +70,8 @@ pub(super) fn gather_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Gathered::default(); w * rows.len()];
-    let stats = by_rows(&mut pixels, w, rows, |out, row| {
-        let stats = scan_row(prepared, kind, frame, row, |tracer, aray, sampler, _, scancol| {
+    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, out, row| {
+        scan_row(prepared, tracer, kind, frame, row, |tracer, aray, sampler, scancol| {
             let (colour, features) = tracer.shoot_features(aray, sampler);
             if scancol >= 1 {
                 out[(scancol - 1) / m].add(colour, &features);
@@ -72,23 +80,31 @@ pub(super) fn gather_grid(
         if told.contains(&row) {
             progress();
         }
-        stats
     });
     (pixels, stats)
 }
 
 /// `row` for each row of `rows` (its `width` pixels in `pixels`, which
-/// holds the rows in order), the rows in parallel; their counts summed.
+/// holds the rows in order), the rows in parallel, each worker tracing
+/// its rows with one [`Tracer`] (the poses it keeps are the instants',
+/// whichever row asks); the rows' counts summed.
 fn by_rows<T: Send>(
+    prepared: &Prepared,
     pixels: &mut [T],
     width: usize,
     rows: Range<usize>,
-    row: impl Fn(&mut [T], usize) -> TraceStats + Sync,
+    row: impl Fn(&mut Tracer, &mut [T], usize) + Sync,
 ) -> TraceStats {
     let per_row: Vec<TraceStats> = pixels
         .par_chunks_mut(width)
         .zip(rows)
-        .map(|(out, r)| row(out, r))
+        .map_init(
+            || Tracer::new(prepared),
+            |tracer, (out, r)| {
+                row(tracer, out, r);
+                std::mem::take(&mut tracer.stats)
+            },
+        )
         .collect();
     let mut stats = TraceStats::default();
     for s in per_row {
@@ -97,11 +113,11 @@ fn by_rows<T: Send>(
     stats
 }
 
-/// Traces the subpixels of row `row` of final pixels, laid by the grid
-/// sampler `kind`, in the listing's order (its `masksize` scanlines, each from the first column), posing
+/// Traces the subpixels of row `row` of final pixels with `tracer` (its
+/// counts added to), laid by the grid sampler `kind`, in the listing's
+/// order (its `masksize` scanlines, each from the first column), posing
 /// the scene at each one's time: `shoot` traces each primary ray, given
-/// the subpixel's scanline within the row and its column (0: erratum
-/// 13's extra one). The row's counts.
+/// the subpixel's column (0: erratum 13's extra one).
 ///
 /// Erratum 13: the listing's column loop runs `for scancol := quickx to
 /// quickx2` with `quickx = 0`, tracing one column more than the raster
@@ -109,11 +125,12 @@ fn by_rows<T: Send>(
 /// `thesis` fidelity starts at 1.
 fn scan_row(
     prepared: &Prepared,
+    tracer: &mut Tracer,
     kind: GridKind,
     frame: Frame,
     row: usize,
-    mut shoot: impl FnMut(&mut Tracer, &Ray, &mut GridSampler, usize, usize),
-) -> TraceStats {
+    mut shoot: impl FnMut(&mut Tracer, &Ray, &mut GridSampler, usize),
+) {
     let opts = prepared.options();
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
@@ -123,7 +140,6 @@ fn scan_row(
         Fidelity::Thesis => 1,
     };
     let timed = prepared.timed();
-    let mut tracer = Tracer::new(prepared);
     let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
     sampler.start_row(row);
     for sub in 0..m {
@@ -135,10 +151,9 @@ fn scan_row(
             if timed {
                 tracer.at(frame.time(sampler.time()));
             }
-            shoot(&mut tracer, &aray, &mut sampler, sub, scancol);
+            shoot(tracer, &aray, &mut sampler, scancol);
         }
     }
-    tracer.stats
 }
 
 /// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the
