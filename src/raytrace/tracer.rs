@@ -43,7 +43,7 @@ impl<'p> Tracer<'p> {
     /// rest pose at no cost. The structure over the objects bounds every
     /// time a sample of the render can have ([`Prepared::time_span`]);
     /// the instant's segment of it is found here, once.
-    #[inline]
+    #[inline(always)]
     pub(super) fn at(&mut self, time: f64) {
         self.poses.at(time);
         for d in &self.deforming {
