@@ -7,7 +7,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
-use super::tracer::Tracer;
+use super::tracer::{Instant, Tracer};
 use super::{Prepared, Traced};
 use crate::film::Frame;
 use crate::options::Fidelity;
@@ -29,14 +29,14 @@ pub(super) fn render_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Intensity::ZERO; w * rows.len()];
-    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, out, row| {
+    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, line, out, row| {
         // Each pixel's sum over its m subpixel columns of one scanline,
         // the scanlines in turn: the sums `antialias` reads, each taken
         // whole from the pixel's consecutive columns.
         let mut virtual_rows = Vec::with_capacity(m * w);
         let (mut sum, mut left) = (Intensity::ZERO, m);
-        scan_row(prepared, tracer, kind, frame, row, |tracer, aray, sampler, scancol| {
-            let acolor = tracer.shoot(aray, sampler);
+        let shoot = |instant: &mut Instant, aray: &Ray, sampler: &mut GridSampler| instant.shoot(aray, sampler);
+        scan_row(prepared, tracer, line, kind, frame, row, shoot, |scancol, acolor| {
             if scancol >= 1 {
                 sum += acolor;
                 left -= 1;
@@ -70,13 +70,23 @@ pub(super) fn gather_grid(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let mut pixels = vec![Gathered::default(); w * rows.len()];
-    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, out, row| {
-        scan_row(prepared, tracer, kind, frame, row, |tracer, aray, sampler, scancol| {
-            let (colour, features) = tracer.shoot_features(aray, sampler);
-            if scancol >= 1 {
-                out[(scancol - 1) / m].add(colour, &features);
-            }
-        });
+    let stats = by_rows(prepared, &mut pixels, w, rows, |tracer, line, out, row| {
+        let shoot =
+            |instant: &mut Instant, aray: &Ray, sampler: &mut GridSampler| instant.shoot_features(aray, sampler);
+        scan_row(
+            prepared,
+            tracer,
+            line,
+            kind,
+            frame,
+            row,
+            shoot,
+            |scancol, (colour, features)| {
+                if scancol >= 1 {
+                    out[(scancol - 1) / m].add(colour, &features);
+                }
+            },
+        );
         if told.contains(&row) {
             progress();
         }
@@ -87,21 +97,22 @@ pub(super) fn gather_grid(
 /// `row` for each row of `rows` (its `width` pixels in `pixels`, which
 /// holds the rows in order), the rows in parallel, each worker tracing
 /// its rows with one [`Tracer`] (the poses it keeps are the instants',
-/// whichever row asks); the rows' counts summed.
-fn by_rows<T: Send>(
+/// whichever row asks) and one line of samples ([`scan_row`]); the rows'
+/// counts summed.
+fn by_rows<T: Send, S: Send>(
     prepared: &Prepared,
     pixels: &mut [T],
     width: usize,
     rows: Range<usize>,
-    row: impl Fn(&mut Tracer, &mut [T], usize) + Sync,
+    row: impl Fn(&mut Tracer, &mut Vec<S>, &mut [T], usize) + Sync,
 ) -> TraceStats {
     let per_row: Vec<TraceStats> = pixels
         .par_chunks_mut(width)
         .zip(rows)
         .map_init(
-            || Tracer::new(prepared),
-            |tracer, (out, r)| {
-                row(tracer, out, r);
+            || (Tracer::new(prepared), Vec::new()),
+            |(tracer, line), (out, r)| {
+                row(tracer, line, out, r);
                 std::mem::take(&mut tracer.stats)
             },
         )
@@ -114,22 +125,36 @@ fn by_rows<T: Send>(
 }
 
 /// Traces the subpixels of row `row` of final pixels with `tracer` (its
-/// counts added to), laid by the grid sampler `kind`, in the listing's
-/// order (its `masksize` scanlines, each from the first column), posing
-/// the scene at each one's time: `shoot` traces each primary ray, given
-/// the subpixel's column (0: erratum 13's extra one).
+/// counts added to), laid by the grid sampler `kind`, posing the scene
+/// at each one's time: `shoot` traces each primary ray, and `take` is
+/// given its sample in the listing's order (the row's `masksize`
+/// scanlines, each from the first column), with the subpixel's column
+/// (0: erratum 13's extra one).
+///
+/// A scanline's subpixels are traced in the listing's order, each at its
+/// own instant, but where they share few instants: with nothing that
+/// moves, all at one; with the table's times repeating
+/// ([`Prepared::repeats`]: `blur 0`, or the listing, erratum 2), a
+/// subpixel's time is the table's at its column mod `masksize`, so the
+/// scene is posed `masksize` times a scanline, and each instant's
+/// subpixels are traced in turn, their samples kept in `line` and taken
+/// in the listing's order (a sample depends on its subpixel alone, never
+/// on the order they are traced in).
 ///
 /// Erratum 13: the listing's column loop runs `for scancol := quickx to
 /// quickx2` with `quickx = 0`, tracing one column more than the raster
 /// has; `listing` fidelity traces it (and `antialias` never reads it),
 /// `thesis` fidelity starts at 1.
-fn scan_row(
+#[allow(clippy::too_many_arguments)]
+fn scan_row<S: Copy + Default>(
     prepared: &Prepared,
     tracer: &mut Tracer,
+    line: &mut Vec<S>,
     kind: GridKind,
     frame: Frame,
     row: usize,
-    mut shoot: impl FnMut(&mut Tracer, &Ray, &mut GridSampler, usize),
+    mut shoot: impl FnMut(&mut Instant, &Ray, &mut GridSampler) -> S,
+    mut take: impl FnMut(usize, S),
 ) {
     let opts = prepared.options();
     let img = &prepared.scene().image;
@@ -139,19 +164,48 @@ fn scan_row(
         Fidelity::Listing => 0,
         Fidelity::Thesis => 1,
     };
+    let last_col = w * m;
     let timed = prepared.timed();
+    // The instants a scanline's subpixels share, if few.
+    let instants = if !timed {
+        Some(1)
+    } else if kind == GridKind::Table && prepared.repeats() {
+        Some(m)
+    } else {
+        None
+    };
     let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
     sampler.start_row(row);
+    let ray = |sampler: &mut GridSampler, scanline: usize, scancol: usize| {
+        sampler.start(scanline, scancol);
+        camera.ray_of(sampler.camera(), sampler)
+    };
     for sub in 0..m {
         let scanline = row * m + sub + 1;
-        for scancol in first_col..=w * m {
-            sampler.start(scanline, scancol);
-            let c = sampler.camera();
-            let aray = camera.ray_of(c, &mut sampler);
+        let Some(n) = instants else {
+            for scancol in first_col..=last_col {
+                let aray = ray(&mut sampler, scanline, scancol);
+                tracer.at(frame.time(sampler.time()));
+                take(scancol, shoot(&mut tracer.instant(), &aray, &mut sampler));
+            }
+            continue;
+        };
+        line.resize(last_col + 1 - first_col, S::default());
+        // The columns of each instant: first_col + i, first_col + i + n, …
+        for i in 0..n {
+            let first = first_col + i;
             if timed {
+                sampler.start(scanline, first);
                 tracer.at(frame.time(sampler.time()));
             }
-            shoot(tracer, &aray, &mut sampler, scancol);
+            let mut instant = tracer.instant();
+            for scancol in (first..=last_col).step_by(n) {
+                let aray = ray(&mut sampler, scanline, scancol);
+                line[scancol - first_col] = shoot(&mut instant, &aray, &mut sampler);
+            }
+        }
+        for (scancol, &sample) in (first_col..).zip(line.iter()) {
+            take(scancol, sample);
         }
     }
 }
