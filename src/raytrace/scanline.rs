@@ -8,7 +8,7 @@ use std::ops::Range;
 use rayon::prelude::*;
 
 use super::tracer::{Instant, Tracer};
-use super::{Prepared, Traced};
+use super::{Camera, Prepared, Traced};
 use crate::film::Frame;
 use crate::options::Fidelity;
 use crate::reconstruct::Gathered;
@@ -176,15 +176,11 @@ fn scan_row<S: Copy + Default>(
     };
     let mut sampler = GridSampler::new(prepared.tables(), kind, opts.fidelity, w, m, img.aliasing);
     sampler.start_row(row);
-    let ray = |sampler: &mut GridSampler, scanline: usize, scancol: usize| {
-        sampler.start(scanline, scancol);
-        camera.ray_of(sampler.camera(), sampler)
-    };
     for sub in 0..m {
         let scanline = row * m + sub + 1;
         let Some(n) = instants else {
             for scancol in first_col..=last_col {
-                let aray = ray(&mut sampler, scanline, scancol);
+                let aray = primary_ray(camera, &mut sampler, scanline, scancol);
                 tracer.at(frame.time(sampler.time()));
                 take(scancol, shoot(&mut tracer.instant(), &aray, &mut sampler));
             }
@@ -200,7 +196,7 @@ fn scan_row<S: Copy + Default>(
             }
             let mut instant = tracer.instant();
             for scancol in (first..=last_col).step_by(n) {
-                let aray = ray(&mut sampler, scanline, scancol);
+                let aray = primary_ray(camera, &mut sampler, scanline, scancol);
                 line[scancol - first_col] = shoot(&mut instant, &aray, &mut sampler);
             }
         }
@@ -208,6 +204,14 @@ fn scan_row<S: Copy + Default>(
             take(scancol, sample);
         }
     }
+}
+
+/// The primary ray of subpixel (`scanline`, `scancol`), its sample
+/// started in `sampler`.
+#[inline(always)]
+fn primary_ray(camera: &Camera, sampler: &mut GridSampler, scanline: usize, scancol: usize) -> Ray {
+    sampler.start(scanline, scancol);
+    camera.ray_of(sampler.camera(), sampler)
 }
 
 /// `antialias(1, i4, acthighx, i4)`: one row of final pixels from the
