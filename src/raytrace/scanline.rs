@@ -215,3 +215,89 @@ fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
         *px = total / (m * m) as f64;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::options::{Options, TimeSampler};
+    use crate::sampler::Layout;
+    use std::path::Path;
+
+    /// A ball on a path over a checker floor, `blur N`.
+    fn prepared(blur: u32, fidelity: Fidelity, sampler: TimeSampler) -> Prepared {
+        let deck = format!(
+            "view eye 0 -12 5 look 0 0 0.5 screen 5 distance 5
+             image 9 7 mask 3
+             light sun 5 -8 12 1 1 1
+             surface f opaque color 0.3 0.3 0.35 ka 0.2 kd 0.8 ks 0 kt 0
+             paint f floor scale 1 1 color 0.85 0.85 0.8
+             surface red opaque color 0.9 0.15 0.1 ka 0.15 kd 0.8 ks 0 kt 0
+             block floor f at 0 0 -0.5 size 40 40 1
+             sphere ball red at -3.5 0 0.7 radius 2.5
+             motion ball to 3.5 0 0.7 via -1.5 -3 3.5 1.5 3 3.5
+             blur {blur}"
+        );
+        let opts = Options {
+            fidelity,
+            sampler,
+            ..Options::default()
+        };
+        let scene = crate::initialize(&deck, "ball.deck", Path::new(""), fidelity).unwrap();
+        Prepared::new(scene, opts).unwrap()
+    }
+
+    /// The listing's loop: every subpixel in turn at its own instant, the
+    /// scanline's sums and `antialias` as the listing takes them.
+    fn one_by_one(prepared: &Prepared, kind: GridKind) -> Vec<Intensity> {
+        let img = &prepared.scene().image;
+        let (w, m) = (img.width, img.masksize);
+        let first_col = match prepared.options().fidelity {
+            Fidelity::Listing => 0,
+            Fidelity::Thesis => 1,
+        };
+        let mut tracer = Tracer::new(prepared);
+        let mut pixels = Vec::new();
+        for row in 0..img.height {
+            let mut sampler = GridSampler::new(prepared.tables(), kind, prepared.options().fidelity, w, m, img.aliasing);
+            sampler.start_row(row);
+            let mut virtual_rows = vec![Intensity::ZERO; m * w];
+            for sub in 0..m {
+                for scancol in first_col..=w * m {
+                    let aray = primary_ray(prepared.camera(), &mut sampler, row * m + sub + 1, scancol);
+                    tracer.at(Frame::STILL.time(sampler.time()));
+                    let acolor = tracer.shoot(&aray, &mut sampler);
+                    if scancol >= 1 {
+                        virtual_rows[sub * w + (scancol - 1) / m] += acolor;
+                    }
+                }
+            }
+            let mut out = vec![Intensity::ZERO; w];
+            antialias(&virtual_rows, m, &mut out);
+            pixels.extend(out);
+        }
+        pixels
+    }
+
+    /// Tracing a scanline's subpixels by their instants (the table's
+    /// times repeating: `blur 0`, or the listing) or one by one gives
+    /// each pixel the bits the listing's order gives, and with the times
+    /// jittered (`blur 3`) and another sampler too.
+    #[test]
+    fn subpixels_taken_by_instant_as_one_by_one() {
+        let cases = [
+            (0, Fidelity::Thesis, TimeSampler::Table, true),
+            (3, Fidelity::Listing, TimeSampler::Table, true),
+            (3, Fidelity::Thesis, TimeSampler::Table, false),
+            (0, Fidelity::Thesis, TimeSampler::Stratified, false),
+        ];
+        for (blur, fidelity, sampler, repeats) in cases {
+            let p = prepared(blur, fidelity, sampler);
+            assert_eq!(p.repeats(), repeats, "{blur} {fidelity:?} {sampler:?}");
+            let Layout::Grid(kind) = Layout::of(sampler) else { unreachable!() };
+            let traced = render_grid(&p, kind, Frame::STILL, 0..p.scene().image.height, &|| {});
+            let want = one_by_one(&p, kind);
+            let bits = |v: &[Intensity]| v.iter().flat_map(|c| c.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(bits(&traced.colours), bits(&want), "{blur} {fidelity:?} {sampler:?}");
+        }
+    }
+}
