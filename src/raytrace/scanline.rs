@@ -128,10 +128,7 @@ fn by_rows<T: Send, S: Send>(
 /// subpixel alone, never on the order they are traced in, and `take`
 /// sees them in the listing's order.
 ///
-/// Erratum 13: the listing's column loop runs `for scancol := quickx to
-/// quickx2` with `quickx = 0`, tracing one column more than the raster
-/// has; `listing` fidelity traces it (and `antialias` never reads it),
-/// `thesis` fidelity starts at 1.
+/// The column loop starts at [`first_column`].
 #[allow(clippy::too_many_arguments)]
 fn scan_row<S: Copy + Default>(
     prepared: &Prepared,
@@ -147,10 +144,7 @@ fn scan_row<S: Copy + Default>(
     let img = &prepared.scene().image;
     let (w, m) = (img.width, img.masksize);
     let camera = prepared.camera();
-    let first_col = match opts.fidelity {
-        Fidelity::Listing => 0,
-        Fidelity::Thesis => 1,
-    };
+    let first_col = first_column(opts.fidelity);
     let last_col = w * m;
     let timed = prepared.timed();
     // The instants a scanline's subpixels share, if few.
@@ -192,6 +186,19 @@ fn scan_row<S: Copy + Default>(
             }
         }
         take(&line[1 - first_col..]);
+    }
+}
+
+/// The first subpixel column the scanline loop traces.
+///
+/// Erratum 13: the listing's column loop runs `for scancol := quickx to
+/// quickx2` with `quickx = 0`, tracing one column more than the raster
+/// has; `listing` fidelity traces it (and `antialias` never reads it),
+/// `thesis` fidelity starts at 1.
+fn first_column(fidelity: Fidelity) -> usize {
+    match fidelity {
+        Fidelity::Listing => 0,
+        Fidelity::Thesis => 1,
     }
 }
 
@@ -242,7 +249,7 @@ mod tests {
             sampler,
             ..Options::default()
         };
-        let scene = crate::initialize(&deck, "ball.deck", Path::new(""), fidelity).unwrap();
+        let scene = crate::deck::initialize(&deck, "ball.deck", Path::new(""), fidelity).unwrap();
         Prepared::new(scene, opts).unwrap()
     }
 
@@ -251,14 +258,12 @@ mod tests {
     fn one_by_one(prepared: &Prepared, kind: GridKind) -> Vec<Intensity> {
         let img = &prepared.scene().image;
         let (w, m) = (img.width, img.masksize);
-        let first_col = match prepared.options().fidelity {
-            Fidelity::Listing => 0,
-            Fidelity::Thesis => 1,
-        };
+        let first_col = first_column(prepared.options().fidelity);
         let mut tracer = Tracer::new(prepared);
         let mut pixels = Vec::new();
         for row in 0..img.height {
-            let mut sampler = GridSampler::new(prepared.tables(), kind, prepared.options().fidelity, w, m, img.aliasing);
+            let mut sampler =
+                GridSampler::new(prepared.tables(), kind, prepared.options().fidelity, w, m, img.aliasing);
             sampler.start_row(row);
             let mut virtual_rows = vec![Intensity::ZERO; m * w];
             for sub in 0..m {
@@ -293,10 +298,16 @@ mod tests {
         for (blur, fidelity, sampler, repeats) in cases {
             let p = prepared(blur, fidelity, sampler);
             assert_eq!(p.repeats(), repeats, "{blur} {fidelity:?} {sampler:?}");
-            let Layout::Grid(kind) = Layout::of(sampler) else { unreachable!() };
+            let Layout::Grid(kind) = Layout::of(sampler) else {
+                unreachable!()
+            };
             let traced = render_grid(&p, kind, Frame::STILL, 0..p.scene().image.height, &|| {});
             let want = one_by_one(&p, kind);
-            let bits = |v: &[Intensity]| v.iter().flat_map(|c| c.to_array().map(f64::to_bits)).collect::<Vec<_>>();
+            let bits = |v: &[Intensity]| {
+                v.iter()
+                    .flat_map(|c| c.to_array().map(f64::to_bits))
+                    .collect::<Vec<_>>()
+            };
             assert_eq!(bits(&traced.colours), bits(&want), "{blur} {fidelity:?} {sampler:?}");
         }
     }
