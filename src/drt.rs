@@ -252,6 +252,7 @@ impl TimeTable {
     /// The time of subpixel (`scanline`, `scancol`), 1-based, the `k`-th
     /// subpixel of the scan order (0-based): the first lines of
     /// `motionblur`. Errata 1 and 2.
+    #[inline]
     pub fn time(&self, scanline: usize, scancol: usize, k: usize) -> f64 {
         match self.fidelity {
             // Erratum 2, listing: `col := (scanline mod masksize)+1;

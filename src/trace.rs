@@ -109,7 +109,6 @@ fn record_of(snap: &Snapshot, object: usize, ray: &Ray, hit: &LocalHit) -> Inter
         insidep: point - normal * fudge,
         surface: obj.surface,
         parameter: hit.t,
-        distance: hit.t * ray.dir.length(),
         object,
         local: hit.point,
         local_normal: hit.normal,
@@ -208,9 +207,10 @@ pub(crate) fn shade(
     if depth >= MAXDEPTH {
         return i;
     }
-    let reflected = d - 2.0 * d.dot(n) * n;
+    // Made only for a ray that is sent (never for an opaque surface's).
+    let reflected = || (d - 2.0 * d.dot(n) * n).normalize();
     if ks_weight > 0.0 && weight * ks_weight >= MINWEIGHT {
-        let r = Ray::new(near, turn(snap, surf, near, reflected.normalize(), n, 1.0, ctx));
+        let r = Ray::new(near, turn(snap, surf, near, reflected(), n, 1.0, ctx));
         i += ks_weight * raytrace(snap, &r, weight * ks_weight, depth + 1, ctx);
     }
     if kt_weight > 0.0 && weight * kt_weight >= MINWEIGHT {
@@ -219,7 +219,7 @@ pub(crate) fn shade(
             Some(t) => Ray::new(far, turn(snap, surf, far, t, n, -1.0, ctx)),
             None => {
                 ctx.stats.kftircnt += 1;
-                Ray::new(near, turn(snap, surf, near, reflected.normalize(), n, 1.0, ctx))
+                Ray::new(near, turn(snap, surf, near, reflected(), n, 1.0, ctx))
             }
         };
         i += kt_weight * raytrace(snap, &t, weight * kt_weight, depth + 1, ctx);

@@ -523,10 +523,10 @@ pub struct IntersectionRecord {
     /// `surface`: index into [`Scene::surfaces`](crate::scene::Scene::surfaces).
     pub surface: usize,
     /// `parameter`: the ray parameter of the hit (the `dir` is unit length
-    /// for every ray the port traces, so this is also the distance).
+    /// for every ray the port traces, so this is also Fig. 4.3's
+    /// `distance`, from the ray's origin to the hit, which the port does
+    /// not keep apart: nothing reads it, and it cost a square root a hit).
     pub parameter: f64,
-    /// `distance`: from the ray's origin to the hit.
-    pub distance: f64,
     /// The object hit (index into [`Scene::objects`](crate::scene::Scene::objects)); not in Fig. 4.3.
     pub object: usize,
     /// The hit point in the object's local frame; not in Fig. 4.3: patterns

@@ -56,17 +56,19 @@ fn round_mod2(x: f64) -> i64 {
 /// and the fraction decides; above it every value is whole (or infinite,
 /// or NaN, which the conversion saturates, or makes 0, alike).
 fn pascal_round(x: f64) -> i64 {
-    if x.is_nan() || x.abs() >= 4_503_599_627_370_496.0 {
-        return x as i64;
-    }
-    let whole = x as i64; // toward zero
-    let fraction = x - whole as f64;
-    if fraction >= 0.5 {
-        whole + 1
-    } else if fraction <= -0.5 {
-        whole - 1
+    // One comparison for both: a NaN is not below 2⁵².
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let whole = x as i64; // toward zero
+        let fraction = x - whole as f64;
+        if fraction >= 0.5 {
+            whole + 1
+        } else if fraction <= -0.5 {
+            whole - 1
+        } else {
+            whole
+        }
     } else {
-        whole
+        x as i64
     }
 }
 

@@ -125,7 +125,7 @@ impl Camera {
     /// The primary ray of a sample: [`Camera::ray`] through its place, or
     /// with a `lens` the lens's ray, whose lens point the sample's further
     /// dimensions give. Without a lens nothing is drawn.
-    #[inline]
+    #[inline(always)]
     pub fn ray_of<S: Sampler>(&self, c: CameraSample, sampler: &mut S) -> Ray {
         match &self.lens {
             None => self.ray(c.scancol, c.scanline, c.jx, c.jz),

@@ -238,6 +238,13 @@ impl Prepared {
         !self.moving.is_empty()
     }
 
+    /// Do the table's subpixel times come back at every subpixel of the
+    /// same place in the table (`--sampler table` and
+    /// [`TimeTable::repeats`](crate::drt::TimeTable::repeats))?
+    pub fn repeats(&self) -> bool {
+        self.repeats
+    }
+
     /// The key-frame chains, in the order of their `keyframe` records.
     pub fn chains(&self) -> impl Iterator<Item = &PaperChain> {
         self.moving.iter().filter_map(Moving::chain)

@@ -43,7 +43,7 @@ impl<'p> Tracer<'p> {
     /// rest pose at no cost. The structure over the objects bounds every
     /// time a sample of the render can have ([`Prepared::time_span`]);
     /// the instant's segment of it is found here, once.
-    #[inline]
+    #[inline(always)]
     pub(super) fn at(&mut self, time: f64) {
         self.poses.at(time);
         for d in &self.deforming {
@@ -59,27 +59,62 @@ impl<'p> Tracer<'p> {
         self.segment = self.segment.filter(|_| self.prepared.bounds_time(time));
     }
 
-    /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
-    /// of `sampler`'s sample, with the scene as the last [`Tracer::at`]
-    /// left it.
-    pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
-        self.stats.primary += 1;
-        let mut ctx = Context {
+    /// The scene as the last [`Tracer::at`] left it, to shoot primary rays
+    /// into until the next instant (made once for all of them).
+    pub(super) fn instant(&mut self) -> Instant<'_> {
+        Instant {
+            snap: snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment),
             stats: &mut self.stats,
-            sampler,
-        };
-        raytrace(&snap, aray, 1.0, 1, &mut ctx)
+        }
     }
 
-    /// As [`Tracer::shoot`], and what the first hit tells besides the
+    /// [`Instant::shoot`] with the scene as the last [`Tracer::at`] left it.
+    pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
+        self.instant().shoot(aray, sampler)
+    }
+
+    /// [`Instant::shoot_features`] with the scene as the last
+    /// [`Tracer::at`] left it.
+    pub(super) fn shoot_features(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> (Intensity, Features) {
+        self.instant().shoot_features(aray, sampler)
+    }
+
+    /// The object `ray` meets first with the scene as the last
+    /// [`Tracer::at`] left it, and the hit.
+    pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
+        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
+        intersect(&snap, ray, &mut self.stats)
+    }
+}
+
+/// The scene at one instant, where a worker's [`Tracer::at`] left it, and
+/// the worker's counts: what the primary rays of that instant's samples
+/// are shot into.
+pub(super) struct Instant<'t> {
+    snap: Snapshot<'t>,
+    stats: &'t mut TraceStats,
+}
+
+impl Instant<'_> {
+    /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
+    /// of `sampler`'s sample.
+    pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
+        self.stats.primary += 1;
+        let mut ctx = Context {
+            stats: self.stats,
+            sampler,
+        };
+        raytrace(&self.snap, aray, 1.0, 1, &mut ctx)
+    }
+
+    /// As [`Instant::shoot`], and what the first hit tells besides the
     /// colour, for a reconstruction that reads it: the same colour, from
     /// the same one search for the first hit.
     pub(super) fn shoot_features(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> (Intensity, Features) {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
+        let snap = &self.snap;
         self.stats.primary += 1;
         self.stats.rays += 1;
-        let Some(hit) = intersect(&snap, aray, &mut self.stats) else {
+        let Some(hit) = intersect(snap, aray, self.stats) else {
             let background = snap.scene.backgrnd;
             let f = Features {
                 albedo: background,
@@ -88,14 +123,14 @@ impl<'p> Tracer<'p> {
             return (background, f);
         };
         let mut ctx = Context {
-            stats: &mut self.stats,
+            stats: self.stats,
             sampler,
         };
-        let colour = shade(&snap, aray, &hit, 1.0, 1, &mut ctx);
+        let colour = shade(snap, aray, &hit, 1.0, 1, &mut ctx);
         let surf = &snap.scene.surfaces[hit.surface];
         let albedo = match surf.surface {
             SurfaceAttribute::Background | SurfaceAttribute::Light => colour,
-            _ => surface_color(&snap, surf, &hit),
+            _ => surface_color(snap, surf, &hit),
         };
         let normal = if hit.normal.dot(aray.dir) < 0.0 {
             hit.normal
@@ -108,13 +143,6 @@ impl<'p> Tracer<'p> {
             object: Some(hit.object),
         };
         (colour, f)
-    }
-
-    /// The object `ray` meets first with the scene as the last
-    /// [`Tracer::at`] left it, and the hit.
-    pub(super) fn first_hit(&mut self, ray: &Ray) -> Option<IntersectionRecord> {
-        let snap = snapshot(self.prepared, &self.poses, &self.deforming, &self.scratch, self.segment);
-        intersect(&snap, ray, &mut self.stats)
     }
 }
 

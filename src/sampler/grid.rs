@@ -29,9 +29,15 @@ pub const TABLE_DIMENSIONS: usize = 8;
 #[derive(Clone, Debug)]
 pub struct Tables {
     pub times: TimeTable,
-    noise2: Vec<f64>,
+    /// `noise2` in pairs: entries 2i and 2i + 1 at `noise2[i]`, the x and
+    /// z jitter that `thesis` fidelity reads together (erratum 15), found
+    /// by one index in an array of known length.
+    noise2: Box<[[f64; 2]; MAXINDEX / 2]>,
     dimensions: Vec<Vec<f64>>,
 }
+
+// `noise2` pairs up whole.
+const _: () = assert!(MAXINDEX.is_multiple_of(2));
 
 impl Tables {
     /// The tables, with the subpixel times `times`.
@@ -43,9 +49,10 @@ impl Tables {
             let mut rng = MinimalStandard::new(10 + d);
             (0..MAXINDEX).map(|_| rng.next_uniform() - 0.5).collect()
         }));
+        let noise2 = noise2_table();
         Tables {
             times,
-            noise2: noise2_table(),
+            noise2: Box::new(std::array::from_fn(|i| [noise2[2 * i], noise2[2 * i + 1]])),
             dimensions,
         }
     }
@@ -126,6 +133,10 @@ pub struct GridSampler<'a> {
     row_sobol: Vec<PixelSamples>,
     scanline: usize,
     scancol: usize,
+    /// The subpixel's place in the scan order, 0-based (the extra column
+    /// shares column 1's): the listing's cursors at it, found once a
+    /// sample.
+    k: usize,
     dim: u32,
 }
 
@@ -149,6 +160,7 @@ impl<'a> GridSampler<'a> {
             row_sobol: Vec::new(),
             scanline: 1,
             scancol: 1,
+            k: 0,
             dim: 0,
         }
     }
@@ -166,14 +178,8 @@ impl<'a> GridSampler<'a> {
     /// the listing; `scancol` 0 is erratum 13's extra column.
     #[inline]
     pub fn start(&mut self, scanline: usize, scancol: usize) {
-        (self.scanline, self.scancol, self.dim) = (scanline, scancol, 0);
-    }
-
-    /// k: the subpixel's place in the scan order, 0-based (the extra
-    /// column shares column 1's): the listing's cursors at it.
-    #[inline]
-    fn k(&self) -> usize {
-        (self.scanline - 1) * self.virthighx + self.scancol.max(1) - 1
+        let k = (scanline - 1) * self.virthighx + scancol.max(1) - 1;
+        (self.scanline, self.scancol, self.k, self.dim) = (scanline, scancol, k, 0);
     }
 
     /// The pixel of the row the subpixel lies in, and its index j among
@@ -194,6 +200,33 @@ impl<'a> GridSampler<'a> {
         }
         (x, self.row_sobol[x], j as u32)
     }
+
+    /// [`Sampler::time`] of `stratified` and `sobol`, which read the
+    /// row's strata or Sobol samples: kept out of the table's path.
+    #[inline(never)]
+    fn pixel_time(&mut self) -> f64 {
+        if self.kind == GridKind::Sobol {
+            let (_, samples, j) = self.sobol();
+            return samples.tau(j);
+        }
+        let (x, j) = self.pixel_and_index();
+        let n = self.m * self.m;
+        if self.row_strata.is_empty() {
+            let first = self.row * self.width;
+            self.row_strata = (0..self.width).map(|x| strata(first + x, n)).collect();
+        }
+        stratified_time(self.row * self.width + x, j, self.row_strata[x][j], n)
+    }
+
+    /// [`Sampler::camera`] of `sobol`: the sample's own place in the
+    /// pixel, kept out of the other samplers' path.
+    #[inline(never)]
+    fn sobol_camera(&self) -> CameraSample {
+        let (x, j) = self.pixel_and_index();
+        let samples =
+            (self.row_sobol.get(x).copied()).unwrap_or_else(|| PixelSamples::of_pixel(self.row * self.width + x));
+        samples.camera(x, self.row, self.m, j as u32)
+    }
 }
 
 impl Sampler for GridSampler<'_> {
@@ -203,23 +236,10 @@ impl Sampler for GridSampler<'_> {
     /// permutation deals the subpixel.
     #[inline]
     fn time(&mut self) -> f64 {
-        let k = self.k();
         match self.kind {
-            GridKind::Table => self.tables.times.time(self.scanline, self.scancol, k),
-            GridKind::Random => random_time(k),
-            GridKind::Stratified => {
-                let (x, j) = self.pixel_and_index();
-                let n = self.m * self.m;
-                if self.row_strata.is_empty() {
-                    let first = self.row * self.width;
-                    self.row_strata = (0..self.width).map(|x| strata(first + x, n)).collect();
-                }
-                stratified_time(self.row * self.width + x, j, self.row_strata[x][j], n)
-            }
-            GridKind::Sobol => {
-                let (_, samples, j) = self.sobol();
-                samples.tau(j)
-            }
+            GridKind::Table => self.tables.times.time(self.scanline, self.scancol, self.k),
+            GridKind::Random => random_time(self.k),
+            GridKind::Stratified | GridKind::Sobol => self.pixel_time(),
         }
     }
 
@@ -236,27 +256,26 @@ impl Sampler for GridSampler<'_> {
     #[inline]
     fn camera(&self) -> CameraSample {
         if self.kind == GridKind::Sobol {
-            let (x, j) = self.pixel_and_index();
-            let samples =
-                (self.row_sobol.get(x).copied()).unwrap_or_else(|| PixelSamples::of_pixel(self.row * self.width + x));
-            return samples.camera(x, self.row, self.m, j as u32);
+            return self.sobol_camera();
         }
         let noise2 = &self.tables.noise2;
         let (jx, jz) = match self.fidelity {
             Fidelity::Listing => {
-                let j = noise2[0] * self.aliasing;
+                let j = noise2[0][0] * self.aliasing;
                 (j, j)
             }
+            // Entries (2k mod maxindex, 2k + 1 mod maxindex), the pair
+            // k mod maxindex/2.
             Fidelity::Thesis => {
-                let k = self.k();
-                let ax = (2 * k) % MAXINDEX;
-                let az = (2 * k + 1) % MAXINDEX;
-                (noise2[ax] * self.aliasing, noise2[az] * self.aliasing)
+                let [ax, az] = noise2[self.k % (MAXINDEX / 2)];
+                (ax * self.aliasing, az * self.aliasing)
             }
         };
+        // Through i64, one instruction on this target where usize takes
+        // six; the same value, the subpixels being far fewer than 2⁶³.
         CameraSample {
-            scancol: self.scancol as f64,
-            scanline: self.scanline as f64,
+            scancol: self.scancol as i64 as f64,
+            scanline: self.scanline as i64 as f64,
             jx,
             jz,
         }
@@ -274,10 +293,10 @@ impl Sampler for GridSampler<'_> {
     fn get_1d(&mut self) -> f64 {
         let d = self.dim;
         self.dim += 1;
-        let k = self.k() as u64;
+        let k = self.k as u64;
         match self.kind {
             GridKind::Table => match self.tables.dimensions.get(d as usize) {
-                Some(table) => table[self.k() % MAXINDEX] + 0.5,
+                Some(table) => table[self.k % MAXINDEX] + 0.5,
                 None => dimension_uniform(Stream::Uniform, d, k),
             },
             GridKind::Random => dimension_uniform(Stream::Uniform, d, k),
@@ -360,7 +379,7 @@ impl Sampler for GridSampler<'_> {
             _ => (deal[j] as usize % m, deal[j] as usize / m),
         };
         let (sub_column, sub_row) = (deal[n + row], deal[n + m + column]);
-        let k = self.k();
+        let k = self.k;
         let place = |e: u32| match (self.kind, self.tables.dimensions.get(e as usize)) {
             (GridKind::Table, Some(table)) => table[k % MAXINDEX] + 0.5,
             _ => dimension_uniform(Stream::Jitter, e, pixel << 11 | j as u64),
