@@ -10,7 +10,7 @@ use super::{Prepared, Traced};
 use crate::adaptive::{self, PixelSum};
 use crate::film::Frame;
 use crate::reconstruct::Gathered;
-use crate::sampler::{PixelSampler, PixelSamples, Sampler, SHIFT_BLOCK};
+use crate::sampler::{PixelSampler, PixelSamples, Sampler};
 use crate::trace::TraceStats;
 
 /// Each sample is a place in the pixel and a time from the pixel's
@@ -52,11 +52,12 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
             .filter(|&e| e > 0),
     );
     let samples: Vec<_> = (0..sums.len()).map(|i| PixelSamples::new(i, w)).collect();
+    let mut allocation = adaptive::Allocation::new(w);
     let mut shots = vec![S::default(); sums.len()];
     let mut stats = TraceStats::default();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = adaptive::allocate(&sums, w, budget, extra, adaptive::quantum(budget));
+            counts = allocation.allocate(&sums, budget, extra, adaptive::quantum(budget));
         }
         let last = pass + 1 == passes.len();
         let rows: Vec<TraceStats> = sums
@@ -100,10 +101,10 @@ struct Pixels<'a, S> {
     samples: &'a [PixelSamples],
 }
 
-/// One pass over row `row`: the row's instants k in the blocks its samples
-/// reach, and at each every pixel whose sample k ⊕ c is due, with the
-/// scene posed once ([`adaptive::blocks_due`]). Each pixel's sum gets its
-/// samples' colours and the polynomial searches they made (their cost).
+/// One pass over row `row`: its due samples instant by instant, the
+/// scene posed once an instant ([`adaptive::due_by_instant`]). Each
+/// pixel's sum gets its samples' colours and the polynomial searches they
+/// made (their cost).
 fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pixels<S>) -> TraceStats {
     let Pixels {
         sums,
@@ -117,27 +118,19 @@ fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pix
     let mut tracer = Tracer::new(prepared);
     let mut sampler = PixelSampler::new(samples, row, img.width, img.masksize);
     let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
-    let block = SHIFT_BLOCK;
-    for (b, pixels) in adaptive::blocks_due(&start, counts) {
-        for k in b * block..(b + 1) * block {
-            let mut posed = false;
-            for &x in &pixels {
-                let j = samples[x].at_instant(k);
-                if j < start[x] || j >= counts[x] {
-                    continue;
-                }
-                sampler.start(x, j);
-                if timed && !posed {
-                    tracer.at(frame.time(sampler.time()));
-                    posed = true;
-                }
-                let c = sampler.camera();
-                let aray = camera.ray_of(c, &mut sampler);
-                let before = tracer.stats.searched;
-                sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
-                sums[x].add_searched(tracer.stats.searched - before);
-            }
+    let mut posed = None;
+    for (k, x) in adaptive::due_by_instant(samples, &start, counts) {
+        let x = x as usize;
+        sampler.start(x, samples[x].at_instant(k));
+        if timed && posed != Some(k) {
+            tracer.at(frame.time(sampler.time()));
+            posed = Some(k);
         }
+        let c = sampler.camera();
+        let aray = camera.ray_of(c, &mut sampler);
+        let before = tracer.stats.searched;
+        sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
+        sums[x].add_searched(tracer.stats.searched - before);
     }
     tracer.stats
 }
