@@ -204,30 +204,30 @@ pub(crate) fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
 /// each of its 16 instants to find the due ones visited 3 or 4 pixels a
 /// sample (10 % of the instructions of an adaptive render of fig5_3).
 pub fn due_by_instant(samples: &[PixelSamples], start: &[u32], counts: &[u32]) -> Vec<(u32, u32)> {
-    let due = |x: usize| start[x]..counts[x].max(start[x]);
+    let pixels = || samples.iter().zip(start.iter().zip(counts));
     // k = j ⊕ c is at_instant(j), the shift being its own inverse; it lies
     // in j's block of SHIFT_BLOCK, so below the last count's block's end.
     let end = counts
         .iter()
         .max()
-        .map_or(0, |&n| n.div_ceil(SHIFT_BLOCK) * SHIFT_BLOCK);
+        .map_or(0, |&n| n.div_ceil(SHIFT_BLOCK) * SHIFT_BLOCK) as usize;
     // How many samples each instant has, then where its first goes.
-    let mut slot = vec![0u32; end as usize + 1];
-    for x in 0..start.len() {
-        for j in due(x) {
-            slot[samples[x].at_instant(j) as usize + 1] += 1;
+    let mut slot = vec![0u32; end + 1];
+    for (s, (&a, &b)) in pixels() {
+        for j in a..b {
+            slot[s.at_instant(j) as usize + 1] += 1;
         }
     }
     for k in 1..slot.len() {
         slot[k] += slot[k - 1];
     }
-    let mut order = vec![(0, 0); slot[end as usize] as usize];
-    for x in 0..start.len() {
-        for j in due(x) {
-            let k = samples[x].at_instant(j);
-            let s = &mut slot[k as usize];
-            order[*s as usize] = (k, x as u32);
-            *s += 1;
+    let mut order = vec![(0, 0); slot[end] as usize];
+    for (x, (s, (&a, &b))) in pixels().enumerate() {
+        for j in a..b {
+            let k = s.at_instant(j);
+            let next = &mut slot[k as usize];
+            order[*next as usize] = (k, x as u32);
+            *next += 1;
         }
     }
     order

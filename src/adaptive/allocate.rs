@@ -69,18 +69,28 @@ impl Allocation {
         // Each pixel's bounds: its count so far, and that or the cap.
         let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
         let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
-        let (mut spent, mut room) = (0u64, 0.0f64);
-        for (&n, &l) in counts.iter().zip(&low) {
+        // The rays spent and the room below the caps, in integers: the
+        // sums of whole numbers in floating point were exact too.
+        let (mut spent, mut room) = (0u64, 0u64);
+        for &n in counts {
             spent += n as u64;
-            room += cap - l.min(cap);
+            room += (cap as u32 - n.min(cap as u32)) as u64;
         }
         let total = (spent + extra) as f64;
-        if room <= extra as f64 {
+        if room <= extra {
             // More rays than the caps hold: every pixel to its cap.
             return high.iter().map(|&h| h as u32).collect();
         }
         let lambda = solve_lambda(&need, &low, &high, total);
-        let real = |i: usize| (lambda * need[i]).clamp(low[i], high[i]);
+        let real = |i: usize| {
+            // Most pixels stay at their count: no clamp to compute.
+            let t = lambda * need[i];
+            if t <= low[i] {
+                low[i]
+            } else {
+                t.clamp(low[i], high[i])
+            }
+        };
         round_counts(real, counts, spent + extra, cap as u32, quantum)
     }
 
@@ -115,14 +125,12 @@ impl Allocation {
         // and no need but the floor).
         let mut across = vec![0.0; sums.len()];
         for (row, out) in self.spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
-            for (x, a) in out.iter_mut().enumerate() {
-                *a = row[x];
-            }
+            out.copy_from_slice(row);
             for (a, &left) in out[1..].iter_mut().zip(row) {
-                *a = a.max(left);
+                *a = larger(*a, left);
             }
             for (a, &right) in out.iter_mut().zip(&row[1..]) {
-                *a = a.max(right);
+                *a = larger(*a, right);
             }
         }
         let none = vec![0.0; width];
@@ -138,19 +146,31 @@ impl Allocation {
             let at = y * width..(y + 1) * width;
             let (spread, cost) = (&self.spread[at.clone()], &self.cost[at.clone()]);
             for x in 0..width {
-                let w = spread[x].max(NEIGHBOUR * mid[x].max(up[x]).max(down[x]));
+                let w = larger(spread[x], NEIGHBOUR * larger(larger(mid[x], up[x]), down[x]));
                 // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an
                 // instruction each, where `powf` took a quarter of the
                 // allocation's time.
                 need[at.start + x] = (w * w.sqrt()).sqrt() / cost[x];
             }
-            top = need[at].iter().fold(top, |t, &w| t.max(w));
+            top = need[at].iter().fold(top, |t, &w| larger(t, w));
         }
         let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
         for w in &mut need {
-            *w = w.max(floor);
+            *w = larger(*w, floor);
         }
         need
+    }
+}
+
+/// The larger of two spreads or needs, `f64::max` where neither is NaN (a
+/// spread is not: [`PixelSum::spread`] takes the variance's larger with 0,
+/// which drops a NaN, and a need is a spread's power over a cost of 1 or
+/// more), nor −0: one comparison, where `max` looks for a NaN too.
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
     }
 }
 
@@ -167,8 +187,8 @@ impl Allocation {
 pub(super) fn round_counts(real: impl Fn(usize) -> f64, low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
     let q = quantum.max(1);
     let next = |f: u32| (f / q + 1) * q;
-    let mut out = Vec::with_capacity(low.len());
-    let mut given = 0u64;
+    let mut out = low.to_vec();
+    let mut given: u64 = low.iter().map(|&n| n as u64).sum();
     // The pixels that may step up to their next level (not beyond the
     // cap): those with a fraction of the way there, as keys in the order
     // of the largest fraction, then the pixel (a fraction in (0, 1) orders
@@ -184,17 +204,18 @@ pub(super) fn round_counts(real: impl Fn(usize) -> f64, low: &[u32], total: u64,
             (n, 0.0)
         } else {
             let f = (r as u32 / q * q).max(n);
+            given += (f - n) as u64;
+            out[i] = f;
             (f, (r - f as f64) / (next(f) - f) as f64)
         };
-        if next(f) <= cap {
+        // next(f) ≤ cap, cap being a whole number of quanta.
+        if f < cap {
             if fraction > 0.0 {
                 candidates.push(u128::from(!fraction.to_bits()) << 32 | i as u128);
             } else {
                 waiting[i] = true;
             }
         }
-        given += f as u64;
-        out.push(f);
     }
     let mut left = total.saturating_sub(given);
     let mut without = (0..low.len()).filter(|&i| waiting[i]);

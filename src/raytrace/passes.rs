@@ -42,6 +42,8 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
     let budget = (m * m) as u32;
     let first = adaptive::first_pass(m);
     let mut sums = vec![PixelSum::default(); w * img.height];
+    // Each pixel's samples before the pass and due by its end.
+    let mut start = vec![0; sums.len()];
     let mut counts = vec![first; sums.len()];
     // The first pass, then the passes that have rays to deal out (none
     // for a budget of one ray).
@@ -57,19 +59,21 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
     let mut stats = TraceStats::default();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = allocation.allocate(&sums, budget, extra, adaptive::quantum(budget));
+            let next = allocation.allocate(&sums, budget, extra, adaptive::quantum(budget));
+            start = std::mem::replace(&mut counts, next);
         }
         let last = pass + 1 == passes.len();
         let rows: Vec<TraceStats> = sums
             .par_chunks_mut(w)
             .zip(shots.par_chunks_mut(w))
-            .zip(counts.par_chunks(w))
+            .zip(start.par_chunks(w).zip(counts.par_chunks(w)))
             .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, (((sums, shots), counts), samples))| {
+            .map(|(row, (((sums, shots), (start, counts)), samples))| {
                 let pixels = Pixels {
                     sums,
                     shots,
+                    start,
                     counts,
                     samples,
                 };
@@ -93,10 +97,12 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
 }
 
 /// A row's pixels in a pass: their sums, what `S` keeps of their
-/// samples, their counts due by the pass's end, and their samples.
+/// samples, their counts before the pass and due by its end, and their
+/// samples.
 struct Pixels<'a, S> {
     sums: &'a mut [PixelSum],
     shots: &'a mut [S],
+    start: &'a [u32],
     counts: &'a [u32],
     samples: &'a [PixelSamples],
 }
@@ -109,6 +115,7 @@ fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pix
     let Pixels {
         sums,
         shots,
+        start,
         counts,
         samples,
     } = pixels;
@@ -117,9 +124,8 @@ fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pix
     let timed = prepared.timed();
     let mut tracer = Tracer::new(prepared);
     let mut sampler = PixelSampler::new(samples, row, img.width, img.masksize);
-    let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
     let mut posed = None;
-    for (k, x) in adaptive::due_by_instant(samples, &start, counts) {
+    for (k, x) in adaptive::due_by_instant(samples, start, counts) {
         let x = x as usize;
         sampler.start(x, samples[x].at_instant(k));
         if timed && posed != Some(k) {

@@ -105,6 +105,9 @@ const fn sobol_bytes() -> [[[u32; 256]; 4]; 3] {
 /// dimensions by the direction numbers.
 pub(crate) fn sobol_reversed(j: u32, d: usize) -> u32 {
     match SOBOL_BYTES.get(d) {
+        // The higher bytes' points are 0 below 256 (the adaptive sampler's
+        // counts are mostly below).
+        Some(t) if j < 256 => t[0][j as usize],
         Some(t) => {
             let [b0, b1, b2, b3] = j.to_le_bytes();
             t[0][b0 as usize] ^ t[1][b1 as usize] ^ t[2][b2 as usize] ^ t[3][b3 as usize]
