@@ -82,15 +82,15 @@ impl Allocation {
             return high.iter().map(|&h| h as u32).collect();
         }
         let lambda = solve_lambda(&need, &low, &high, total);
-        let real = |i: usize| {
+        let real = need.iter().zip(low.iter().zip(&high)).map(|(&w, (&low, &high))| {
             // Most pixels stay at their count: no clamp to compute.
-            let t = lambda * need[i];
-            if t <= low[i] {
-                low[i]
+            let t = lambda * w;
+            if t <= low {
+                low
             } else {
-                t.clamp(low[i], high[i])
+                t.clamp(low, high)
             }
-        };
+        });
         round_counts(real, counts, spent + extra, cap as u32, quantum)
     }
 
@@ -113,11 +113,12 @@ impl Allocation {
         }
         let fresh = self.seen.is_none();
         let seen = self.seen.get_or_insert_with(|| vec![0; sums.len()]);
-        for (i, s) in sums.iter().enumerate() {
-            if fresh || seen[i] != s.n {
-                seen[i] = s.n;
-                self.spread[i] = s.spread();
-                self.cost[i] = cost(s);
+        let kept = seen.iter_mut().zip(self.spread.iter_mut().zip(&mut self.cost));
+        for (s, (seen, (spread, c))) in sums.iter().zip(kept) {
+            if fresh || *seen != s.n {
+                *seen = s.n;
+                *spread = s.spread();
+                *c = cost(s);
             }
         }
         // The largest spread of the 3 pixels of the row around each, with
@@ -174,7 +175,7 @@ fn larger(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Whole counts from the real ones (`real(i)` for pixel i, each at least
+/// Whole counts from the real ones (`real`, pixel by pixel, each at least
 /// its count `low` so far) that add up to `total`: each pixel keeps `low`
 /// or takes a multiple of `quantum` above it, at most `cap` (a multiple of
 /// `quantum`). Each starts at the level at or below its real count; then,
@@ -184,7 +185,13 @@ fn larger(a: f64, b: f64) -> f64 {
 /// order. With a quantum of 1 this is the whole part of each and a ray
 /// more to the largest fractions. The whole parts are conversions, as no
 /// count is negative (`floor` is a library call on this target).
-pub(super) fn round_counts(real: impl Fn(usize) -> f64, low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
+pub(super) fn round_counts(
+    real: impl IntoIterator<Item = f64>,
+    low: &[u32],
+    total: u64,
+    cap: u32,
+    quantum: u32,
+) -> Vec<u32> {
     let q = quantum.max(1);
     let next = |f: u32| (f / q + 1) * q;
     let mut out = low.to_vec();
@@ -197,8 +204,7 @@ pub(super) fn round_counts(real: impl Fn(usize) -> f64, low: &[u32], total: u64,
     // once at most, so its next level is always the one above its first.
     let mut candidates: Vec<u128> = Vec::new();
     let mut waiting = vec![false; low.len()];
-    for (i, &n) in low.iter().enumerate() {
-        let r = real(i);
+    for (i, (r, &n)) in real.into_iter().zip(low).enumerate() {
         // A pixel at its count so far (most) stays there, with no fraction.
         let (f, fraction) = if r <= n as f64 {
             (n, 0.0)
@@ -622,15 +628,15 @@ mod tests {
             }
             w
         };
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 40, 16, 1), want(&[]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 41, 16, 1), want(&[5]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 42, 16, 1), want(&[5, 1]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 43, 16, 1), want(&[5, 1, 0]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 44, 16, 1), want(&[5, 1, 0, 3]));
+        assert_eq!(round_counts(real, &[0; 7], 40, 16, 1), want(&[]));
+        assert_eq!(round_counts(real, &[0; 7], 41, 16, 1), want(&[5]));
+        assert_eq!(round_counts(real, &[0; 7], 42, 16, 1), want(&[5, 1]));
+        assert_eq!(round_counts(real, &[0; 7], 43, 16, 1), want(&[5, 1, 0]));
+        assert_eq!(round_counts(real, &[0; 7], 44, 16, 1), want(&[5, 1, 0, 3]));
         // Past the fractions: the whole counts below the cap, in order.
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 45, 16, 1), want(&[5, 1, 0, 3, 2]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 46, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
-        assert_eq!(round_counts(|i| real[i], &[0; 7], 50, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(real, &[0; 7], 45, 16, 1), want(&[5, 1, 0, 3, 2]));
+        assert_eq!(round_counts(real, &[0; 7], 46, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(real, &[0; 7], 50, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
     }
 
     /// In quanta: each pixel starts at its level (its count so far or the
@@ -643,23 +649,20 @@ mod tests {
         let low = [2; 6];
         // Levels 2, 2, 8, 16, 24, 64 (116 rays); fractions of the way to
         // 8, 8, 16, 24, 32 and none: 0, 0.5, 0.1875, 0.5, 0.9875.
-        assert_eq!(round_counts(|i| real[i], &low, 116, 64, 8), vec![2, 2, 8, 16, 24, 64]);
-        assert_eq!(round_counts(|i| real[i], &low, 124, 64, 8), vec![2, 2, 8, 16, 32, 64]);
+        assert_eq!(round_counts(real, &low, 116, 64, 8), vec![2, 2, 8, 16, 24, 64]);
+        assert_eq!(round_counts(real, &low, 124, 64, 8), vec![2, 2, 8, 16, 32, 64]);
         // Two rays left after a quantum: one each, ties to the first.
-        assert_eq!(round_counts(|i| real[i], &low, 126, 64, 8), vec![2, 3, 8, 17, 32, 64]);
+        assert_eq!(round_counts(real, &low, 126, 64, 8), vec![2, 3, 8, 17, 32, 64]);
         // Three steps (one short, 2 → 8) leave 2 rays for the last two.
-        assert_eq!(round_counts(|i| real[i], &low, 140, 64, 8), vec![3, 8, 9, 24, 32, 64]);
+        assert_eq!(round_counts(real, &low, 140, 64, 8), vec![3, 8, 9, 24, 32, 64]);
         // Short steps leave a quantum more: a second round of steps.
         let real = [5.0; 8];
-        assert_eq!(
-            round_counts(|i| real[i], &[2; 8], 48, 64, 8),
-            vec![8, 8, 8, 8, 8, 3, 3, 2]
-        );
+        assert_eq!(round_counts(real, &[2; 8], 48, 64, 8), vec![8, 8, 8, 8, 8, 3, 3, 2]);
         // None beyond the cap.
-        assert_eq!(round_counts(|i| [16.0, 15.0][i], &[2, 2], 40, 16, 8), vec![16, 16]);
+        assert_eq!(round_counts([16.0, 15.0], &[2, 2], 40, 16, 8), vec![16, 16]);
         // The fraction is of the step: 4.5 of the 6 from 2 to 8 (0.75)
         // before 5 of the 8 from 8 to 16 (0.625), though 5 rays are more.
-        assert_eq!(round_counts(|i| [6.5, 13.0][i], &[2, 8], 18, 64, 8), vec![8, 9]);
+        assert_eq!(round_counts([6.5, 13.0], &[2, 8], 18, 64, 8), vec![8, 9]);
     }
 
     /// The quantum is the budget's power of two at or below it, at most
