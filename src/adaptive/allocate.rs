@@ -2,13 +2,14 @@
 //! have after a pass ([`Allocation::allocate`]), from the spreads of its
 //! samples so far. Between the passes, on one thread: a few loops over the
 //! pixels. A render's passes share one [`Allocation`], which keeps each
-//! pixel's spread and need from the pass before and computes them again
-//! only where the pass added samples (the need also around such a pixel):
-//! after the first pass most pixels get no more rays, and their needs do
-//! not change. (The first form of this code, kept in the tests as the
-//! reference the counts must equal, computed every need every pass and
-//! took about 220 instructions a sample of an adaptive render of fig5_3
-//! at 160×135 pixels and 9 rays a pixel; docs/performance.md.)
+//! pixel's spread and cost from the pass before and computes them again
+//! only for the pixels the pass gave samples (at 9 rays a pixel, about
+//! half of them a pass); the needs, from the spreads around each pixel,
+//! are loops over rows of numbers. (The first form of this code, kept in the tests as the
+//! reference the counts must equal, computed every spread every pass, in
+//! loops with a branch a pixel, and took about 220 instructions a sample
+//! of an adaptive render of fig5_3 at 160×135 pixels and 9 rays a pixel,
+//! this one about 110; docs/performance.md.)
 
 use super::{cost, PixelSum, CAP, NEIGHBOUR};
 

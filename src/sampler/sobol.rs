@@ -152,9 +152,9 @@ const fn reversed_halves() -> [u16; 1 << 16] {
 }
 
 /// `v.reverse_bits()` in two lookups, each half's bits reversed and the
-/// halves swapped: about 6 instructions where `reverse_bits` takes 15 on
-/// x86-64, which has no instruction for it (two a sample of the adaptive
-/// sampler, 3 % of its instructions on fig5_3).
+/// halves swapped: 7 instructions where `reverse_bits` takes 15 on x86-64,
+/// which has no instruction for it (the adaptive sampler reverses two a
+/// sample: 31 instructions a sample of fig5_3 were these).
 fn reverse(v: u32) -> u32 {
     let half = |h: u32| u32::from(REVERSED_HALVES[h as usize & 0xffff]);
     half(v) << 16 | half(v >> 16)
