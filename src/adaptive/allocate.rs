@@ -448,6 +448,16 @@ mod tests {
         }
     }
 
+    /// Image `k`'s width (at least `least`, below `least` + `across`),
+    /// height (below 1 + `down`), budget (one of `budgets`, in turn) and
+    /// its quantum, drawn from `seed`.
+    fn drawn(seed: u64, (least, across, down): (usize, f64, f64), budgets: &[u32], k: u64) -> (usize, usize, u32, u32) {
+        let w = least + (hashed_uniform(seed) * across) as usize;
+        let h = 1 + (hashed_uniform(seed + 1) * down) as usize;
+        let budget = budgets[k as usize % budgets.len()];
+        (w, h, budget, quantum(budget))
+    }
+
     /// The fused allocation gives the counts of the plain one, to the ray:
     /// on images of noise of every kind (none, a few noisy pixels, noise
     /// everywhere, with NaN spreads), with counts from the first pass's to
@@ -456,11 +466,7 @@ mod tests {
     fn the_same_counts_as_the_plain_allocation() {
         let mut checked = 0;
         for k in 0..400u64 {
-            let r = |j: u64| hashed_uniform(64 * k + j);
-            let w = 1 + (r(0) * 23.0) as usize;
-            let h = 1 + (r(1) * 17.0) as usize;
-            let budget = [1u32, 4, 16, 64, 9][(k % 5) as usize];
-            let q = quantum(budget);
+            let (w, h, budget, q) = drawn(64 * k, (1, 23.0, 17.0), &[1, 4, 16, 64, 9], k);
             let mut sums = vec![PixelSum::default(); w * h];
             for (i, s) in sums.iter_mut().enumerate() {
                 let n = match k % 4 {
@@ -500,11 +506,7 @@ mod tests {
     fn passes_keep_the_plain_counts() {
         let mut passes = 0;
         for k in 0..24u64 {
-            let r = |j: u64| hashed_uniform(1000 * k + j);
-            let w = 2 + (r(0) * 19.0) as usize;
-            let h = 1 + (r(1) * 13.0) as usize;
-            let budget = [4u32, 9, 16, 64][(k % 4) as usize];
-            let q = quantum(budget);
+            let (w, h, budget, q) = drawn(1000 * k, (2, 19.0, 13.0), &[4, 9, 16, 64], k);
             let mut allocation = Allocation::new(w);
             for image in 0..2 {
                 let h = h + image;
@@ -514,7 +516,7 @@ mod tests {
                     while sums[i].n < to {
                         let x = hashed_uniform(31 * (i as u64 * 4096 + sums[i].n as u64) + k);
                         sums[i].add(Intensity::splat(if noisy(i) { x } else { 0.25 }));
-                        if i % 5 == 0 {
+                        if i.is_multiple_of(5) {
                             sums[i].add_searched(3);
                         }
                     }
