@@ -52,7 +52,7 @@ pub const NEIGHBOUR: f64 = 0.5;
 /// as scrambled Sobol points converge faster than independent ones where
 /// a pixel is smooth (0.8 measured best of 0.65, 0.8, 1 and 1.25; 0.75,
 /// which two square roots compute, within ±0.003 of its error ratios on
-/// every deck of the goal). `allocate::needs` computes exactly w^¾.
+/// every deck of the goal). [`Allocation`]'s needs compute exactly w^¾.
 pub const NEED_POWER: f64 = 0.75;
 
 /// The largest [`quantum`]: a pixel's count after the first pass is its
