@@ -11,7 +11,7 @@
 //!   image, W·H·M² in all.
 //! - A first pass gives every pixel [`first_pass`] rays; then [`PASSES`]
 //!   passes deal out the rest, each a share of what is left, by need
-//!   ([`allocate`]): a pixel's need is the spread of its samples so far
+//!   ([`Allocation`]): a pixel's need is the spread of its samples so far
 //!   (space and time together: a sample varies in both), widened to its
 //!   neighbours so an edge the first rays missed is still found, and
 //!   lowered a little where the pixel's rays are dear ([`cost`]). A
@@ -25,7 +25,7 @@
 //!   ([`crate::sampler::PixelSamples`]): every prefix is well spread in place, time and
 //!   both, so a pixel can stop after any count, and a row's pixels take
 //!   their samples at shared instants, so the scene is posed once an
-//!   instant, not once a ray ([`blocks_due`]).
+//!   instant, not once a ray ([`due_by_instant`]).
 //!
 //! Every choice depends on the pixel, the sample's index and the image's
 //! counts after a whole pass, never on the order threads finish in: the
@@ -34,9 +34,9 @@
 mod allocate;
 
 use crate::options::{Fidelity, Options, TimeSampler};
-use crate::sampler::SHIFT_BLOCK;
+use crate::sampler::{PixelSamples, SHIFT_BLOCK};
 use crate::types::Intensity;
-pub use allocate::allocate;
+pub use allocate::{allocate, Allocation};
 
 /// Later passes after the first: each deals out 1/(passes left) of the
 /// rays not yet spent, on the spreads seen so far (6 measured better than
@@ -52,7 +52,7 @@ pub const NEIGHBOUR: f64 = 0.5;
 /// as scrambled Sobol points converge faster than independent ones where
 /// a pixel is smooth (0.8 measured best of 0.65, 0.8, 1 and 1.25; 0.75,
 /// which two square roots compute, within ±0.003 of its error ratios on
-/// every deck of the goal). `allocate::needs` computes exactly w^¾.
+/// every deck of the goal). [`Allocation`]'s needs compute exactly w^¾.
 pub const NEED_POWER: f64 = 0.75;
 
 /// The largest [`quantum`]: a pixel's count after the first pass is its
@@ -195,43 +195,52 @@ pub(crate) fn later_passes(pixels: usize, budget: u32, first: u32) -> Vec<u64> {
     out
 }
 
-/// The pixels of a row with samples due in a pass, block by block of
-/// [`SHIFT_BLOCK`] instants: for each block that has any (in increasing
-/// order), its number and the pixels (in increasing order) whose samples
-/// `start[x]..counts[x]` reach it. A pixel's sample j = k ⊕ c at instant
-/// k lies in k's block, so an instant need only visit its block's pixels,
-/// not the whole row (visiting all was 6 % of an adaptive render).
-pub fn blocks_due(start: &[u32], counts: &[u32]) -> Vec<(u32, Vec<usize>)> {
-    let block = SHIFT_BLOCK;
-    let span = |x: usize| (start[x] / block, counts[x].div_ceil(block));
-    let due = |x: usize| counts[x] > start[x];
-    let Some(first) = (0..start.len()).filter(|&x| due(x)).map(|x| span(x).0).min() else {
-        return Vec::new();
-    };
-    let last = (0..start.len())
-        .filter(|&x| due(x))
-        .map(|x| span(x).1)
+/// The samples of a row due in a pass, in the order they are traced: by
+/// the row's instant k, then by pixel, each as (k, x) where pixel x's
+/// sample j = k ⊕ c ([`PixelSamples::at_instant`]) lies in
+/// `start[x]..counts[x]`; so each instant's samples come together, and
+/// the scene is posed once an instant. A counting sort on the instants:
+/// about 40 instructions a sample on fig5_3 (M = 3), where visiting every
+/// pixel of a block at each of its 16 instants to find the due ones
+/// visited 3 or 4 pixels a sample and took about 75.
+pub fn due_by_instant(samples: &[PixelSamples], start: &[u32], counts: &[u32]) -> Vec<(u32, u32)> {
+    let pixels = || samples.iter().zip(start.iter().zip(counts));
+    // k = j ⊕ c is at_instant(j), the shift being its own inverse; it lies
+    // in j's block of SHIFT_BLOCK, so below the last count's block's end.
+    let end = counts
+        .iter()
         .max()
-        .unwrap_or(first);
-    let mut lists = vec![Vec::new(); (last - first) as usize];
-    for x in (0..start.len()).filter(|&x| due(x)) {
-        let (a, b) = span(x);
-        for list in &mut lists[(a - first) as usize..(b - first) as usize] {
-            list.push(x);
+        .map_or(0, |&n| n.div_ceil(SHIFT_BLOCK) * SHIFT_BLOCK) as usize;
+    // How many samples each instant has, then where its first goes.
+    let mut slot = vec![0u32; end + 1];
+    for (s, (&a, &b)) in pixels() {
+        for j in a..b {
+            slot[s.at_instant(j) as usize + 1] += 1;
         }
     }
-    (first..last).zip(lists).filter(|(_, l)| !l.is_empty()).collect()
+    for k in 1..slot.len() {
+        slot[k] += slot[k - 1];
+    }
+    let mut order = vec![(0, 0); slot[end] as usize];
+    for (x, (s, (&a, &b))) in pixels().enumerate() {
+        for j in a..b {
+            let k = s.at_instant(j);
+            let next = &mut slot[k as usize];
+            order[*next as usize] = (k, x as u32);
+            *next += 1;
+        }
+    }
+    order
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampler::PixelSamples;
 
-    /// Visiting each block's pixels visits every due sample of a row once,
-    /// in the order of the scan of every instant and pixel it replaces.
+    /// The due samples by instant are every due sample of a row once, in
+    /// the order of the scan of every instant and pixel they replace.
     #[test]
-    fn blocks_due_visit_every_sample_in_scan_order() {
+    fn due_by_instant_is_the_scan_order() {
         let w = 37;
         let samples: Vec<PixelSamples> = (0..w).map(|x| PixelSamples::new(x, w)).collect();
         let start: Vec<u32> = (0..w).map(|x| [0, 2, 5, 16, 17, 40][x % 6]).collect();
@@ -240,21 +249,15 @@ mod tests {
             .collect();
         let due = |k: u32, x: usize| {
             let j = samples[x].at_instant(k);
-            (j >= start[x] && j < counts[x]).then_some((x, j))
+            (j >= start[x] && j < counts[x]).then_some((k, x as u32))
         };
         let end = counts.iter().max().copied().unwrap_or(0).div_ceil(SHIFT_BLOCK) * SHIFT_BLOCK;
-        let scan: Vec<(usize, u32)> = (0..end).flat_map(|k| (0..w).filter_map(move |x| due(k, x))).collect();
-        let mut by_block = Vec::new();
-        for (b, pixels) in blocks_due(&start, &counts) {
-            assert!(!pixels.is_empty() && pixels.windows(2).all(|p| p[0] < p[1]));
-            for k in b * SHIFT_BLOCK..(b + 1) * SHIFT_BLOCK {
-                by_block.extend(pixels.iter().filter_map(|&x| due(k, x)));
-            }
-        }
-        assert_eq!(by_block, scan);
+        let scan: Vec<(u32, u32)> = (0..end).flat_map(|k| (0..w).filter_map(move |x| due(k, x))).collect();
+        assert_eq!(due_by_instant(&samples, &start, &counts), scan);
         let total: u32 = (0..w).map(|x| counts[x] - start[x]).sum();
         assert_eq!(scan.len() as u32, total);
-        assert!(blocks_due(&[3, 3], &[3, 2]).is_empty());
+        assert!(due_by_instant(&samples[..2], &[3, 3], &[3, 2]).is_empty());
+        assert!(due_by_instant(&[], &[], &[]).is_empty());
     }
 
     /// Every prefix length, pixel and channel: mean and spread as a

@@ -1,63 +1,184 @@
 //! The adaptive sampler's allocation: how many rays each pixel should
-//! have after a pass ([`allocate`]), from the spreads of its samples so
-//! far. Between the passes, on one thread: a few loops over the pixels,
-//! each fusing what separate collections did. (The first form of this
-//! code, kept in the tests as the reference the counts must equal, took
-//! 5.3 % of the instructions of an adaptive render of fig5_3 at 96²
-//! pixels and 16 rays a pixel, this one 5.0 % (21 and 19 million); 1 % less
-//! CPU time on the whole render, fig5_3 and fig5_12 alike.)
+//! have after a pass ([`Allocation::allocate`]), from the spreads of its
+//! samples so far. Between the passes, on one thread: a few loops over the
+//! pixels. A render's passes share one [`Allocation`], which keeps each
+//! pixel's spread and cost from the pass before and computes them again
+//! only for the pixels the pass gave samples (at 9 rays a pixel, about
+//! half of them a pass); the needs, from the spreads around each pixel,
+//! are loops over rows of numbers. (The first form of this code, kept in the tests as the
+//! reference the counts must equal, computed every spread every pass, in
+//! loops with a branch a pixel, and took about 220 instructions a sample
+//! of an adaptive render of fig5_3 at 160×135 pixels and 9 rays a pixel,
+//! this one about 110; docs/performance.md.)
 
 use super::{cost, PixelSum, CAP, NEIGHBOUR};
 
-/// The counts every pixel of a `width`×`height` image should have after
-/// the next pass, `spent` + its share of `extra` more rays in all.
-///
-/// A pixel's need w is its spread σ, or [`NEIGHBOUR`] times the largest
-/// spread around it if that is more, to the power [`NEED_POWER`](super::NEED_POWER), over
-/// the cost of its rays ([`cost`](super::cost): a pixel of sweeps whose
-/// rays search many polynomials gets a little less). To make
-/// the summed error Σ σ²/n smallest for a fixed total, counts grow with σ
-/// (Neyman allocation): the new counts are max(n, λ·w), at most [`CAP`] times the
-/// average `budget`, with λ found so they add up to the total; then
-/// rounded to whole counts of n or multiples of `quantum` (the render's
-/// is [`quantum`](super::quantum) of the budget), by the largest fractions of the way to
-/// the next (ties to the first pixel; `round_counts`). When no pixel
-/// shows any spread, the rays go evenly, to within a quantum.
-pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
-    let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();
-    if sums.is_empty() || extra == 0 || width == 0 {
-        return counts;
-    }
-    let need = needs(sums, width);
-    // The cap a whole number of quanta, so that every level below it is
-    // one quantum from the next.
-    let q = quantum.max(1);
-    let cap = (budget.saturating_mul(CAP).max(1) / q * q).max(q) as f64;
-    let (mut spent, mut room) = (0u64, 0.0f64);
-    for &n in &counts {
-        spent += n as u64;
-        room += cap - (n as f64).min(cap);
-    }
-    let total = (spent + extra) as f64;
-    if room <= extra as f64 {
-        // More rays than the caps hold: every pixel to its cap.
-        return counts.iter().map(|&n| cap.max(n as f64) as u32).collect();
-    }
-    let lambda = solve_lambda(&need, &counts, cap, total);
-    let real: Vec<f64> = need
-        .iter()
-        .zip(&counts)
-        .map(|(&w, &n)| {
-            let low = n as f64;
-            (lambda * w).clamp(low, cap.max(low))
-        })
-        .collect();
-    round_counts(&real, &counts, spent + extra, cap as u32, quantum)
+/// The allocation of one render's passes: what [`Allocation::allocate`]
+/// keeps of each pixel from one pass to the next.
+#[derive(Clone, Debug, Default)]
+pub struct Allocation {
+    width: usize,
+    /// Each pixel's samples when its spread and cost were last computed
+    /// (none before the first allocation): a pixel's sum changes only by
+    /// samples added, so a pixel whose count is the same has the same
+    /// spread and cost.
+    seen: Option<Vec<u32>>,
+    spread: Vec<f64>,
+    cost: Vec<f64>,
 }
 
-/// Whole counts from the `real` ones (each at least the pixel's count
-/// `low` so far) that add up to `total`: each pixel keeps `low` or takes
-/// a multiple of `quantum` above it, at most `cap` (a multiple of
+/// The counts every pixel of a `width`×`height` image should have after
+/// the next pass, as [`Allocation::allocate`] of a new allocation.
+pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
+    Allocation::new(width).allocate(sums, budget, extra, quantum)
+}
+
+impl Allocation {
+    /// The allocation of the passes over an image `width` pixels wide.
+    pub fn new(width: usize) -> Self {
+        Allocation {
+            width,
+            ..Allocation::default()
+        }
+    }
+
+    /// The counts every pixel of the image should have after the next
+    /// pass, `spent` + its share of `extra` more rays in all, from `sums`,
+    /// the sums of the pixels (row by row) after the passes so far.
+    ///
+    /// A pixel's need w is its spread σ, or [`NEIGHBOUR`] times the largest
+    /// spread around it if that is more, to the power [`NEED_POWER`](super::NEED_POWER), over
+    /// the cost of its rays ([`cost`](super::cost): a pixel of sweeps whose
+    /// rays search many polynomials gets a little less). To make
+    /// the summed error Σ σ²/n smallest for a fixed total, counts grow with σ
+    /// (Neyman allocation): the new counts are max(n, λ·w), at most [`CAP`] times the
+    /// average `budget`, with λ found so they add up to the total; then
+    /// rounded to whole counts of n or multiples of `quantum` (the render's
+    /// is [`quantum`](super::quantum) of the budget), by the largest fractions of the way to
+    /// the next (ties to the first pixel; `round_counts`). When no pixel
+    /// shows any spread, the rays go evenly, to within a quantum.
+    pub fn allocate(&mut self, sums: &[PixelSum], budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
+        if sums.is_empty() || extra == 0 || self.width == 0 {
+            return sums.iter().map(|s| s.n).collect();
+        }
+        let need = self.needs(sums);
+        let counts = self.seen.as_deref().unwrap_or_default();
+        // The cap a whole number of quanta, so that every level below it is
+        // one quantum from the next.
+        let q = quantum.max(1);
+        let cap = (budget.saturating_mul(CAP).max(1) / q * q).max(q) as f64;
+        // Each pixel's bounds: its count so far, and that or the cap.
+        let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
+        let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
+        // The rays spent and the room below the caps, in integers: the
+        // sums of whole numbers in floating point were exact too.
+        let (mut spent, mut room) = (0u64, 0u64);
+        for &n in counts {
+            spent += n as u64;
+            room += (cap as u32 - n.min(cap as u32)) as u64;
+        }
+        let total = (spent + extra) as f64;
+        if room <= extra {
+            // More rays than the caps hold: every pixel to its cap.
+            return high.iter().map(|&h| h as u32).collect();
+        }
+        let lambda = solve_lambda(&need, &low, &high, total);
+        let real = need.iter().zip(low.iter().zip(&high)).map(|(&w, (&low, &high))| {
+            // Most pixels stay at their count: no clamp to compute.
+            let t = lambda * w;
+            if t <= low {
+                low
+            } else {
+                t.clamp(low, high)
+            }
+        });
+        round_counts(real, counts, spent + extra, cap as u32, quantum)
+    }
+
+    /// Each pixel's need w of [`Allocation::allocate`]: its spread σ, or
+    /// [`NEIGHBOUR`] times the largest spread of the 3×3 pixels around it if
+    /// that is more, to the power [`NEED_POWER`](super::NEED_POWER), over its [`cost`]; at
+    /// least a thousandth of the largest need, so that pixels without
+    /// spread can take rays when the others are at the cap (and share them
+    /// evenly when no pixel shows any). A pixel's spread and cost are
+    /// computed again only when it has new samples (its count is kept in
+    /// `seen`); the rest are loops over rows of numbers, without a branch
+    /// at the image's edges, which the compiler does two pixels at a time.
+    pub(super) fn needs(&mut self, sums: &[PixelSum]) -> Vec<f64> {
+        let width = self.width;
+        if self.seen.as_ref().is_none_or(|seen| seen.len() != sums.len()) {
+            // A new image: every pixel's spread is computed.
+            self.spread = vec![0.0; sums.len()];
+            self.cost = vec![1.0; sums.len()];
+            self.seen = None;
+        }
+        let fresh = self.seen.is_none();
+        let seen = self.seen.get_or_insert_with(|| vec![0; sums.len()]);
+        let kept = seen.iter_mut().zip(self.spread.iter_mut().zip(&mut self.cost));
+        for (s, (seen, (spread, c))) in sums.iter().zip(kept) {
+            if fresh || *seen != s.n {
+                *seen = s.n;
+                *spread = s.spread();
+                *c = cost(s);
+            }
+        }
+        // The largest spread of the 3 pixels of the row around each, with
+        // none beyond the edges (pixels past the last whole row have none
+        // and no need but the floor).
+        let mut across = vec![0.0; sums.len()];
+        for (row, out) in self.spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+            out.copy_from_slice(row);
+            for (a, &left) in out[1..].iter_mut().zip(row) {
+                *a = larger(*a, left);
+            }
+            for (a, &right) in out.iter_mut().zip(&row[1..]) {
+                *a = larger(*a, right);
+            }
+        }
+        let none = vec![0.0; width];
+        let rows = across.len() / width;
+        let row = |y: usize| match y {
+            y if y < rows => &across[y * width..(y + 1) * width],
+            _ => &none[..],
+        };
+        let mut need = vec![0.0; sums.len()];
+        let mut top = 0.0f64;
+        for y in 0..rows {
+            let (mid, up, down) = (row(y), row(y.wrapping_sub(1)), row(y + 1));
+            let at = y * width..(y + 1) * width;
+            let (spread, cost) = (&self.spread[at.clone()], &self.cost[at.clone()]);
+            for x in 0..width {
+                let w = larger(spread[x], NEIGHBOUR * larger(larger(mid[x], up[x]), down[x]));
+                // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an
+                // instruction each, where `powf` took a quarter of the
+                // allocation's time.
+                need[at.start + x] = (w * w.sqrt()).sqrt() / cost[x];
+            }
+            top = need[at].iter().fold(top, |t, &w| larger(t, w));
+        }
+        let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
+        for w in &mut need {
+            *w = larger(*w, floor);
+        }
+        need
+    }
+}
+
+/// The larger of two spreads or needs, `f64::max` where neither is NaN (a
+/// spread is not: [`PixelSum::spread`] takes the variance's larger with 0,
+/// which drops a NaN, and a need is a spread's power over a cost of 1 or
+/// more), nor −0: one comparison, where `max` looks for a NaN too.
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// Whole counts from the real ones (`real`, pixel by pixel, each at least
+/// its count `low` so far) that add up to `total`: each pixel keeps `low`
+/// or takes a multiple of `quantum` above it, at most `cap` (a multiple of
 /// `quantum`). Each starts at the level at or below its real count; then,
 /// by the largest fraction of the way to its next level (ties to the
 /// first pixel), pixels step up to that level while the steps fit in the
@@ -65,45 +186,59 @@ pub fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantu
 /// order. With a quantum of 1 this is the whole part of each and a ray
 /// more to the largest fractions. The whole parts are conversions, as no
 /// count is negative (`floor` is a library call on this target).
-pub(super) fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
+pub(super) fn round_counts(
+    real: impl IntoIterator<Item = f64>,
+    low: &[u32],
+    total: u64,
+    cap: u32,
+    quantum: u32,
+) -> Vec<u32> {
     let q = quantum.max(1);
-    let mut out = Vec::with_capacity(real.len());
-    let mut given = 0u64;
+    let next = |f: u32| (f / q + 1) * q;
+    let mut out = low.to_vec();
+    let mut given: u64 = low.iter().map(|&n| n as u64).sum();
     // The pixels that may step up to their next level (not beyond the
-    // cap): those with a fraction of the way there, with it, and those
-    // without (most: the pixels that keep their count), which come after
-    // them in their order. A pixel steps once at most, so its next level
-    // is always the one above its first.
-    let (mut candidates, mut without) = (Vec::new(), Vec::new());
-    for (i, (&r, &n)) in real.iter().zip(low).enumerate() {
-        let f = (r as u32 / q * q).max(n);
-        let next = (f / q + 1) * q;
-        if next <= cap {
-            let fraction = (r - f as f64) / (next - f) as f64;
+    // cap): those with a fraction of the way there, as keys in the order
+    // of the largest fraction, then the pixel (a fraction in (0, 1) orders
+    // as its bits do), and those without (most: the pixels that keep
+    // their count), which come after them in their order. A pixel steps
+    // once at most, so its next level is always the one above its first.
+    let mut candidates: Vec<u128> = Vec::new();
+    let mut waiting = vec![false; low.len()];
+    for (i, (r, &n)) in real.into_iter().zip(low).enumerate() {
+        // A pixel at its count so far (most) stays there, with no fraction.
+        let (f, fraction) = if r <= n as f64 {
+            (n, 0.0)
+        } else {
+            let f = (r as u32 / q * q).max(n);
+            given += (f - n) as u64;
+            out[i] = f;
+            (f, (r - f as f64) / (next(f) - f) as f64)
+        };
+        // next(f) ≤ cap, cap being a whole number of quanta.
+        if f < cap {
             if fraction > 0.0 {
-                candidates.push((fraction, i as u32));
+                candidates.push(u128::from(!fraction.to_bits()) << 32 | i as u128);
             } else {
-                without.push(i as u32);
+                waiting[i] = true;
             }
         }
-        given += f as u64;
-        out.push(f);
     }
-    let next = |f: u32| (f / q + 1) * q;
     let mut left = total.saturating_sub(given);
-    let mut without = without.into_iter();
+    let mut without = (0..low.len()).filter(|&i| waiting[i]);
     // The first k candidates in the order of the largest fraction: only
     // which pixels they are matters, not their order, so a selection,
     // not a sort.
-    let mut first = |k: u64| -> Vec<u32> {
+    let mut first = |k: u64| -> Vec<usize> {
         let k = k as usize;
+        let pixel = |key: u128| key as u32 as usize;
         if k < candidates.len() {
             if k > 0 {
-                candidates.select_nth_unstable_by(k - 1, |a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+                candidates.select_nth_unstable(k - 1);
             }
-            return candidates.drain(..k).map(|(_, i)| i).collect();
+            return candidates.drain(..k).map(pixel).collect();
         }
-        let mut all: Vec<u32> = candidates.drain(..).map(|(_, i)| i).collect();
+        let mut all: Vec<usize> = candidates.drain(..).map(pixel).collect();
         all.extend(without.by_ref().take(k - all.len()));
         all
     };
@@ -111,73 +246,31 @@ pub(super) fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quan
     let mut up = first(left / q as u64);
     while !up.is_empty() {
         for &i in &up {
-            let f = &mut out[i as usize];
+            let f = &mut out[i];
             left -= (next(*f) - *f) as u64;
             *f = next(*f);
         }
         up = first(left / q as u64);
     }
     for i in first(left) {
-        out[i as usize] += 1;
+        out[i] += 1;
     }
     out
 }
 
-/// Each pixel's need w of [`allocate`]: its spread σ, or [`NEIGHBOUR`]
-/// times the largest spread of the 3×3 pixels around it if that is more,
-/// to the power [`NEED_POWER`](super::NEED_POWER); at least a thousandth of the largest
-/// need, so that pixels without spread can take rays when the others are
-/// at the cap (and share them evenly when no pixel shows any). One loop
-/// on one thread: a few operations a pixel, where the parallel version's
-/// bookkeeping cost more than the work.
-pub(super) fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
-    let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
-    // The largest spread of the 3 pixels of the row around each, row by
-    // row (no division by the width a pixel).
-    let mut across = vec![0.0; sums.len()];
-    for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
-        for x in 0..width {
-            let left = if x > 0 { row[x - 1] } else { 0.0 };
-            let right = if x + 1 < width { row[x + 1] } else { 0.0 };
-            out[x] = row[x].max(left).max(right);
-        }
-    }
-    let height = sums.len() / width;
-    let mut need = vec![0.0; sums.len()];
-    let mut top = 0.0f64;
-    for y in 0..height {
-        for x in 0..width {
-            let i = y * width + x;
-            let up = if y > 0 { across[i - width] } else { 0.0 };
-            let down = if y + 1 < height { across[i + width] } else { 0.0 };
-            let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
-            // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an instruction
-            // each, where `powf` took a quarter of the allocation's time.
-            need[i] = (w * w.sqrt()).sqrt() / cost(&sums[i]);
-            top = top.max(need[i]);
-        }
-    }
-    let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
-    for w in &mut need {
-        *w = w.max(floor);
-    }
-    need
-}
-
-/// The λ of [`allocate`]: Σ clamp(λ·need, low, high) reaches `total`, by
-/// less than half a ray beyond it (the rounding then hands out the rest
-/// exactly), where a pixel's low is its count so far and its high that
-/// or `cap`, whichever is more. The sum is piecewise linear and grows with λ; Newton's steps
-/// on it, kept inside a bracket that halves when a step would leave it,
-/// take a handful of sums where bisection takes twenty or more. `total`
-/// must lie between Σ low and Σ high.
-pub(super) fn solve_lambda(need: &[f64], counts: &[u32], cap: f64, total: f64) -> f64 {
+/// The λ of [`Allocation::allocate`]: Σ clamp(λ·need, low, high) reaches
+/// `total`, by less than half a ray beyond it (the rounding then hands out
+/// the rest exactly), where a pixel's low is its count so far and its high
+/// that or the cap, whichever is more. The sum is piecewise linear and
+/// grows with λ; Newton's steps on it, kept inside a bracket that halves
+/// when a step would leave it, take a handful of sums where bisection
+/// takes twenty or more. `total` must lie between Σ low and Σ high.
+pub(super) fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
     // The sum and its slope at λ (the needs of the pixels not at a bound).
     let sum_at = |l: f64| {
         let (mut sum, mut slope) = (0.0, 0.0);
-        for (&w, &n) in need.iter().zip(counts) {
-            let (low, t) = (n as f64, l * w);
-            let high = cap.max(low);
+        for ((&w, &low), &high) in need.iter().zip(low).zip(high) {
+            let t = l * w;
             if t <= low {
                 sum += low;
             } else if t >= high {
@@ -237,12 +330,17 @@ mod tests {
     use super::*;
     use crate::hash::hashed_uniform;
 
+    /// The needs of a new allocation.
+    fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
+        Allocation::new(width).needs(sums)
+    }
+
     /// The allocation as it was first written (separate collections), the
-    /// reference the fused loops must give the same counts as. The needs
-    /// and λ's Newton steps are the module's own (they were not fused).
+    /// reference the fused loops must give the same counts as. The λ is
+    /// the module's own (its sums were not changed).
     mod plain {
-        use super::super::super::{PixelSum, CAP};
-        use super::super::needs;
+        use super::super::super::{cost, PixelSum, CAP, NEIGHBOUR};
+        use super::super::solve_lambda;
 
         pub(super) fn allocate(sums: &[PixelSum], width: usize, budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
             let counts: Vec<u32> = sums.iter().map(|s| s.n).collect();
@@ -268,6 +366,37 @@ mod tests {
                 .map(|i| (lambda * need[i]).clamp(low[i], high[i]))
                 .collect();
             round_counts(&real, &counts, spent + extra, cap as u32, quantum)
+        }
+
+        /// The needs as first written: every pixel's, every pass.
+        fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
+            let spread: Vec<f64> = sums.iter().map(PixelSum::spread).collect();
+            let mut across = vec![0.0; sums.len()];
+            for (row, out) in spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
+                for x in 0..width {
+                    let left = if x > 0 { row[x - 1] } else { 0.0 };
+                    let right = if x + 1 < width { row[x + 1] } else { 0.0 };
+                    out[x] = row[x].max(left).max(right);
+                }
+            }
+            let height = sums.len() / width;
+            let mut need = vec![0.0; sums.len()];
+            let mut top = 0.0f64;
+            for y in 0..height {
+                for x in 0..width {
+                    let i = y * width + x;
+                    let up = if y > 0 { across[i - width] } else { 0.0 };
+                    let down = if y + 1 < height { across[i + width] } else { 0.0 };
+                    let w = spread[i].max(NEIGHBOUR * across[i].max(up).max(down));
+                    need[i] = (w * w.sqrt()).sqrt() / cost(&sums[i]);
+                    top = top.max(need[i]);
+                }
+            }
+            let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
+            for w in &mut need {
+                *w = w.max(floor);
+            }
+            need
         }
 
         fn round_counts(real: &[f64], low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
@@ -317,26 +446,16 @@ mod tests {
             }
             out
         }
+    }
 
-        fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
-            // The sum and its slope at λ (the needs of the pixels not at a bound).
-            let sum_at = |l: f64| {
-                let (mut sum, mut slope) = (0.0, 0.0);
-                for i in 0..need.len() {
-                    let t = l * need[i];
-                    if t <= low[i] {
-                        sum += low[i];
-                    } else if t >= high[i] {
-                        sum += high[i];
-                    } else {
-                        sum += t;
-                        slope += need[i];
-                    }
-                }
-                (sum, slope)
-            };
-            super::lambda_newton(sum_at, need.iter().sum::<f64>(), total)
-        }
+    /// Image `k`'s width (at least `least`, below `least` + `across`),
+    /// height (below 1 + `down`), budget (one of `budgets`, in turn) and
+    /// its quantum, drawn from `seed`.
+    fn drawn(seed: u64, (least, across, down): (usize, f64, f64), budgets: &[u32], k: u64) -> (usize, usize, u32, u32) {
+        let w = least + (hashed_uniform(seed) * across) as usize;
+        let h = 1 + (hashed_uniform(seed + 1) * down) as usize;
+        let budget = budgets[k as usize % budgets.len()];
+        (w, h, budget, quantum(budget))
     }
 
     /// The fused allocation gives the counts of the plain one, to the ray:
@@ -347,11 +466,7 @@ mod tests {
     fn the_same_counts_as_the_plain_allocation() {
         let mut checked = 0;
         for k in 0..400u64 {
-            let r = |j: u64| hashed_uniform(64 * k + j);
-            let w = 1 + (r(0) * 23.0) as usize;
-            let h = 1 + (r(1) * 17.0) as usize;
-            let budget = [1u32, 4, 16, 64, 9][(k % 5) as usize];
-            let q = quantum(budget);
+            let (w, h, budget, q) = drawn(64 * k, (1, 23.0, 17.0), &[1, 4, 16, 64, 9], k);
             let mut sums = vec![PixelSum::default(); w * h];
             for (i, s) in sums.iter_mut().enumerate() {
                 let n = match k % 4 {
@@ -380,6 +495,53 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 400);
+    }
+
+    /// One allocation through a render's passes, keeping its spreads and
+    /// needs between them, gives each pass the plain allocation's counts
+    /// (which computes them all again): on images whose pixels are still
+    /// or noisy in patches, some with searches (costs), every quantum, with
+    /// the samples each pass adds; and an image of another size after.
+    #[test]
+    fn passes_keep_the_plain_counts() {
+        let mut passes = 0;
+        for k in 0..24u64 {
+            let (w, h, budget, q) = drawn(1000 * k, (2, 19.0, 13.0), &[4, 9, 16, 64], k);
+            let mut allocation = Allocation::new(w);
+            for image in 0..2 {
+                let h = h + image;
+                let noisy = |i: usize| hashed_uniform(17 * (i / 3) as u64 + k) < 0.3;
+                let mut sums = vec![PixelSum::default(); w * h];
+                let add = |sums: &mut [PixelSum], i: usize, to: u32| {
+                    while sums[i].n < to {
+                        let x = hashed_uniform(31 * (i as u64 * 4096 + sums[i].n as u64) + k);
+                        sums[i].add(Intensity::splat(if noisy(i) { x } else { 0.25 }));
+                        if i.is_multiple_of(5) {
+                            sums[i].add_searched(3);
+                        }
+                    }
+                };
+                for i in 0..w * h {
+                    add(&mut sums, i, 2);
+                }
+                let mut left = (w * h) as u64 * (budget as u64 - 2);
+                for p in 0..6u64 {
+                    let extra = left / (6 - p);
+                    left -= extra;
+                    let counts = allocation.allocate(&sums, budget, extra, q);
+                    assert_eq!(
+                        counts,
+                        plain::allocate(&sums, w, budget, extra, q),
+                        "image {k}.{image}, pass {p}"
+                    );
+                    for (i, &n) in counts.iter().enumerate() {
+                        add(&mut sums, i, n);
+                    }
+                    passes += 1;
+                }
+            }
+        }
+        assert_eq!(passes, 24 * 2 * 6);
     }
 
     fn sums_with(spreads: &[(usize, f64)], len: usize, n: u32) -> Vec<PixelSum> {
@@ -469,15 +631,15 @@ mod tests {
             }
             w
         };
-        assert_eq!(round_counts(&real, &[0; 7], 40, 16, 1), want(&[]));
-        assert_eq!(round_counts(&real, &[0; 7], 41, 16, 1), want(&[5]));
-        assert_eq!(round_counts(&real, &[0; 7], 42, 16, 1), want(&[5, 1]));
-        assert_eq!(round_counts(&real, &[0; 7], 43, 16, 1), want(&[5, 1, 0]));
-        assert_eq!(round_counts(&real, &[0; 7], 44, 16, 1), want(&[5, 1, 0, 3]));
+        assert_eq!(round_counts(real, &[0; 7], 40, 16, 1), want(&[]));
+        assert_eq!(round_counts(real, &[0; 7], 41, 16, 1), want(&[5]));
+        assert_eq!(round_counts(real, &[0; 7], 42, 16, 1), want(&[5, 1]));
+        assert_eq!(round_counts(real, &[0; 7], 43, 16, 1), want(&[5, 1, 0]));
+        assert_eq!(round_counts(real, &[0; 7], 44, 16, 1), want(&[5, 1, 0, 3]));
         // Past the fractions: the whole counts below the cap, in order.
-        assert_eq!(round_counts(&real, &[0; 7], 45, 16, 1), want(&[5, 1, 0, 3, 2]));
-        assert_eq!(round_counts(&real, &[0; 7], 46, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
-        assert_eq!(round_counts(&real, &[0; 7], 50, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(real, &[0; 7], 45, 16, 1), want(&[5, 1, 0, 3, 2]));
+        assert_eq!(round_counts(real, &[0; 7], 46, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
+        assert_eq!(round_counts(real, &[0; 7], 50, 16, 1), want(&[5, 1, 0, 3, 2, 6]));
     }
 
     /// In quanta: each pixel starts at its level (its count so far or the
@@ -490,20 +652,20 @@ mod tests {
         let low = [2; 6];
         // Levels 2, 2, 8, 16, 24, 64 (116 rays); fractions of the way to
         // 8, 8, 16, 24, 32 and none: 0, 0.5, 0.1875, 0.5, 0.9875.
-        assert_eq!(round_counts(&real, &low, 116, 64, 8), vec![2, 2, 8, 16, 24, 64]);
-        assert_eq!(round_counts(&real, &low, 124, 64, 8), vec![2, 2, 8, 16, 32, 64]);
+        assert_eq!(round_counts(real, &low, 116, 64, 8), vec![2, 2, 8, 16, 24, 64]);
+        assert_eq!(round_counts(real, &low, 124, 64, 8), vec![2, 2, 8, 16, 32, 64]);
         // Two rays left after a quantum: one each, ties to the first.
-        assert_eq!(round_counts(&real, &low, 126, 64, 8), vec![2, 3, 8, 17, 32, 64]);
+        assert_eq!(round_counts(real, &low, 126, 64, 8), vec![2, 3, 8, 17, 32, 64]);
         // Three steps (one short, 2 → 8) leave 2 rays for the last two.
-        assert_eq!(round_counts(&real, &low, 140, 64, 8), vec![3, 8, 9, 24, 32, 64]);
+        assert_eq!(round_counts(real, &low, 140, 64, 8), vec![3, 8, 9, 24, 32, 64]);
         // Short steps leave a quantum more: a second round of steps.
         let real = [5.0; 8];
-        assert_eq!(round_counts(&real, &[2; 8], 48, 64, 8), vec![8, 8, 8, 8, 8, 3, 3, 2]);
+        assert_eq!(round_counts(real, &[2; 8], 48, 64, 8), vec![8, 8, 8, 8, 8, 3, 3, 2]);
         // None beyond the cap.
-        assert_eq!(round_counts(&[16.0, 15.0], &[2, 2], 40, 16, 8), vec![16, 16]);
+        assert_eq!(round_counts([16.0, 15.0], &[2, 2], 40, 16, 8), vec![16, 16]);
         // The fraction is of the step: 4.5 of the 6 from 2 to 8 (0.75)
         // before 5 of the 8 from 8 to 16 (0.625), though 5 rays are more.
-        assert_eq!(round_counts(&[6.5, 13.0], &[2, 8], 18, 64, 8), vec![8, 9]);
+        assert_eq!(round_counts([6.5, 13.0], &[2, 8], 18, 64, 8), vec![8, 9]);
     }
 
     /// The quantum is the budget's power of two at or below it, at most
@@ -536,7 +698,7 @@ mod tests {
         let (lo_sum, hi_sum): (f64, f64) = (low.iter().sum(), high.iter().sum());
         for share in [0.001, 0.05, 0.3, 0.7, 0.95, 0.999] {
             let total = (lo_sum + share * (hi_sum - lo_sum)).round();
-            let got = sum(solve_lambda(&need, &counts, 64.0, total));
+            let got = sum(solve_lambda(&need, &low, &high, total));
             assert!(got >= total && got - total < 0.5, "share {share}: {got} for {total}");
         }
     }

@@ -10,7 +10,7 @@ use super::{Prepared, Traced};
 use crate::adaptive::{self, PixelSum};
 use crate::film::Frame;
 use crate::reconstruct::Gathered;
-use crate::sampler::{PixelSampler, PixelSamples, Sampler, SHIFT_BLOCK};
+use crate::sampler::{PixelSampler, PixelSamples, Sampler};
 use crate::trace::TraceStats;
 
 /// Each sample is a place in the pixel and a time from the pixel's
@@ -42,6 +42,8 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
     let budget = (m * m) as u32;
     let first = adaptive::first_pass(m);
     let mut sums = vec![PixelSum::default(); w * img.height];
+    // Each pixel's samples before the pass and due by its end.
+    let mut start = vec![0; sums.len()];
     let mut counts = vec![first; sums.len()];
     // The first pass, then the passes that have rays to deal out (none
     // for a budget of one ray).
@@ -52,23 +54,26 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
             .filter(|&e| e > 0),
     );
     let samples: Vec<_> = (0..sums.len()).map(|i| PixelSamples::new(i, w)).collect();
+    let mut allocation = adaptive::Allocation::new(w);
     let mut shots = vec![S::default(); sums.len()];
     let mut stats = TraceStats::default();
     for (pass, &extra) in passes.iter().enumerate() {
         if pass > 0 {
-            counts = adaptive::allocate(&sums, w, budget, extra, adaptive::quantum(budget));
+            let next = allocation.allocate(&sums, budget, extra, adaptive::quantum(budget));
+            start = std::mem::replace(&mut counts, next);
         }
         let last = pass + 1 == passes.len();
         let rows: Vec<TraceStats> = sums
             .par_chunks_mut(w)
             .zip(shots.par_chunks_mut(w))
-            .zip(counts.par_chunks(w))
+            .zip(start.par_chunks(w).zip(counts.par_chunks(w)))
             .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, (((sums, shots), counts), samples))| {
+            .map(|(row, (((sums, shots), (start, counts)), samples))| {
                 let pixels = Pixels {
                     sums,
                     shots,
+                    start,
                     counts,
                     samples,
                 };
@@ -92,22 +97,25 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
 }
 
 /// A row's pixels in a pass: their sums, what `S` keeps of their
-/// samples, their counts due by the pass's end, and their samples.
+/// samples, their counts before the pass and due by its end, and their
+/// samples.
 struct Pixels<'a, S> {
     sums: &'a mut [PixelSum],
     shots: &'a mut [S],
+    start: &'a [u32],
     counts: &'a [u32],
     samples: &'a [PixelSamples],
 }
 
-/// One pass over row `row`: the row's instants k in the blocks its samples
-/// reach, and at each every pixel whose sample k ⊕ c is due, with the
-/// scene posed once ([`adaptive::blocks_due`]). Each pixel's sum gets its
-/// samples' colours and the polynomial searches they made (their cost).
+/// One pass over row `row`: its due samples instant by instant, the
+/// scene posed once an instant ([`adaptive::due_by_instant`]). Each
+/// pixel's sum gets its samples' colours and the polynomial searches they
+/// made (their cost).
 fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pixels<S>) -> TraceStats {
     let Pixels {
         sums,
         shots,
+        start,
         counts,
         samples,
     } = pixels;
@@ -116,28 +124,19 @@ fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pix
     let timed = prepared.timed();
     let mut tracer = Tracer::new(prepared);
     let mut sampler = PixelSampler::new(samples, row, img.width, img.masksize);
-    let start: Vec<u32> = sums.iter().map(|s| s.n).collect();
-    let block = SHIFT_BLOCK;
-    for (b, pixels) in adaptive::blocks_due(&start, counts) {
-        for k in b * block..(b + 1) * block {
-            let mut posed = false;
-            for &x in &pixels {
-                let j = samples[x].at_instant(k);
-                if j < start[x] || j >= counts[x] {
-                    continue;
-                }
-                sampler.start(x, j);
-                if timed && !posed {
-                    tracer.at(frame.time(sampler.time()));
-                    posed = true;
-                }
-                let c = sampler.camera();
-                let aray = camera.ray_of(c, &mut sampler);
-                let before = tracer.stats.searched;
-                sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
-                sums[x].add_searched(tracer.stats.searched - before);
-            }
+    let mut posed = None;
+    for (k, x) in adaptive::due_by_instant(samples, start, counts) {
+        let x = x as usize;
+        sampler.start(x, samples[x].at_instant(k));
+        if timed && posed != Some(k) {
+            tracer.at(frame.time(sampler.time()));
+            posed = Some(k);
         }
+        let c = sampler.camera();
+        let aray = camera.ray_of(c, &mut sampler);
+        let before = tracer.stats.searched;
+        sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
+        sums[x].add_searched(tracer.stats.searched - before);
     }
     tracer.stats
 }

@@ -105,6 +105,9 @@ const fn sobol_bytes() -> [[[u32; 256]; 4]; 3] {
 /// dimensions by the direction numbers.
 pub(crate) fn sobol_reversed(j: u32, d: usize) -> u32 {
     match SOBOL_BYTES.get(d) {
+        // The higher bytes' points are 0 below 256 (the adaptive sampler's
+        // counts are mostly below).
+        Some(t) if j < 256 => t[0][j as usize],
         Some(t) => {
             let [b0, b1, b2, b3] = j.to_le_bytes();
             t[0][b0 as usize] ^ t[1][b1 as usize] ^ t[2][b2 as usize] ^ t[3][b3 as usize]
@@ -132,12 +135,45 @@ pub(crate) fn owen_scramble_reversed(reversed: u32, seed: u32) -> u32 {
     v ^= v.wrapping_mul(0xb82f_1e52);
     v ^= v.wrapping_mul(0xc7af_e638);
     v ^= v.wrapping_mul(0x8d22_f6e6);
-    v.reverse_bits()
+    reverse(v)
+}
+
+/// The bits of every 16-bit number reversed, for [`reverse`].
+static REVERSED_HALVES: [u16; 1 << 16] = reversed_halves();
+
+const fn reversed_halves() -> [u16; 1 << 16] {
+    let mut t = [0u16; 1 << 16];
+    let mut i = 0;
+    while i < t.len() {
+        t[i] = (i as u16).reverse_bits();
+        i += 1;
+    }
+    t
+}
+
+/// `v.reverse_bits()` in two lookups, each half's bits reversed and the
+/// halves swapped: 7 instructions where `reverse_bits` takes 15 on x86-64,
+/// which has no instruction for it (the adaptive sampler reverses two a
+/// sample: 31 instructions a sample of fig5_3 were these).
+fn reverse(v: u32) -> u32 {
+    let half = |h: u32| u32::from(REVERSED_HALVES[h as usize & 0xffff]);
+    half(v) << 16 | half(v >> 16)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The reversal by halves is `reverse_bits`.
+    #[test]
+    fn reverse_by_halves() {
+        for k in 0..70_000u32 {
+            let v = k.wrapping_mul(0x9e37_79b9) ^ k;
+            assert_eq!(reverse(v), v.reverse_bits(), "{v:#x}");
+        }
+        assert_eq!(reverse(1), 1 << 31);
+        assert_eq!(reverse(u32::MAX - 1), u32::MAX >> 1);
+    }
 
     /// The byte tables give the points the direction numbers give, for
     /// indices using every byte.
