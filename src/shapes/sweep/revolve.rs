@@ -205,7 +205,7 @@ impl Revolve {
     fn radial_span(&self, umax: f64, size: f64) -> Option<(f64, f64)> {
         let r = umax + 1e-6 * size;
         let room = r * r - self.hu2;
-        if !(room >= 0.0) {
+        if room.is_nan() || room < 0.0 {
             return None;
         }
         let (half, pad) = ((room / self.a).sqrt(), 1e-6 * size / self.a.sqrt());

@@ -25,7 +25,7 @@ pub(super) struct SideIndex {
     scale: [f64; 2],
     /// U_min at or below, U_max at or above, V_min at or below, V_max at
     /// or above each bin.
-    kept: [[u64; BINS]; 4],
+    kept: Box<[[u64; BINS]; 4]>,
     /// The segments it was made with.
     len: usize,
 }
@@ -51,7 +51,7 @@ impl SideIndex {
         let mut index = SideIndex {
             origin: [ulo, vlo],
             scale: [BINS as f64 / (uhi - ulo), BINS as f64 / (vhi - vlo)],
-            kept: [[0; BINS]; 4],
+            kept: Box::new([[0; BINS]; 4]),
             len: n,
         };
         for (i, (cu, cv)) in u[..n].iter().zip(&v[..n]).enumerate() {
