@@ -1,22 +1,16 @@
 //! What the sweep driver keeps of an object whose contour keeps its
-//! shape, made once its box is final (the port's; DEVIATIONS D32, D33,
-//! D90): the cap grid, the bounds every ray takes from the box and the
-//! segments' box sides in order. Owned by the
+//! shape, made once its box is final (the port's; DEVIATIONS D32, D33):
+//! the cap grid and the bounds every ray takes from the box. Owned by the
 //! render, not by the object's record, so the records need nothing of the
 //! driver and no contour of the moment can carry another shape's cache.
 
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::{CapGrid, QueryBounds, SideIndex};
+use super::{CapGrid, QueryBounds};
 use crate::scene::Scene;
 use crate::shapes::ShapeCache;
-use crate::types::{PrimitiveClass, Shape, SweepShape, MAXSEGMENTS};
-
-/// The least segments of a contour whose box sides are kept in bins
-/// ([`SideIndex`]): fig5_6's star of 16 takes 2 % fewer instructions with
-/// them, fig5_7's 8 1 % more.
-const INDEXED: usize = 12;
+use crate::types::{PrimitiveClass, Shape, SweepShape};
 
 /// See the module doc. Made by [`SweepCache::new`], or for a whole scene
 /// by [`prepare_caches`]; given to the intersection with the shape it was
@@ -30,33 +24,18 @@ pub struct SweepCache {
     /// What every ray takes from the box, kept with the box and class it
     /// was made from: a box changed since is not answered by it.
     pub(super) bounds: Option<QueryBounds>,
-    /// The segments' box sides in order, for the segments a ray's span
-    /// meets (translation and conic sweeps, D90).
-    pub(super) sides: Option<SideIndex>,
 }
 
 impl SweepCache {
     /// The cache of `sweep` (its segments and box final) as an object of
     /// `class`; `None` when there is nothing to keep.
     pub fn new(class: PrimitiveClass, sweep: &SweepShape) -> Option<SweepCache> {
-        let (cap_grid, sides) = match class {
-            PrimitiveClass::Translation | PrimitiveClass::Conic => {
-                let n = sweep.segment.min(sweep.u.len()).min(sweep.v.len()).min(MAXSEGMENTS);
-                // With fewer segments the bins cost more than the box tests
-                // they spare (fig5_7's 8: 2.5 more instructions a sample).
-                let sides = (n >= INDEXED)
-                    .then(|| SideIndex::new(&sweep.u[..n], &sweep.v[..n]))
-                    .flatten();
-                (CapGrid::new(&sweep.u, &sweep.v), sides)
-            }
-            _ => (None, None),
+        let cap_grid = match class {
+            PrimitiveClass::Translation | PrimitiveClass::Conic => CapGrid::new(&sweep.u, &sweep.v),
+            _ => None,
         };
         let bounds = QueryBounds::kept(class, sweep);
-        (cap_grid.is_some() || bounds.is_some() || sides.is_some()).then_some(SweepCache {
-            cap_grid,
-            bounds,
-            sides,
-        })
+        (cap_grid.is_some() || bounds.is_some()).then_some(SweepCache { cap_grid, bounds })
     }
 
     /// Were the kept bounds made from `sweep`'s box as an object of

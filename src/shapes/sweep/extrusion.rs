@@ -4,7 +4,7 @@
 use super::contour::{inside_contour, tangent};
 use super::probe::{Best, Candidates, Probe, CAP};
 use super::{asc, norm2, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::types::{Coeff, DVec3, LocalHit};
+use crate::types::{DVec3, LocalHit};
 
 /// Translation and conic sweeps.
 ///
@@ -55,22 +55,6 @@ struct Extrusion {
     nrm: f64,
     /// The scale of the side polynomial's coefficients.
     fscale: f64,
-}
-
-/// What [`Extrusion::candidates`] asks of each segment, made once a ray.
-struct Cull {
-    /// The box of the ray's (central) projection between the caps.
-    span: Option<[f64; 4]>,
-    /// The span of t between the caps, beyond tmin.
-    slab: (f64, f64),
-    boxes_hold: bool,
-    /// Which of a box's corners bound α X + β Y.
-    a_pos: bool,
-    b_pos: bool,
-    /// Slack on the line test and on the bounds on t.
-    gpad: f64,
-    t_pad: f64,
-    per_dxy2: f64,
 }
 
 impl Extrusion {
@@ -194,7 +178,7 @@ impl Extrusion {
     /// The segments the ray's projection may meet, nearest first.
     #[inline(always)]
     fn candidates(&self, p: &Probe, candidates: &mut Candidates) {
-        let (d, size) = (self.d, p.size);
+        let (o, d, size) = (self.o, self.d, p.size);
         let dxy2 = d.x * d.x + d.y * d.y;
         // Slack on a segment's lower bound: its points may stand 1e-9 of
         // the size outside its box (the joint slack), rounding far less.
@@ -216,74 +200,41 @@ impl Extrusion {
             (true, true) if !counted => self.conic_span(p, slab),
             (true, true) => None,
         };
-        let cull = Cull {
-            span,
-            slab,
-            boxes_hold,
-            a_pos,
-            b_pos,
-            gpad,
-            t_pad,
-            per_dxy2,
-        };
-        match (&span, p.sides) {
-            // Where the span holds, the segments whose sides' bins it meets
-            // (a few more than its test keeps, D90).
-            (Some(span), Some(sides)) => {
-                let mut bits = sides.meeting(span);
-                while bits != 0 {
-                    let i = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    self.candidate(&cull, i, &p.u[i], &p.v[i], candidates);
+        for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
+            if let Some(span) = &span {
+                // The four sides at once (`|`, not `||`): one branch, not four.
+                if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
+                    continue;
                 }
             }
-            _ => {
-                for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
-                    self.candidate(&cull, i, cu, cv, candidates);
+            // The segment's box against the line α X + β Y + γ = 0.
+            let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
+            let (y_lo, y_hi) = if b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
+            let gmin = self.gamma + self.alpha * x_lo + self.beta * y_lo;
+            let gmax = self.gamma + self.alpha * x_hi + self.beta * y_hi;
+            if gmin > gpad || gmax < -gpad {
+                continue;
+            }
+            let t_lo = if self.conic {
+                f64::NEG_INFINITY
+            } else {
+                let x = if d.x > 0.0 { cu.min } else { cu.max };
+                let y = if d.y > 0.0 { cv.min } else { cv.max };
+                let t_lo = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 - t_pad;
+                // The box's far corner bounds the hits' t from above: a
+                // segment whose hits all lie at or before tmin, or outside
+                // the span of t where the ray is between the caps, has none
+                // to keep (D32).
+                let x = if d.x > 0.0 { cu.max } else { cu.min };
+                let y = if d.y > 0.0 { cv.max } else { cv.min };
+                let t_hi = ((x - o.x) * d.x + (y - o.y) * d.y) * per_dxy2 + t_pad;
+                if boxes_hold && (t_hi < slab.0 || t_lo > slab.1) {
+                    continue;
                 }
-            }
+                t_lo
+            };
+            candidates.push(t_lo, i);
         }
-    }
-
-    /// Segment i (cu, cv) added to the candidates unless its box keeps away
-    /// from the span or the ray's line, or (a translation sweep's) bounds
-    /// every hit outside the span of t between the caps.
-    #[inline(always)]
-    fn candidate(&self, c: &Cull, i: usize, cu: &Coeff, cv: &Coeff, candidates: &mut Candidates) {
-        let (o, d) = (self.o, self.d);
-        if let Some(span) = &c.span {
-            // The four sides at once (`|`, not `||`): one branch, not four.
-            if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
-                return;
-            }
-        }
-        // The segment's box against the line α X + β Y + γ = 0.
-        let (x_lo, x_hi) = if c.a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
-        let (y_lo, y_hi) = if c.b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
-        let gmin = self.gamma + self.alpha * x_lo + self.beta * y_lo;
-        let gmax = self.gamma + self.alpha * x_hi + self.beta * y_hi;
-        if gmin > c.gpad || gmax < -c.gpad {
-            return;
-        }
-        let t_lo = if self.conic {
-            f64::NEG_INFINITY
-        } else {
-            let x = if d.x > 0.0 { cu.min } else { cu.max };
-            let y = if d.y > 0.0 { cv.min } else { cv.max };
-            let t_lo = ((x - o.x) * d.x + (y - o.y) * d.y) * c.per_dxy2 - c.t_pad;
-            // The box's far corner bounds the hits' t from above: a
-            // segment whose hits all lie at or before tmin, or outside
-            // the span of t where the ray is between the caps, has none
-            // to keep (D32).
-            let x = if d.x > 0.0 { cu.max } else { cu.min };
-            let y = if d.y > 0.0 { cv.max } else { cv.min };
-            let t_hi = ((x - o.x) * d.x + (y - o.y) * d.y) * c.per_dxy2 + c.t_pad;
-            if c.boxes_hold && (t_hi < c.slab.0 || t_lo > c.slab.1) {
-                return;
-            }
-            t_lo
-        };
-        candidates.push(t_lo, i);
     }
 
     /// The t where a side hit may lie: beyond tmin, and where the ray's z

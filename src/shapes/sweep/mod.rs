@@ -40,8 +40,7 @@
 //! cap test, orientation, tangents); `prepare` the coefficients and boxes
 //! from the control points; `cache` what is kept of an object whose
 //! contour keeps its shape (`cap_grid` its cap test's grid, `bounds` what
-//! a ray takes from its box, `side_index` the segments' box sides in
-//! order).
+//! a ray takes from its box).
 
 mod bounds;
 mod cache;
@@ -51,7 +50,6 @@ mod extrusion;
 mod prepare;
 mod probe;
 mod revolve;
-mod side_index;
 
 pub use cache::{prepare_caches, SweepCache};
 pub use contour::{orientation, point_in_contour, signed_area};
@@ -67,7 +65,6 @@ use cap_grid::CapGrid;
 use extrusion::extrusion;
 use probe::{Probe, Query, Want};
 use revolve::revolve;
-use side_index::SideIndex;
 
 /// Roots are kept in [−this, 1 + this], so that a ray through a joint is
 /// not lost to rounding on both sides of it (it may be found twice: the
@@ -419,7 +416,6 @@ impl Sweep<'_> {
             u,
             v,
             grid: self.cache.and_then(|c| c.cap_grid.as_ref()),
-            sides: self.cache.and_then(|c| c.sides.as_ref()).filter(|s| s.fits(n)),
             size,
             ray: near.ray,
             tmin: near.tmin,

@@ -6,7 +6,7 @@
 //! hit finished ([`Probe::finish`]).
 
 use super::contour::orientation_of;
-use super::{negligible, polish, solve, CapGrid, SideIndex};
+use super::{negligible, polish, solve, CapGrid};
 use crate::options::{Fidelity, Options, TimeSampler};
 use crate::types::{Coeff, DVec3, LocalHit, Ray, SweepShape, MAXSEGMENTS};
 
@@ -118,9 +118,6 @@ pub(super) struct Probe<'a> {
     pub(super) v: &'a [Coeff],
     /// The cap test's grid, made with all of `sweep`'s segments.
     pub(super) grid: Option<&'a CapGrid>,
-    /// The segments' box sides in order, made with all of `sweep`'s
-    /// segments (translation and conic sweeps).
-    pub(super) sides: Option<&'a SideIndex>,
     /// The object's size, which the tolerances are relative to.
     pub(super) size: f64,
     pub(super) ray: Ray,
