@@ -212,7 +212,9 @@ impl Revolve {
         Some((self.tc - half - pad, self.tc + half + pad))
     }
 
-    /// The segments whose bounds the ray passes, nearest first.
+    /// The segments whose bounds the ray passes, nearest first: `outrectp`
+    /// on the segment's box, then its heights' span of t and (thesis
+    /// fidelity, D90) its radius's.
     #[inline(always)]
     fn candidates(&self, p: &Probe, candidates: &mut Candidates) {
         let (o, size) = (self.o, p.size);
