@@ -4,7 +4,6 @@
 use super::contour::{inside_contour, tangent};
 use super::probe::{Best, Candidates, Probe, CAP};
 use super::{asc, norm2, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::options::{Fidelity, TimeSampler};
 use crate::types::{DVec3, LocalHit};
 
 /// Translation and conic sweeps.
@@ -187,27 +186,14 @@ impl Extrusion {
         // A bound needs no exact quotient (its slack is t_pad): a product.
         let per_dxy2 = 1.0 / dxy2;
         let slab = self.between_caps(p);
-        // Do the segments' boxes hold their segments, so that they bound
-        // the hits' t (D32)?
-        let boxes_hold = match p.opts.fidelity {
-            // Listing (erratum 9): an in-between segment's box is the first
-            // key's widened by 2, which the segment can leave: the boxes
-            // only order the segments, as before D32.
-            Fidelity::Listing => false,
-            // Thesis: each segment's box is its extrema.
-            Fidelity::Thesis => true,
-        };
+        let boxes_hold = p.boxes_hold();
         let gpad = 1e-12 * self.fscale;
         // The box's corners where α X + β Y is least and most: rounding
         // keeps a product's order, so α·min ≤ α·max when α > 0 (the lesser
         // of the two products, as a `min` of both would pick), and the
         // choice is the ray's, made once instead of per segment.
         let (a_pos, b_pos) = (self.alpha > 0.0, self.beta > 0.0);
-        // The conic's span came after the adaptive sampler, which weighs a
-        // pixel by its rays' searches (`Probe::searched`): a segment it
-        // skips would have been searched, so under that sampler it is not
-        // skipped, and the pictures stay as they were.
-        let counted = p.opts.sampler == TimeSampler::Adaptive;
+        let counted = p.counted();
         let span = match (boxes_hold, self.conic) {
             (false, _) => None,
             (true, false) => self.span(p, slab),

@@ -357,14 +357,18 @@ impl Sweep<'_> {
     ///
     /// The segments the ray's line may meet are tried nearest first, by a
     /// lower bound on their hits' t (translation: from the segment's box
-    /// along the ray's projection; rotation: from its height range), and
+    /// along the ray's projection; rotation: from its height range and, in
+    /// thesis fidelity, where the ray runs within its greatest radius,
+    /// D90), and
     /// the rest skipped once the bound passes the nearest hit so far: the
     /// same nearest hit as trying them all (of two at one t, the lower
     /// segment's). In thesis fidelity, where the boxes hold their segments,
     /// a translation sweep's segments whose boxes put every hit before
     /// `tmin` or outside the span of the ray between the caps' planes are
-    /// not tried at all (D32). The caps of a contour that keeps its shape
-    /// are answered by its cache's cap grid where no segment passes.
+    /// not tried at all (D32), nor a rotation sweep's that the ray leaves
+    /// by `tmin` or never comes within the radius of (D90). The caps of a
+    /// contour that keeps its shape are answered by its cache's cap grid
+    /// where no segment passes.
     ///
     /// Each root gives its hit from the better conditioned equation, is
     /// polished, and is rejected unless the hit lies on the surface

@@ -7,7 +7,7 @@
 
 use super::contour::orientation_of;
 use super::{negligible, polish, solve, CapGrid};
-use crate::options::Options;
+use crate::options::{Fidelity, Options, TimeSampler};
 use crate::types::{Coeff, DVec3, LocalHit, Ray, SweepShape, MAXSEGMENTS};
 
 /// The "segment" of a cap hit: after every side segment, so a side hit at
@@ -134,6 +134,30 @@ impl Probe<'_> {
     #[inline(always)]
     pub(super) fn closer(&self, t: f64, segment: usize) -> bool {
         closer(&self.best, t, self.tmin, segment)
+    }
+
+    /// Do the segments' boxes hold their segments, so that they bound the
+    /// hits (D32, D90)?
+    #[inline(always)]
+    pub(super) fn boxes_hold(&self) -> bool {
+        match self.opts.fidelity {
+            // Listing (erratum 9): an in-between segment's box is the first
+            // key's widened by 2, which the segment can leave: the boxes
+            // only order the segments, as before D32.
+            Fidelity::Listing => false,
+            // Thesis: each segment's box is its extrema.
+            Fidelity::Thesis => true,
+        }
+    }
+
+    /// Are the polynomials searched counted for the adaptive sampler, which
+    /// weighs a pixel by its rays' searches ([`Probe::searched`])? The
+    /// culls that came after that sampler (D69, D90) skip segments it would
+    /// have counted, so under it they skip nothing and its pictures stay
+    /// as they were.
+    #[inline(always)]
+    pub(super) fn counted(&self) -> bool {
+        self.opts.sampler == TimeSampler::Adaptive
     }
 
     /// Can no hit at t ≥ `t_lo` matter? ([`Query::past`])
