@@ -129,9 +129,9 @@ fn prepare(int: &PaperPair, obj: &mut SweepShape) -> usize {
     obj.length = f.length;
     obj.scale = f.scale;
     obj.segment = snu;
-    obj.u.clear();
+    // Hermite and do34 write every one of the snu segments, so what the
+    // vectors held before need not be cleared (no memset an in-between).
     obj.u.resize(snu, Coeff::default());
-    obj.v.clear();
     obj.v.resize(snu, Coeff::default());
     snu
 }
