@@ -617,7 +617,27 @@ mod tests {
     /// turned at rest about two axes, one whose turn is of zeros, −0
     /// among them), and two that do not glide: turning, and on a curve.
     fn glides_scene() -> Scene {
-        let deck = "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\n\
+        scene_of(GLIDES_DECK)
+    }
+
+    /// The same scene with no glide of the first law (LAW's constant
+    /// speed): `Movers::at` must then find the other laws' fractions alone.
+    fn glides_scene_without_the_first_law() -> Scene {
+        scene_of(
+            &GLIDES_DECK
+                .replace(
+                    "motion a to 1.3 0.1 -0.2\n",
+                    "motion a to 1.3 0.1 -0.2 law accelerate\n",
+                )
+                .replace("turn 0 -0 0\n", "turn 0 -0 0 law smooth\n"),
+        )
+    }
+
+    fn scene_of(deck: &str) -> Scene {
+        crate::deck::initialize(deck, "glides.deck", std::path::Path::new("."), Fidelity::Thesis).unwrap()
+    }
+
+    const GLIDES_DECK: &str = "view eye 0 -10 0 look 0 0 0 screen 4 distance 5\n\
             image 8 8 mask 1\n\
             surface s opaque color 1 1 1 ka 0.1 kd 0.8 ks 0.1 kt 0\n\
             sphere a s at 0.3 0.1 -0.2 radius 0.5\n\
@@ -637,8 +657,6 @@ mod tests {
             motion f to 1 2 0 via 0 3 0 1 3 0\n\
             motion g to 0 -2 2 turn 0 -0 0\n\
             blur 1\n";
-        crate::deck::initialize(deck, "glides.deck", std::path::Path::new("."), Fidelity::Thesis).unwrap()
-    }
 
     /// Bits of a pose, to compare them exactly.
     fn pose_bits(p: &Pose) -> Vec<u64> {
@@ -687,10 +705,17 @@ mod tests {
     /// origins first), the laws of every glide found for each instant.
     #[test]
     fn gliding_poses_are_the_motions_own() {
-        let scene = glides_scene();
-        let (rest, moving, moving_of) = moved(&scene);
+        let (all, without_first) = (glides_scene(), glides_scene_without_the_first_law());
+        for (scene, laws) in [(&all, 0b1111), (&without_first, 0b1110)] {
+            gliding_poses_match(scene, laws);
+        }
+    }
+
+    fn gliding_poses_match(scene: &Scene, laws: u8) {
+        let (rest, moving, moving_of) = moved(scene);
         let glides = crate::motion::Glides::of(&moving, &scene.objects, Fidelity::Thesis);
         assert!(glides.each.iter().filter(|g| g.is_some()).count() >= 4);
+        assert_eq!(glides.laws, laws);
         let (objects, moved) = (&scene.objects, &moving_of);
         for eager in [true, false] {
             let new = || Poses::new(objects, &rest, &moving, moved, Fidelity::Thesis, eager, false);
