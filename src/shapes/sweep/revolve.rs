@@ -223,7 +223,10 @@ impl Revolve {
         // height is V(s) to 1e-9 of the size, with s 1e-9 outside [0, 1].
         let t_pad = 1e-6 * size / self.d.z.abs();
         for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
-            if cu.max.abs().max(cu.min.abs()) <= 1e-12 * size {
+            // The segment's greatest radius |U| (a deck's U is never
+            // negative; an in-between's extrema may be, a little).
+            let umax = cu.max.abs().max(cu.min.abs());
+            if umax <= 1e-12 * size {
                 continue; // a segment on the axis sweeps no surface
             }
             let t_lo = if self.along {
@@ -256,7 +259,7 @@ impl Revolve {
                 let t_lo = ta.min(tb) - t_pad;
                 if !self.radial {
                     t_lo
-                } else if let Some((r_lo, r_hi)) = self.radial_span(cu.max, size) {
+                } else if let Some((r_lo, r_hi)) = self.radial_span(umax, size) {
                     // The ray leaves the segment's heights or its radius by
                     // tmin: no hit to keep (D90).
                     if ta.max(tb) + t_pad <= p.tmin || r_hi <= p.tmin {
