@@ -13,7 +13,7 @@
 use super::array::Field;
 use super::keys::{dimension_key, dimension_uniform, random_time, shuffled, strata, stratified_time, Stream};
 use super::pixel::{further_dimension, PixelSamples};
-use super::{CameraSample, Sampler};
+use super::{screen_f64, CameraSample, Sampler};
 use crate::drt::{noise2_table, noise_table, MinimalStandard, TimeTable, MAXINDEX};
 use crate::options::{Fidelity, TimeSampler};
 
@@ -271,11 +271,9 @@ impl Sampler for GridSampler<'_> {
                 (ax * self.aliasing, az * self.aliasing)
             }
         };
-        // Through i64, one instruction on this target where usize takes
-        // six; the same value, the subpixels being far fewer than 2⁶³.
         CameraSample {
-            scancol: self.scancol as i64 as f64,
-            scanline: self.scanline as i64 as f64,
+            scancol: screen_f64(self.scancol),
+            scanline: screen_f64(self.scanline),
             jx,
             jz,
         }

@@ -60,6 +60,15 @@ pub struct CameraSample {
     pub jz: f64,
 }
 
+/// A column, row or count of the screen (`scancol`, a pixel's x,
+/// `masksize`) as a float for [`CameraSample`]: through `i64`, a single
+/// instruction on x86-64 where an unsigned conversion takes several; the
+/// same value, such numbers being far below 2⁶³.
+#[inline(always)]
+pub(crate) fn screen_f64(n: usize) -> f64 {
+    n as i64 as f64
+}
+
 /// The sample being traced: its time, its place in the pixel, and as many
 /// further dimensions as shading asks for (module documentation). Started
 /// by the family's own `start` ([`GridSampler::start`],

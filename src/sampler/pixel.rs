@@ -12,7 +12,7 @@
 
 use super::keys::{dimension_uniform, sobol_seed, Stream};
 use super::sobol::{owen_scramble_reversed, sobol_reversed, SOBOL_DIMENSIONS};
-use super::{CameraSample, Sampler};
+use super::{screen_f64, CameraSample, Sampler};
 
 /// A sample of a pixel: where in it (`u` across to the right, `v` down,
 /// both in [0, 1)) and when in the shutter (`tau` in [0, 1)).
@@ -83,14 +83,10 @@ impl PixelSamples {
     /// pixel, unjittered.
     pub fn camera(&self, x: usize, row: usize, m: usize, j: u32) -> CameraSample {
         let (u, v) = self.place(j);
-        // Through i64, the same numbers: a conversion an instruction, where
-        // an unsigned one takes eight on x86-64 (a sample's, in the
-        // adaptive sampler's passes).
-        let float = |n: usize| n as i64 as f64;
-        let m = float(m);
+        let m = screen_f64(m);
         CameraSample {
-            scancol: (float(x) + u) * m + 0.5,
-            scanline: (float(row) + v) * m + 0.5,
+            scancol: (screen_f64(x) + u) * m + 0.5,
+            scanline: (screen_f64(row) + v) * m + 0.5,
             jx: 0.0,
             jz: 0.0,
         }
