@@ -14,7 +14,9 @@
 use super::{cost, PixelSum, CAP, NEIGHBOUR};
 
 /// The allocation of one render's passes: what [`Allocation::allocate`]
-/// keeps of each pixel from one pass to the next.
+/// keeps of each pixel from one pass to the next, and the buffers of a
+/// pass, kept for the next (allocated, zeroed and copied each pass they
+/// took about 13 instructions a sample of fig5_3 at 9 rays a pixel).
 #[derive(Clone, Debug, Default)]
 pub struct Allocation {
     width: usize,
@@ -25,6 +27,13 @@ pub struct Allocation {
     seen: Option<Vec<u32>>,
     spread: Vec<f64>,
     cost: Vec<f64>,
+    /// Each pixel's bounds: its count so far, and that or the cap.
+    low: Vec<f64>,
+    high: Vec<f64>,
+    /// The largest spread of the 3 pixels of the row around each.
+    across: Vec<f64>,
+    need: Vec<f64>,
+    rounding: Rounding,
 }
 
 /// The counts every pixel of a `width`×`height` image should have after
@@ -55,35 +64,40 @@ impl Allocation {
     /// average `budget`, with λ found so they add up to the total; then
     /// rounded to whole counts of n or multiples of `quantum` (the render's
     /// is [`quantum`](super::quantum) of the budget), by the largest fractions of the way to
-    /// the next (ties to the first pixel; `round_counts`). When no pixel
+    /// the next (ties to the first pixel; `Rounding::round`). When no pixel
     /// shows any spread, the rays go evenly, to within a quantum.
     pub fn allocate(&mut self, sums: &[PixelSum], budget: u32, extra: u64, quantum: u32) -> Vec<u32> {
         if sums.is_empty() || extra == 0 || self.width == 0 {
             return sums.iter().map(|s| s.n).collect();
         }
-        let need = self.needs(sums);
+        self.needs(sums);
         let counts = self.seen.as_deref().unwrap_or_default();
         // The cap a whole number of quanta, so that every level below it is
         // one quantum from the next.
         let q = quantum.max(1);
         let cap = (budget.saturating_mul(CAP).max(1) / q * q).max(q) as f64;
-        // Each pixel's bounds: its count so far, and that or the cap.
-        let low: Vec<f64> = counts.iter().map(|&n| n as f64).collect();
-        let high: Vec<f64> = low.iter().map(|&n| cap.max(n)).collect();
-        // The rays spent and the room below the caps, in integers: the
-        // sums of whole numbers in floating point were exact too.
+        // Each pixel's bounds (extended from empty: neither zeroed first
+        // nor checked for room pixel by pixel), and the rays spent and the
+        // room below the caps, in integers: the sums of whole numbers in
+        // floating point were exact too.
+        let (low, high) = (&mut self.low, &mut self.high);
+        low.clear();
+        low.extend(counts.iter().map(|&n| n as f64));
+        high.clear();
+        high.extend(low.iter().map(|&n| cap.max(n)));
         let (mut spent, mut room) = (0u64, 0u64);
         for &n in counts {
             spent += n as u64;
             room += (cap as u32 - n.min(cap as u32)) as u64;
         }
+        let (need, low, high) = (&self.need, &self.low, &self.high);
         let total = (spent + extra) as f64;
         if room <= extra {
             // More rays than the caps hold: every pixel to its cap.
             return high.iter().map(|&h| h as u32).collect();
         }
-        let lambda = solve_lambda(&need, &low, &high, total);
-        let real = need.iter().zip(low.iter().zip(&high)).map(|(&w, (&low, &high))| {
+        let lambda = solve_lambda(need, low, high, total);
+        let real = need.iter().zip(low.iter().zip(high)).map(|(&w, (&low, &high))| {
             // Most pixels stay at their count: no clamp to compute.
             let t = lambda * w;
             if t <= low {
@@ -92,7 +106,7 @@ impl Allocation {
                 t.clamp(low, high)
             }
         });
-        round_counts(real, counts, spent + extra, cap as u32, quantum)
+        self.rounding.round(real, counts, spent + extra, cap as u32, quantum)
     }
 
     /// Each pixel's need w of [`Allocation::allocate`]: its spread σ, or
@@ -104,34 +118,40 @@ impl Allocation {
     /// computed again only when it has new samples (its count is kept in
     /// `seen`); the rest are loops over rows of numbers, without a branch
     /// at the image's edges, which the compiler does two pixels at a time.
-    pub(super) fn needs(&mut self, sums: &[PixelSum]) -> Vec<f64> {
+    pub(super) fn needs(&mut self, sums: &[PixelSum]) -> &[f64] {
         let width = self.width;
-        if self.seen.as_ref().is_none_or(|seen| seen.len() != sums.len()) {
-            // A new image: every pixel's spread is computed.
-            self.spread = vec![0.0; sums.len()];
-            self.cost = vec![1.0; sums.len()];
-            self.seen = None;
-        }
-        let fresh = self.seen.is_none();
-        let seen = self.seen.get_or_insert_with(|| vec![0; sums.len()]);
-        let kept = seen.iter_mut().zip(self.spread.iter_mut().zip(&mut self.cost));
-        for (s, (seen, (spread, c))) in sums.iter().zip(kept) {
-            if fresh || *seen != s.n {
-                *seen = s.n;
-                *spread = s.spread();
-                *c = cost(s);
+        match &mut self.seen {
+            Some(seen) if seen.len() == sums.len() => {
+                let kept = seen.iter_mut().zip(self.spread.iter_mut().zip(&mut self.cost));
+                for (s, (seen, (spread, c))) in sums.iter().zip(kept) {
+                    if *seen != s.n {
+                        *seen = s.n;
+                        *spread = s.spread();
+                        *c = cost(s);
+                    }
+                }
+            }
+            _ => {
+                // A new image: every pixel's spread and cost, collected
+                // (the buffers are not zeroed first).
+                self.seen = Some(sums.iter().map(|s| s.n).collect());
+                self.spread = sums.iter().map(PixelSum::spread).collect();
+                self.cost = sums.iter().map(cost).collect();
             }
         }
         // The largest spread of the 3 pixels of the row around each, with
         // none beyond the edges (pixels past the last whole row have none
-        // and no need but the floor).
-        let mut across = vec![0.0; sums.len()];
-        for (row, out) in self.spread.chunks_exact(width).zip(across.chunks_exact_mut(width)) {
-            out.copy_from_slice(row);
-            for (a, &left) in out[1..].iter_mut().zip(row) {
-                *a = larger(*a, left);
-            }
-            for (a, &right) in out.iter_mut().zip(&row[1..]) {
+        // and no need but the floor): the larger of each and the one
+        // before, then of that and the one after. The buffers here and
+        // below are extended from empty, neither zeroed first nor checked
+        // for room pixel by pixel.
+        let across = &mut self.across;
+        across.clear();
+        for row in self.spread.chunks_exact(width) {
+            let start = across.len();
+            across.push(row[0]);
+            across.extend(row.iter().zip(&row[1..]).map(|(&left, &mid)| larger(mid, left)));
+            for (a, &right) in across[start..].iter_mut().zip(&row[1..]) {
                 *a = larger(*a, right);
             }
         }
@@ -141,23 +161,25 @@ impl Allocation {
             y if y < rows => &across[y * width..(y + 1) * width],
             _ => &none[..],
         };
-        let mut need = vec![0.0; sums.len()];
+        let need = &mut self.need;
+        need.clear();
         let mut top = 0.0f64;
         for y in 0..rows {
             let (mid, up, down) = (row(y), row(y.wrapping_sub(1)), row(y + 1));
             let at = y * width..(y + 1) * width;
             let (spread, cost) = (&self.spread[at.clone()], &self.cost[at.clone()]);
-            for x in 0..width {
+            need.extend((0..width).map(|x| {
                 let w = larger(spread[x], NEIGHBOUR * larger(larger(mid[x], up[x]), down[x]));
                 // w^¾ ([`NEED_POWER`](super::NEED_POWER)) in two square roots, an
                 // instruction each, where `powf` took a quarter of the
                 // allocation's time.
-                need[at.start + x] = (w * w.sqrt()).sqrt() / cost[x];
-            }
+                (w * w.sqrt()).sqrt() / cost[x]
+            }));
             top = need[at].iter().fold(top, |t, &w| larger(t, w));
         }
+        need.resize(sums.len(), 0.0);
         let floor = if top > 0.0 { top * 1e-3 } else { 1.0 };
-        for w in &mut need {
+        for w in need.iter_mut() {
             *w = larger(*w, floor);
         }
         need
@@ -176,86 +198,107 @@ fn larger(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Whole counts from the real ones (`real`, pixel by pixel, each at least
-/// its count `low` so far) that add up to `total`: each pixel keeps `low`
-/// or takes a multiple of `quantum` above it, at most `cap` (a multiple of
-/// `quantum`). Each starts at the level at or below its real count; then,
-/// by the largest fraction of the way to its next level (ties to the
-/// first pixel), pixels step up to that level while the steps fit in the
-/// rays left; the last rays, fewer than `quantum`, go one each in the same
-/// order. With a quantum of 1 this is the whole part of each and a ray
-/// more to the largest fractions. The whole parts are conversions, as no
-/// count is negative (`floor` is a library call on this target).
-pub(super) fn round_counts(
-    real: impl IntoIterator<Item = f64>,
-    low: &[u32],
-    total: u64,
-    cap: u32,
-    quantum: u32,
-) -> Vec<u32> {
-    let q = quantum.max(1);
-    let next = |f: u32| (f / q + 1) * q;
-    let mut out = low.to_vec();
-    let mut given: u64 = low.iter().map(|&n| n as u64).sum();
-    // The pixels that may step up to their next level (not beyond the
-    // cap): those with a fraction of the way there, as keys in the order
-    // of the largest fraction, then the pixel (a fraction in (0, 1) orders
-    // as its bits do), and those without (most: the pixels that keep
-    // their count), which come after them in their order. A pixel steps
-    // once at most, so its next level is always the one above its first.
-    let mut candidates: Vec<u128> = Vec::new();
-    let mut waiting = vec![false; low.len()];
-    for (i, (r, &n)) in real.into_iter().zip(low).enumerate() {
-        // A pixel at its count so far (most) stays there, with no fraction.
-        let (f, fraction) = if r <= n as f64 {
-            (n, 0.0)
-        } else {
-            let f = (r as u32 / q * q).max(n);
-            given += (f - n) as u64;
-            out[i] = f;
-            (f, (r - f as f64) / (next(f) - f) as f64)
+/// The buffers of [`Rounding::round`], kept from one pass to the next.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Rounding {
+    /// The keys of the pixels that may step up with a fraction.
+    candidates: Vec<u128>,
+    /// The pixels that may step up without one.
+    waiting: Vec<bool>,
+}
+
+impl Rounding {
+    /// Whole counts from the real ones (`real`, pixel by pixel, each at
+    /// least its count `low` so far) that add up to `total`: each pixel
+    /// keeps `low` or takes a multiple of `quantum` above it, at most `cap`
+    /// (a multiple of `quantum`). Each starts at the level at or below its
+    /// real count; then, by the largest fraction of the way to its next
+    /// level (ties to the first pixel), pixels step up to that level while
+    /// the steps fit in the rays left; the last rays, fewer than
+    /// `quantum`, go one each in the same order. With a quantum of 1 this
+    /// is the whole part of each and a ray more to the largest fractions.
+    /// The whole parts are conversions, as no count is negative (`floor`
+    /// is a library call on this target).
+    pub(super) fn round(
+        &mut self,
+        real: impl IntoIterator<Item = f64>,
+        low: &[u32],
+        total: u64,
+        cap: u32,
+        quantum: u32,
+    ) -> Vec<u32> {
+        let q = quantum.max(1);
+        let next = |f: u32| (f / q + 1) * q;
+        let mut given: u64 = low.iter().map(|&n| n as u64).sum();
+        // The pixels that may step up to their next level (not beyond the
+        // cap): those with a fraction of the way there, as keys in the
+        // order of the smallest fraction, then the last pixel (a fraction
+        // in (0, 1) orders as its bits do), and those without (most: the
+        // pixels that keep their count), which come after them in their
+        // order. A pixel steps once at most, so its next level is always
+        // the one above its first.
+        let Rounding { candidates, waiting } = self;
+        candidates.clear();
+        // Every pixel's is written: resized only for another image.
+        waiting.resize(low.len(), false);
+        // Collected from an iterator of known length: no copy of `low`,
+        // nor a check of the room for each.
+        let pixels = real.into_iter().zip(low).zip(waiting.iter_mut()).enumerate();
+        let mut out: Vec<u32> = pixels
+            .map(|(i, ((r, &n), waiting))| {
+                // A pixel at its count so far (most) stays there, with no
+                // fraction.
+                if r <= n as f64 {
+                    *waiting = n < cap;
+                    return n;
+                }
+                let f = (r as u32 / q * q).max(n);
+                given += (f - n) as u64;
+                let fraction = (r - f as f64) / (next(f) - f) as f64;
+                // next(f) ≤ cap, cap being a whole number of quanta.
+                let stepping = fraction > 0.0;
+                *waiting = f < cap && !stepping;
+                if f < cap && stepping {
+                    candidates.push(u128::from(fraction.to_bits()) << 32 | u128::from(!(i as u32)));
+                }
+                f
+            })
+            .collect();
+        let mut left = total.saturating_sub(given);
+        let mut without = (0..low.len()).filter(|&i| waiting[i]);
+        // The first k candidates in the order of the largest fraction (the
+        // last k keys): only which pixels they are matters, not their
+        // order, so a selection, not a sort; taken from the end, where
+        // taking them from the front moved the rest down.
+        let mut first = |k: u64| -> Vec<usize> {
+            let k = k as usize;
+            let pixel = |key: u128| !(key as u32) as usize;
+            if k < candidates.len() {
+                let rest = candidates.len() - k;
+                if k > 0 {
+                    candidates.select_nth_unstable(rest);
+                }
+                return candidates.drain(rest..).map(pixel).collect();
+            }
+            let mut all: Vec<usize> = candidates.drain(..).map(pixel).collect();
+            all.extend(without.by_ref().take(k - all.len()));
+            all
         };
-        // next(f) ≤ cap, cap being a whole number of quanta.
-        if f < cap {
-            if fraction > 0.0 {
-                candidates.push(u128::from(!fraction.to_bits()) << 32 | i as u128);
-            } else {
-                waiting[i] = true;
+        // Each step is at most a quantum, so left / quantum of them fit.
+        let mut up = first(left / q as u64);
+        while !up.is_empty() {
+            for &i in &up {
+                let f = &mut out[i];
+                left -= (next(*f) - *f) as u64;
+                *f = next(*f);
             }
+            up = first(left / q as u64);
         }
-    }
-    let mut left = total.saturating_sub(given);
-    let mut without = (0..low.len()).filter(|&i| waiting[i]);
-    // The first k candidates in the order of the largest fraction: only
-    // which pixels they are matters, not their order, so a selection,
-    // not a sort.
-    let mut first = |k: u64| -> Vec<usize> {
-        let k = k as usize;
-        let pixel = |key: u128| key as u32 as usize;
-        if k < candidates.len() {
-            if k > 0 {
-                candidates.select_nth_unstable(k - 1);
-            }
-            return candidates.drain(..k).map(pixel).collect();
+        for i in first(left) {
+            out[i] += 1;
         }
-        let mut all: Vec<usize> = candidates.drain(..).map(pixel).collect();
-        all.extend(without.by_ref().take(k - all.len()));
-        all
-    };
-    // Each step is at most a quantum, so left / quantum of them fit.
-    let mut up = first(left / q as u64);
-    while !up.is_empty() {
-        for &i in &up {
-            let f = &mut out[i];
-            left -= (next(*f) - *f) as u64;
-            *f = next(*f);
-        }
-        up = first(left / q as u64);
+        out
     }
-    for i in first(left) {
-        out[i] += 1;
-    }
-    out
 }
 
 /// The λ of [`Allocation::allocate`]: Σ clamp(λ·need, low, high) reaches
@@ -266,23 +309,49 @@ pub(super) fn round_counts(
 /// when a step would leave it, take a handful of sums where bisection
 /// takes twenty or more. `total` must lie between Σ low and Σ high.
 pub(super) fn solve_lambda(need: &[f64], low: &[f64], high: &[f64], total: f64) -> f64 {
-    // The sum and its slope at λ (the needs of the pixels not at a bound).
-    let sum_at = |l: f64| {
-        let (mut sum, mut slope) = (0.0, 0.0);
-        for ((&w, &low), &high) in need.iter().zip(low).zip(high) {
-            let t = l * w;
-            if t <= low {
-                sum += low;
-            } else if t >= high {
-                sum += high;
-            } else {
-                sum += t;
-                slope += w;
+    lambda_newton(|l| bounded_sum(l, need, low, high), need.iter().sum::<f64>(), total)
+}
+
+/// The sum of [`solve_lambda`] at λ = `l`, Σ clamp(λ·need, low, high)
+/// over the pixels in order, and its slope (the needs of the pixels not
+/// at a bound). Four pixels at a time: most are at their low bound, and
+/// four of those are found in one branch (the compiler compares them two
+/// at a time) and added in order, the same sums to the bit; about 5.3
+/// instructions a pixel where one at a time took 6, in the 7 or so sums
+/// of a pass (fig5_3, 9 rays a pixel).
+fn bounded_sum(l: f64, need: &[f64], low: &[f64], high: &[f64]) -> (f64, f64) {
+    let add = |(sum, slope): (f64, f64), w: f64, low: f64, high: f64| {
+        let t = l * w;
+        if t <= low {
+            (sum + low, slope)
+        } else if t >= high {
+            (sum + high, slope)
+        } else {
+            (sum + t, slope + w)
+        }
+    };
+    let mut at = (0.0, 0.0);
+    let (need, low, high) = (need.chunks_exact(4), low.chunks_exact(4), high.chunks_exact(4));
+    let rest = need.remainder().iter().zip(low.remainder()).zip(high.remainder());
+    for ((w, low), high) in need.zip(low).zip(high) {
+        // `&`, not `&&`: the four comparisons without a branch each.
+        let at_low = (l * w[0] <= low[0]) & (l * w[1] <= low[1]) & (l * w[2] <= low[2]) & (l * w[3] <= low[3]);
+        if at_low {
+            // The four additions of `add`, in their order.
+            at.0 += low[0];
+            at.0 += low[1];
+            at.0 += low[2];
+            at.0 += low[3];
+        } else {
+            for k in 0..4 {
+                at = add(at, w[k], low[k], high[k]);
             }
         }
-        (sum, slope)
-    };
-    lambda_newton(sum_at, need.iter().sum::<f64>(), total)
+    }
+    for ((&w, &low), &high) in rest {
+        at = add(at, w, low, high);
+    }
+    at
 }
 
 /// The Newton steps of [`solve_lambda`] on the sum `sum_at(λ)` = (Σ,
@@ -332,7 +401,12 @@ mod tests {
 
     /// The needs of a new allocation.
     fn needs(sums: &[PixelSum], width: usize) -> Vec<f64> {
-        Allocation::new(width).needs(sums)
+        Allocation::new(width).needs(sums).to_vec()
+    }
+
+    /// The rounding of new buffers.
+    fn round_counts(real: impl IntoIterator<Item = f64>, low: &[u32], total: u64, cap: u32, quantum: u32) -> Vec<u32> {
+        Rounding::default().round(real, low, total, cap, quantum)
     }
 
     /// The allocation as it was first written (separate collections), the
@@ -700,6 +774,43 @@ mod tests {
             let total = (lo_sum + share * (hi_sum - lo_sum)).round();
             let got = sum(solve_lambda(&need, &low, &high, total));
             assert!(got >= total && got - total < 0.5, "share {share}: {got} for {total}");
+        }
+    }
+
+    /// The sum of four pixels at a time is the sum pixel by pixel, to the
+    /// bit: at λ where the pixels are all at their low bound, some between
+    /// the bounds, some at the cap, on every remainder of four pixels.
+    #[test]
+    fn bounded_sum_is_the_plain_sum() {
+        let plain = |l: f64, need: &[f64], low: &[f64], high: &[f64]| {
+            let (mut sum, mut slope) = (0.0f64, 0.0f64);
+            for i in 0..need.len() {
+                let t = l * need[i];
+                if t <= low[i] {
+                    sum += low[i];
+                } else if t >= high[i] {
+                    sum += high[i];
+                } else {
+                    sum += t;
+                    slope += need[i];
+                }
+            }
+            (sum, slope)
+        };
+        for n in 0..40usize {
+            let need: Vec<f64> = (0..n)
+                .map(|i| 0.001 + hashed_uniform((100 * n + i) as u64).powi(3))
+                .collect();
+            let low: Vec<f64> = (0..n).map(|i| (2 + i % 5) as f64).collect();
+            let high: Vec<f64> = low.iter().map(|&l| l.max(64.0)).collect();
+            for l in [0.0, 1.0, 7.3, 40.0, 333.3, 1e4] {
+                let (got, want) = (bounded_sum(l, &need, &low, &high), plain(l, &need, &low, &high));
+                assert_eq!(
+                    (got.0.to_bits(), got.1.to_bits()),
+                    (want.0.to_bits(), want.1.to_bits()),
+                    "{n} pixels at λ {l}"
+                );
+            }
         }
     }
 

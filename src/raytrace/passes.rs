@@ -69,20 +69,23 @@ fn passes<S: Shot>(prepared: &Prepared, frame: Frame, progress: &(dyn Fn() + Syn
             .zip(start.par_chunks(w).zip(counts.par_chunks(w)))
             .zip(samples.par_chunks(w))
             .enumerate()
-            .map(|(row, (((sums, shots), (start, counts)), samples))| {
-                let pixels = Pixels {
-                    sums,
-                    shots,
-                    start,
-                    counts,
-                    samples,
-                };
-                let stats = trace_row(prepared, frame, row, pixels);
-                if last {
-                    progress();
-                }
-                stats
-            })
+            .map_init(
+                adaptive::DueByInstant::default,
+                |due, (row, (((sums, shots), (start, counts)), samples))| {
+                    let pixels = Pixels {
+                        sums,
+                        shots,
+                        start,
+                        counts,
+                        samples,
+                    };
+                    let stats = trace_row(prepared, frame, row, pixels, due);
+                    if last {
+                        progress();
+                    }
+                    stats
+                },
+            )
             .collect();
         for s in rows {
             stats += s;
@@ -108,10 +111,17 @@ struct Pixels<'a, S> {
 }
 
 /// One pass over row `row`: its due samples instant by instant, the
-/// scene posed once an instant ([`adaptive::due_by_instant`]). Each
+/// scene posed once an instant ([`adaptive::DueByInstant`]). Each
 /// pixel's sum gets its samples' colours and the polynomial searches they
-/// made (their cost).
-fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pixels<S>) -> TraceStats {
+/// made (their cost). `due` holds the sort's buffers, kept from row to
+/// row.
+fn trace_row<S: Shot>(
+    prepared: &Prepared,
+    frame: Frame,
+    row: usize,
+    pixels: Pixels<S>,
+    due: &mut adaptive::DueByInstant,
+) -> TraceStats {
     let Pixels {
         sums,
         shots,
@@ -124,19 +134,23 @@ fn trace_row<S: Shot>(prepared: &Prepared, frame: Frame, row: usize, pixels: Pix
     let timed = prepared.timed();
     let mut tracer = Tracer::new(prepared);
     let mut sampler = PixelSampler::new(samples, row, img.width, img.masksize);
-    let mut posed = None;
-    for (k, x) in adaptive::due_by_instant(samples, start, counts) {
-        let x = x as usize;
-        sampler.start(x, samples[x].at_instant(k));
-        if timed && posed != Some(k) {
+    for instant in due.sort(samples, start, counts) {
+        if timed {
+            // The scene posed once an instant, at its time, which its
+            // samples share.
+            let (x, j) = instant[0];
+            sampler.start(x as usize, j);
             tracer.at(frame.time(sampler.time()));
-            posed = Some(k);
         }
-        let c = sampler.camera();
-        let aray = camera.ray_of(c, &mut sampler);
-        let before = tracer.stats.searched;
-        sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
-        sums[x].add_searched(tracer.stats.searched - before);
+        for &(x, j) in instant {
+            let x = x as usize;
+            sampler.start(x, j);
+            let c = sampler.camera();
+            let aray = camera.ray_of(c, &mut sampler);
+            let before = tracer.stats.searched;
+            sums[x].add(shots[x].shoot(&mut tracer, &aray, &mut sampler));
+            sums[x].add_searched(tracer.stats.searched - before);
+        }
     }
     tracer.stats
 }
