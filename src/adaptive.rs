@@ -32,6 +32,7 @@
 //! image is the same for any number of threads.
 
 mod allocate;
+mod rounding;
 
 use crate::options::{Fidelity, Options, TimeSampler};
 use crate::sampler::{PixelSamples, SHIFT_BLOCK};
