@@ -18,6 +18,9 @@ use crate::types::{BoundingBox, Coeff, CurveKind, PrimitiveClass};
 
 use crate::options::Fidelity;
 
+mod together;
+pub use together::laguerre_together;
+
 /// The root record of the listing (the element type of `col` and `co2`):
 /// `a` the root, `b` the derivative there (`laguerre` fills it), `c` what
 /// `roottesting` compares: how nearly the root is a double one (the sweep
@@ -36,7 +39,9 @@ pub const LAGUERRE_ROOTS: usize = 10;
 /// f, f′ and f″ of the degree-`n` polynomial `a` at `xi`, with the
 /// listing's own expressions for n = 3 and n = 6 (so the arithmetic is
 /// the same, rounding included) and Horner's rule for the other degrees,
-/// which the listing leaves undefined.
+/// which the listing leaves undefined. Inlined, so that where n is known
+/// (`laguerre_together`) only its arm is left, the loop unrolled.
+#[inline(always)]
 fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
     match n {
         3 => (
@@ -51,7 +56,9 @@ fn laguerre_values(n: usize, a: &[f64; 7], xi: f64) -> (f64, f64, f64) {
         ),
         _ => {
             let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
-            for k in (0..=n).rev() {
+            // `0..n + 1`, not `0..=n`: a loop the compiler unrolls where n
+            // is known.
+            for k in (0..n + 1).rev() {
                 f3 = f3 * xi + 2.0 * f2;
                 f2 = f2 * xi + f1;
                 f1 = f1 * xi + a[k];

@@ -56,8 +56,8 @@ pub use contour::{orientation, point_in_contour, signed_area};
 pub use prepare::{fill_segments, prepare_sweeps, segment_points};
 
 use super::Near;
-use crate::options::{Options, Solver};
-use crate::proc::sweep::{laguerre, Root, LAGUERRE_ROOTS};
+use crate::options::{Fidelity, Options, Solver};
+use crate::proc::sweep::{laguerre, laguerre_together, Root, LAGUERRE_ROOTS};
 use crate::robust::{bernstein, bernstein_unit_of, newton_until, polygon_crossing, real_roots};
 use crate::types::{BoundingBox, Coeff, DVec3, LocalHit, PrimitiveClass, Ray, SweepShape, MAXSEGMENTS};
 use bounds::QueryBounds;
@@ -175,6 +175,15 @@ fn solve_further(n: usize, a: &[f64; 7], crosses: bool, opts: &Options, searched
     }
     *searched += 1;
     match opts.solver {
+        // The thesis's `laguerre`, its starts taken together: the same
+        // roots ([`laguerre_together`]).
+        Solver::Laguerre if opts.fidelity == Fidelity::Thesis && matches!(n, 3 | 4 | 6) => {
+            out.count = match n {
+                3 => laguerre_together::<3>(a, hi, lo, &mut out.s),
+                4 => laguerre_together::<4>(a, hi, lo, &mut out.s),
+                _ => laguerre_together::<6>(a, hi, lo, &mut out.s),
+            };
+        }
         Solver::Laguerre => {
             let mut root = [Root::default(); LAGUERRE_ROOTS];
             let total = laguerre(n, a, hi, lo, &mut root, opts.fidelity);
