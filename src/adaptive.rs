@@ -248,7 +248,8 @@ impl DueByInstant {
             while j < b {
                 let size = 1 << j.trailing_zeros().min(31 - (b - j).leading_zeros());
                 let k = s.at_instant(j) & !(size - 1);
-                slot[k as usize] += 1;
+                let first = &mut slot[k as usize];
+                *first = first.wrapping_add(1);
                 // Below 0 until the block's first adds its 1 back (the
                 // differences wrap, their sums do not).
                 let after = &mut slot[(k + size) as usize];
