@@ -11,7 +11,7 @@ use super::laguerre_values;
 /// its end before the next. Under the thesis's guards a start reads
 /// nothing another leaves (the stale x2 that a start can read from the one
 /// before is `Fidelity::Listing`'s alone), so each start takes the same
-/// steps with the same arithmetic ([`laguerre_values`] of the same n), and
+/// steps with the same arithmetic (`laguerre_values` of the same n), and
 /// its root is stored as [`laguerre`] stores it, in the starts' order,
 /// dropped within 0.001 of one stored before: the same roots, to the bit,
 /// in the same order. Together, the starts' chains of square roots and
