@@ -125,7 +125,8 @@ mod tests {
     /// in and about [0, 1], close pairs and double roots among them (where
     /// several starts reach one root and the 0.001 rule keeps the first),
     /// roots near 0 (set to 0), and the guards' cases (a constant, f′ = 0
-    /// at a start, ±∞ and NaN coefficients).
+    /// at a start, a start that leaves by the ±100 bound, ±∞ and NaN
+    /// coefficients).
     #[test]
     fn the_same_roots_as_laguerre() {
         let (min, max) = (-1e-9, 1.0 + 1e-9);
@@ -153,8 +154,20 @@ mod tests {
         }
         assert!(several > 1000, "{several}");
         let t1 = 0.98 / 3.0;
-        let cases: [[f64; 7]; 6] = [
+        let cases: [[f64; 7]; 7] = [
             [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            // A cubic whose start at 2·0.98/3 steps to −123, past the
+            // ±100 bound where it ends, and would come back to its root
+            // near 0.040 if it went on (found by a search of random cubics).
+            [
+                -0.7288668077044209,
+                20.30689421314298,
+                -56.48748707243826,
+                41.783639081278515,
+                0.0,
+                0.0,
+                0.0,
+            ],
             [0.0; 7],
             [t1 * t1 + 1.0, -2.0 * t1, 1.0, 0.0, 0.0, 0.0, 0.0],
             [-0.505, 1.2805333333333333, -2.94, 2.0, 0.0, 0.0, 0.0],

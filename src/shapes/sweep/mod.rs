@@ -488,6 +488,51 @@ mod tests {
     use crate::hash::hashed_uniform;
     use crate::robust::poly_from_roots;
 
+    /// `solve_further` with `laguerre` gives `laguerre`'s roots, to the bit
+    /// and in its order, in either fidelity: `listing`'s through `laguerre`
+    /// itself, whose stale x2 can pass from one start to the next (the
+    /// polynomial 0, where `listing` finds the stale 0 and `thesis` keeps
+    /// each start), `thesis`'s through `laguerre_together` for n = 3, 4, 6.
+    #[test]
+    fn solve_further_gives_laguerres_roots_in_either_fidelity() {
+        let (lo, hi) = (-JOINT_SLACK, 1.0 + JOINT_SLACK);
+        let mut polynomials = vec![[0.0; 7]];
+        for k in 0..300u64 {
+            let r = |j: u64| hashed_uniform(8 * k + j);
+            let roots: Vec<f64> = (0..6).map(|j| 1.6 * r(j) - 0.3).collect();
+            let mut a = [0.0; 7];
+            let n = [3, 4, 6][(k % 3) as usize];
+            a[..=n].copy_from_slice(&poly_from_roots(&roots[..n], 0.5 + r(7))[..=n]);
+            polynomials.push(a);
+        }
+        for fidelity in [Fidelity::Listing, Fidelity::Thesis] {
+            let opts = Options {
+                fidelity,
+                solver: Solver::Laguerre,
+                ..Options::default()
+            };
+            for a in &polynomials {
+                for n in [3, 4, 6] {
+                    let found = solve_further(n, a, true, &opts, &mut 0);
+                    let mut root = [Root::default(); LAGUERRE_ROOTS];
+                    let total = laguerre(n, a, hi, lo, &mut root, fidelity).min(6);
+                    let want: Vec<u64> = root[..total].iter().map(|r| r.a.to_bits()).collect();
+                    let got: Vec<u64> = found.s[..found.count].iter().map(|s| s.to_bits()).collect();
+                    assert_eq!(got, want, "{fidelity:?}, n = {n}: {a:?}");
+                }
+            }
+            let zero = solve_further(4, &[0.0; 7], true, &opts, &mut 0);
+            let expected: &[f64] = match fidelity {
+                Fidelity::Listing => &[0.0],
+                Fidelity::Thesis => &[0.245, 0.49, 0.735, 0.98],
+            };
+            assert_eq!(zero.count, expected.len(), "{fidelity:?}");
+            for (s, e) in zero.s.iter().zip(expected) {
+                assert!((s - e).abs() < 1e-12, "{fidelity:?}: {s} against {e}");
+            }
+        }
+    }
+
     /// What the Bernstein count says of a cubic is what the robust solver
     /// finds on [−δ, 1 + δ]: no root, or the one root, to 1e-12; on cubics
     /// built from three roots anywhere in [−1, 2] (a third of them near the
