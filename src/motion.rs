@@ -185,6 +185,13 @@ impl Glide {
     pub fn pose_into(&self, f: f64, pose: &mut Pose) {
         pose.place(&self.r, &self.rt, self.centre(f));
     }
+
+    /// [`Glide::pose_into`] over a pose it wrote before (at any fraction):
+    /// the rotation is there, only the place is written.
+    #[inline(always)]
+    pub fn move_into(&self, f: f64, pose: &mut Pose) {
+        pose.move_to(&self.rt, self.centre(f));
+    }
 }
 
 /// Each moving object's [`Glide`], if it glides ([`Moving::glide`]), by

@@ -475,8 +475,16 @@ impl Pose {
     #[inline(always)]
     pub fn place(&mut self, r: &DMat3, rt: &DMat3, sphereo: Points) {
         self.transfm = DMat4::from_mat3(*r);
-        self.transfm.w_axis = sphereo.extend(1.0);
         self.inverse = DMat4::from_mat3(*rt);
+        self.move_to(rt, sphereo);
+    }
+
+    /// This pose, which [`Pose::place`] made of rotation `rt`ᵀ, moved to
+    /// `sphereo`: what `place` writes of the place alone, the rotation
+    /// being there already.
+    #[inline(always)]
+    pub fn move_to(&mut self, rt: &DMat3, sphereo: Points) {
+        self.transfm.w_axis = sphereo.extend(1.0);
         self.inverse.w_axis = (-(*rt * sphereo)).extend(1.0);
         self.sphereo = sphereo;
     }

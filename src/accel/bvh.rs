@@ -33,6 +33,9 @@ use std::ops::ControlFlow;
 
 use super::quad::{Quad, QuadRay};
 use super::time::UNTIMED;
+use in_time::InTime;
+
+mod in_time;
 use super::{visit_each, Aabb, BoxRay, Segments, Step, Timed, USE_UNION};
 
 /// Buckets of the heuristic (pbrt-v4's).
@@ -89,8 +92,12 @@ pub struct Bvh {
     segments: Segments,
     /// The root's box over each segment (none when it keeps one box).
     root_at: Vec<Aabb>,
-    /// The timed nodes' boxes, a [`Quad`] a segment ([`Node::timed`]).
+    /// The timed nodes' boxes, a [`Quad`] a segment ([`Node::timed`]),
+    /// while the tree is built (then in [`InTime`]).
     quads: Vec<Quad>,
+    /// The nodes as a walk at one time reads them ([`InTime`]), where
+    /// there is more than one segment.
+    in_time: InTime,
     /// The boxes over each segment of the objects that have them
     /// ([`Item::at`]).
     object_at: Vec<Aabb>,
@@ -191,6 +198,7 @@ impl Bvh {
             segments: boxes.segments.clone(),
             root_at: Vec::new(),
             quads: Vec::new(),
+            in_time: InTime::default(),
             object_at: boxes.per.clone(),
         };
         if !prims.is_empty() {
@@ -206,6 +214,12 @@ impl Bvh {
                 bvh.root_at = scratch.at[root.at as usize..][..count].to_vec();
             }
             bvh.root = bvh.wide(&scratch, top);
+            // The walk reads the boxes over the segments from the nodes
+            // made for it; the table they were gathered in is let go.
+            let quads = std::mem::take(&mut bvh.quads);
+            if count > 1 {
+                bvh.in_time = InTime::of(&bvh.nodes, &quads, bvh.root, count);
+            }
         }
         bvh
     }
@@ -362,11 +376,15 @@ impl Bvh {
         if ray.span(root, tmin, limit).is_none() {
             return ControlFlow::Continue(());
         }
+        let (nodes, offset, root) = match TIMED {
+            true => (&self.in_time.nodes[..], self.in_time.offset(segment), self.in_time.root),
+            false => (&self.nodes[..], 0, self.root),
+        };
         let quad = QuadRay::new(ray, tmin);
         let mut t1 = quad.limit(limit);
         stack.clear();
         // The root is met (its entry is within the limit).
-        let (mut at, mut enter) = (self.root, quad.start());
+        let (mut at, mut enter) = (root, quad.start());
         loop {
             if enter <= t1 {
                 if at & LEAF != 0 {
@@ -386,12 +404,8 @@ impl Bvh {
                     }
                     t1 = quad.limit(limit);
                 } else {
-                    let node = &self.nodes[at as usize];
-                    let boxes = match node.timed {
-                        timed if TIMED && timed != UNTIMED => &self.quads[timed as usize + segment],
-                        _ => &node.boxes,
-                    };
-                    let (enters, bits) = quad.span(boxes, t1);
+                    let node = &nodes[InTime::index(at, offset)];
+                    let (enters, bits) = quad.span(&node.boxes, t1);
                     let lane = |c: usize| (node.child[c], enters[c]);
                     // The nearer of two next, the other kept for after.
                     let mut two = |x: (u32, f32), y: (u32, f32)| {

@@ -24,7 +24,7 @@ pub struct Poses<'a> {
     moving_of: &'a [Option<usize>],
     movers: Movers<'a>,
     /// The instant; `None` (every object at rest) before the first.
-    time: Option<f64>,
+    time: Cell<Option<f64>>,
     now: Now,
 }
 
@@ -41,7 +41,7 @@ struct Movers<'a> {
     /// LAW(l, 1, t) of the instant's t, for each law of `laws`: the
     /// fraction of the way every glide of that law has come, found once
     /// an instant.
-    along: [f64; 4],
+    along: [Cell<f64>; 4],
     fidelity: crate::options::Fidelity,
 }
 
@@ -51,9 +51,9 @@ const LAWS: [Law; 4] = [Law::Constant, Law::Accelerate, Law::Decelerate, Law::Sm
 impl Movers<'_> {
     /// The instant's fractions of the way, for time `time`.
     #[inline(always)]
-    fn at(&mut self, time: f64) {
+    fn at(&self, time: f64) {
         if self.laws & 1 != 0 {
-            self.along[0] = LAW(Law::Constant, 1.0, time);
+            self.along[0].set(LAW(Law::Constant, 1.0, time));
         }
         if self.laws & !1 != 0 {
             self.at_other_laws(time);
@@ -63,10 +63,10 @@ impl Movers<'_> {
     /// [`Movers::at`] for the laws but the first: apart, so that their
     /// sines and cosines are not computed where no glide follows them.
     #[inline(never)]
-    fn at_other_laws(&mut self, time: f64) {
+    fn at_other_laws(&self, time: f64) {
         for (l, law) in LAWS.into_iter().enumerate().skip(1) {
             if self.laws & (1 << l) != 0 {
-                self.along[l] = LAW(law, 1.0, time);
+                self.along[l].set(LAW(law, 1.0, time));
             }
         }
     }
@@ -76,7 +76,7 @@ impl Movers<'_> {
     #[inline(always)]
     fn glide(&self, m: usize) -> Option<(&Glide, f64)> {
         let g = self.glides.get(m)?.as_ref()?;
-        let f = self.along[g.law() as usize];
+        let f = self.along[g.law() as usize].get();
         f.is_finite().then_some((g, f))
     }
 
@@ -96,7 +96,7 @@ impl Movers<'_> {
         let (at, all) = &mut slots[k];
         if *at != Some(bits) {
             for (m, moving) in self.moving.iter().enumerate() {
-                self.pose_into(m, time, &mut all[moving.object]);
+                self.pose_into(m, time, &mut all[moving.object], false);
             }
             *at = Some(bits);
         }
@@ -104,10 +104,11 @@ impl Movers<'_> {
     }
 
     /// Moving object `m`'s pose at `time`, the instant, written over
-    /// `pose`.
+    /// `pose`, which holds `m`'s pose at another instant if `again`.
     #[inline(always)]
-    fn pose_into(&self, m: usize, time: f64, pose: &mut Pose) {
+    fn pose_into(&self, m: usize, time: f64, pose: &mut Pose, again: bool) {
         match self.glide(m) {
+            Some((g, f)) if again => g.move_into(f, pose),
             Some((g, f)) => g.pose_into(f, pose),
             None => {
                 let moving = &self.moving[m];
@@ -132,16 +133,19 @@ enum Now {
     },
     /// For a structure: the poses of the moving objects asked at the
     /// instant, in the order they were asked, each written where it is
-    /// kept (the list is kept from one instant to the next and written
-    /// over: it grows only while more are asked than ever before); how
+    /// kept beside the moving object it was last written for (the list
+    /// is kept from one instant to the next and written over: it grows
+    /// only while more are asked than ever before; the next instant's
+    /// rays mostly ask for the same objects in the same order, and a
+    /// glide written over its own pose writes its place alone); how
     /// many are the instant's; and for each moving object the instant it
     /// was last posed at and its place in the list (instants counted from
     /// 1: nothing to clear at the next).
     Lazy {
-        posed: RefCell<Vec<Pose>>,
+        posed: RefCell<Vec<(u32, Pose)>>,
         made: Cell<usize>,
         slot: Vec<Cell<(u64, u32)>>,
-        instant: u64,
+        instant: Cell<u64>,
     },
 }
 
@@ -203,7 +207,7 @@ impl<'a> Poses<'a> {
                 posed: RefCell::new(Vec::new()),
                 made: Cell::new(0),
                 slot: vec![Cell::new((0, 0)); moving.len()],
-                instant: 0,
+                instant: Cell::new(0),
             }
         };
         Poses {
@@ -214,10 +218,10 @@ impl<'a> Poses<'a> {
                 moving,
                 glides: &[],
                 laws: 0,
-                along: [0.0; 4],
+                along: Default::default(),
                 fidelity,
             },
-            time: None,
+            time: Cell::new(None),
             now,
         }
     }
@@ -234,22 +238,37 @@ impl<'a> Poses<'a> {
     /// A new instant, film time `time`: every moving object's pose is due.
     #[inline]
     pub fn at(&mut self, time: f64) {
-        self.time = Some(time);
-        self.movers.at(time);
-        match &mut self.now {
-            Now::All { slots, current } => *current = self.movers.pose_all(slots, time),
-            Now::Lazy { instant, made, .. } => {
-                *instant += 1;
-                made.set(0);
+        if !self.at_asked(time) {
+            self.time.set(Some(time));
+            self.movers.at(time);
+            if let Now::All { slots, current } = &mut self.now {
+                *current = self.movers.pose_all(slots, time);
             }
         }
+    }
+
+    /// [`Poses::at`] where each moving object is posed when asked (a
+    /// structure's rays ask), which needs no more than a shared
+    /// reference: a snapshot of the scene made once serves its instants
+    /// one after another. False, and nothing done, where all are posed at
+    /// once (the loop's).
+    #[inline]
+    pub fn at_asked(&self, time: f64) -> bool {
+        let Now::Lazy { instant, made, .. } = &self.now else {
+            return false;
+        };
+        self.time.set(Some(time));
+        self.movers.at(time);
+        instant.set(instant.get() + 1);
+        made.set(0);
+        true
     }
 
     /// Where object `i` stands at the instant (its rest pose until the
     /// first [`Poses::at`]).
     #[inline(always)]
     pub fn get(&self, i: usize) -> PoseRef<'_> {
-        match (&self.now, self.moving_of[i], self.time) {
+        match (&self.now, self.moving_of[i], self.time.get()) {
             (Now::All { slots, current }, ..) => PoseRef::Kept(&slots[*current].1[i]),
             (Now::Lazy { .. }, Some(m), Some(time)) => PoseRef::Written(self.posed(m, time)),
             _ => PoseRef::Kept(&self.rest[i]),
@@ -270,7 +289,7 @@ impl<'a> Poses<'a> {
     /// set.
     #[inline(always)]
     pub(super) fn asked(&self, i: usize) -> Option<(usize, f64)> {
-        Some((self.moving_of[i]?, self.time?))
+        Some((self.moving_of[i]?, self.time.get()?))
     }
 
     /// Where moving object `m`'s origin (`sphereo`) stands at `time`, the
@@ -287,8 +306,8 @@ impl<'a> Poses<'a> {
                 return g.centre(f);
             }
             let (when, k) = slot[m].get();
-            if when == *instant {
-                return posed.borrow()[k as usize].sphereo;
+            if when == instant.get() {
+                return posed.borrow()[k as usize].1.sphereo;
             }
         }
         let moving = &self.movers.moving[m];
@@ -297,9 +316,25 @@ impl<'a> Poses<'a> {
 
     /// Moving object `m`'s pose at `time`, the instant, posed on first use
     /// at the instant and written where it is kept (the poses are made
-    /// when asked).
-    #[inline(never)]
+    /// when asked). Inlined: most asks find the pose made ([`Poses::pose`]
+    /// makes it).
+    #[inline(always)]
     pub(super) fn posed(&self, m: usize, time: f64) -> Ref<'_, Pose> {
+        let Now::Lazy {
+            posed, slot, instant, ..
+        } = &self.now
+        else {
+            unreachable!("the loop's poses are all made at once");
+        };
+        let (when, k) = slot[m].get();
+        let k = if when == instant.get() { k } else { self.pose(m, time) };
+        Ref::map(posed.borrow(), |list| &list[k as usize].1)
+    }
+
+    /// Moving object `m`'s pose at `time`, the instant, made and written
+    /// where it is kept; returns its place in the list.
+    #[inline(never)]
+    fn pose(&self, m: usize, time: f64) -> u32 {
         let Now::Lazy {
             posed,
             made,
@@ -309,19 +344,18 @@ impl<'a> Poses<'a> {
         else {
             unreachable!("the loop's poses are all made at once");
         };
-        let (when, mut k) = slot[m].get();
-        if when != *instant {
-            // A pose is lent only while one object is tested or shaded,
-            // never while another is posed: the list is free to write.
-            let mut list = posed.borrow_mut();
-            k = made.get() as u32;
-            made.set(k as usize + 1);
-            if k as usize == list.len() {
-                list.push(Pose::IDENTITY);
-            }
-            self.movers.pose_into(m, time, &mut list[k as usize]);
-            slot[m].set((*instant, k));
+        // A pose is lent only while one object is tested or shaded, never
+        // while another is posed: the list is free to write.
+        let mut list = posed.borrow_mut();
+        let k = made.get() as u32;
+        made.set(k as usize + 1);
+        if k as usize == list.len() {
+            list.push((u32::MAX, Pose::IDENTITY));
         }
-        Ref::map(posed.borrow(), |list| &list[k as usize])
+        let (owner, pose) = &mut list[k as usize];
+        self.movers.pose_into(m, time, pose, *owner == m as u32);
+        *owner = m as u32;
+        slot[m].set((instant.get(), k));
+        k
     }
 }

@@ -161,10 +161,19 @@ fn scan_row<S: Copy + Default>(
     for sub in 0..m {
         let scanline = row * m + sub + 1;
         let Some(n) = instants else {
+            // Each subpixel its own instant. A structure's snapshot of the
+            // scene is made once and moved on from instant to instant.
+            sampler.start(scanline, first_col);
+            tracer.at(frame.time(sampler.time()));
+            let mut instant = tracer.instant();
             for scancol in first_col..=last_col {
                 let aray = primary_ray(camera, &mut sampler, scanline, scancol);
-                tracer.at(frame.time(sampler.time()));
-                line[scancol - first_col] = shoot(&mut tracer.instant(), &aray, &mut sampler);
+                let time = frame.time(sampler.time());
+                if !instant.at_asked(time) {
+                    tracer.at(time);
+                    instant = tracer.instant();
+                }
+                line[scancol - first_col] = shoot(&mut instant, &aray, &mut sampler);
             }
             take(&line[1 - first_col..]);
             continue;
@@ -226,12 +235,14 @@ fn antialias(sums: &[Intensity], m: usize, out: &mut [Intensity]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::accel::Accel;
     use crate::options::{Options, TimeSampler};
     use crate::sampler::Layout;
     use std::path::Path;
 
-    /// A ball on a path over a checker floor, `blur N`.
-    fn prepared(blur: u32, fidelity: Fidelity, sampler: TimeSampler) -> Prepared {
+    /// A ball on a path over a checker floor, `blur N`, its objects found
+    /// by `accel`.
+    fn prepared(blur: u32, fidelity: Fidelity, sampler: TimeSampler, accel: Accel) -> Prepared {
         let deck = format!(
             "view eye 0 -12 5 look 0 0 0.5 screen 5 distance 5
              image 9 7 mask 3
@@ -247,6 +258,7 @@ mod tests {
         let opts = Options {
             fidelity,
             sampler,
+            accel,
             ..Options::default()
         };
         let scene = crate::deck::initialize(&deck, "ball.deck", Path::new(""), fidelity).unwrap();
@@ -286,7 +298,9 @@ mod tests {
     /// Tracing a scanline's subpixels by their instants (the table's
     /// times repeating: `blur 0`, or the listing) or one by one gives
     /// each pixel the bits the listing's order gives, and with the times
-    /// jittered (`blur 3`) and another sampler too.
+    /// jittered (`blur 3`) and another sampler too; with the loop and
+    /// with a hierarchy, whose snapshot of the scene is moved on from one
+    /// subpixel's instant to the next.
     #[test]
     fn subpixels_taken_by_instant_as_one_by_one() {
         let cases = [
@@ -295,9 +309,13 @@ mod tests {
             (3, Fidelity::Thesis, TimeSampler::Table, false),
             (0, Fidelity::Thesis, TimeSampler::Stratified, false),
         ];
-        for (blur, fidelity, sampler, repeats) in cases {
-            let p = prepared(blur, fidelity, sampler);
-            assert_eq!(p.repeats(), repeats, "{blur} {fidelity:?} {sampler:?}");
+        let with_each = cases
+            .into_iter()
+            .flat_map(|(b, f, s, r)| [Accel::None, Accel::Bvh].map(|a| (b, f, s, r, a)));
+        for (blur, fidelity, sampler, repeats, accel) in with_each {
+            let p = prepared(blur, fidelity, sampler, accel);
+            assert_eq!(p.aggregate().structure().is_some(), accel == Accel::Bvh);
+            assert_eq!(p.repeats(), repeats, "{blur} {fidelity:?} {sampler:?} {accel:?}");
             let Layout::Grid(kind) = Layout::of(sampler) else {
                 unreachable!()
             };
@@ -308,7 +326,11 @@ mod tests {
                     .flat_map(|c| c.to_array().map(f64::to_bits))
                     .collect::<Vec<_>>()
             };
-            assert_eq!(bits(&traced.colours), bits(&want), "{blur} {fidelity:?} {sampler:?}");
+            assert_eq!(
+                bits(&traced.colours),
+                bits(&want),
+                "{blur} {fidelity:?} {sampler:?} {accel:?}"
+            );
         }
     }
 }

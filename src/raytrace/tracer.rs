@@ -96,6 +96,26 @@ pub(super) struct Instant<'t> {
 }
 
 impl Instant<'_> {
+    /// The next instant, film time `time`, where a structure's rays ask
+    /// for the moving objects' poses ([`Poses::at_asked`]): what
+    /// [`Tracer::at`] does, in this snapshot, which then serves the new
+    /// instant without being made again. False, and nothing done, for the
+    /// loop, which poses every object at once.
+    #[inline(always)]
+    pub(super) fn at_asked(&mut self, time: f64) -> bool {
+        let Some(structure) = self.snap.structure else {
+            return false;
+        };
+        if !self.snap.poses.at_asked(time) {
+            return false;
+        }
+        for d in self.snap.deforming {
+            d.at(time);
+        }
+        self.snap.segment = structure.segment(time);
+        true
+    }
+
     /// `raytrace(aray, 1.0, false, acolor, 1)` of the primary ray `aray`
     /// of `sampler`'s sample.
     pub(super) fn shoot(&mut self, aray: &Ray, sampler: &mut dyn Sampler) -> Intensity {
