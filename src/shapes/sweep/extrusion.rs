@@ -294,8 +294,9 @@ impl Extrusion {
     /// plane not between the caps): a segment whose box keeps away from
     /// that piece's box has no hit to keep (D69). Padded as the
     /// translation sweep's, over the least k (a hit's contour point stands
-    /// within its residual over k of the projection). `None` where k
-    /// reaches 0 between the caps or the piece is not finite.
+    /// within its residual over k of the projection), which pad it gives
+    /// too. `None` where k reaches 0 between the caps or the piece is not
+    /// finite.
     #[inline(always)]
     fn conic_span(&self, p: &Probe, slab: (f64, f64)) -> Option<([f64; 4], f64)> {
         let (o, d) = (self.o, self.d);
@@ -314,14 +315,14 @@ impl Extrusion {
         let pad = 1e-6 * p.size / least;
         let ((x0, x1), (y0, y1)) = (order(ax, bx), order(ay, by));
         let span = [x0 - pad, x1 + pad, y0 - pad, y1 + pad];
-        span.iter().all(|&v| finite(v)).then_some((span, least))
+        span.iter().all(|&v| finite(v)).then_some((span, pad))
     }
 
     /// The order of a conic sweep's segments where its span is known
     /// ([`Extrusion::conic_span`]); `None` where it is not.
     #[inline(always)]
     fn conic_order(&self, p: &Probe) -> Option<ConicOrder> {
-        let (span, least) = self.conic_span(p, self.between_caps(p))?;
+        let (span, pad) = self.conic_span(p, self.between_caps(p))?;
         let (o, d) = (self.o, self.d);
         let (wx, wy) = (-self.beta, self.alpha);
         Some(ConicOrder {
@@ -332,8 +333,9 @@ impl Extrusion {
             b: wx * d.x + wy * d.y,
             // A hit's contour point stands within 10⁻⁹ of the size of its
             // segment's box, and its projection within its residual over k
-            // of the point: a thousand times both.
-            pad: self.nrm * 1e-6 * p.size * (1.0 + 1.0 / least),
+            // of the point: a thousand times both (the span's pad the
+            // second), along w.
+            pad: self.nrm * (1e-6 * p.size + pad),
             gpad: 1e-12 * self.fscale,
         })
     }
