@@ -476,3 +476,84 @@ fn a_rotation_sweep_bounds_its_segments_by_their_radius() {
         assert!(culled < all, "{culled} searches against {all}");
     }
 }
+
+/// A conic sweep's segments are tried along the ray's central projection,
+/// by the least λ = w·X over each box, and the rest skipped once that
+/// passes λ at the nearest hit (D91): fig5_7's rays find the same hits
+/// and shadow answers, to the bit, as when every segment is tried (as
+/// under `--sampler adaptive`), and so do rays that start on a hit (the
+/// edge of tmin). A ray through the axis crosses two sides, the far one
+/// after the near: of `laguerre`'s searches (each side's cubic, one
+/// crossing), the far side's is skipped.
+#[test]
+fn a_conic_sweep_tries_its_segments_along_the_rays_projection() {
+    let (class, sw) = common::deck_sweep("fig5_7.deck");
+    let cache = SweepCache::new(class, &sw);
+    let conic = Sweep {
+        class,
+        shape: &sw,
+        cache: cache.as_ref(),
+    };
+    for solver in SOLVERS {
+        let ordered = opts(solver);
+        let every = Options {
+            sampler: TimeSampler::Adaptive,
+            ..ordered
+        };
+        let (mut hits, mut restarts) = (0, 0);
+        for k in 0..3000 {
+            let ray = ray(class, &sw, k, k % 3 == 0);
+            let a = conic.intersect(&ray, 1e-9, &ordered, &mut 0);
+            assert_eq!(a, conic.intersect(&ray, 1e-9, &every, &mut 0), "{solver:?} ray {k}");
+            for tmax in [0.5, 1.0, 1.5].map(|f| a.map_or(1e9, |h| h.t * f)) {
+                assert_eq!(
+                    conic.blocks(&ray, 1e-9, tmax, &ordered, &mut 0),
+                    conic.blocks(&ray, 1e-9, tmax, &every, &mut 0),
+                    "{solver:?} shadow ray {k} to {tmax}"
+                );
+            }
+            if let Some(h) = a {
+                hits += 1;
+                // On from the hit, and back out toward where it came from.
+                for dir in [ray.dir, -ray.dir] {
+                    let on = Ray::new(h.point, dir);
+                    let c = conic.intersect(&on, 1e-9, &ordered, &mut 0);
+                    assert_eq!(
+                        c,
+                        conic.intersect(&on, 1e-9, &every, &mut 0),
+                        "{solver:?} ray {k} from its hit"
+                    );
+                    assert_eq!(
+                        conic.blocks(&on, 1e-9, 1e9, &ordered, &mut 0),
+                        conic.blocks(&on, 1e-9, 1e9, &every, &mut 0),
+                        "{solver:?} shadow ray {k} from its hit"
+                    );
+                    restarts += c.is_some() as usize;
+                }
+            }
+        }
+        assert!(hits > 1000 && restarts > 300, "{hits} hits, {restarts} on");
+    }
+    // Rays through the axis between the caps, nearly level (a level ray
+    // has no span between the caps' planes, and no order), from every
+    // side: one search each (the near side's; two at a joint), where every
+    // segment tried takes two.
+    let (mut ordered, mut all, mut rays) = (0, 0, 0);
+    for k in 0..200 {
+        let r = |j: u64| hashed_uniform(9_000_000 + 4 * k + j);
+        let z = sw.length * (0.2 + 0.6 * r(0));
+        let a = std::f64::consts::TAU * r(1);
+        let dir = DVec3::new(a.cos(), a.sin(), 0.1 * (r(2) - 0.5)).normalize();
+        let ray = Ray::new(DVec3::new(0.0, 0.0, z) - 6.0 * dir, dir);
+        let every = Options {
+            sampler: TimeSampler::Adaptive,
+            ..opts(Solver::Laguerre)
+        };
+        let hit = conic.intersect(&ray, 1e-9, &opts(Solver::Laguerre), &mut ordered);
+        assert!(hit.is_some(), "ray {k}");
+        assert_eq!(hit, conic.intersect(&ray, 1e-9, &every, &mut all), "ray {k}");
+        rays += 1;
+    }
+    assert!(all >= 2 * rays, "{all} searches of every segment for {rays} rays");
+    assert!(2 * ordered < 3 * rays, "{ordered} searches in order for {rays} rays");
+}

@@ -79,9 +79,19 @@ impl QueryBounds {
         QueryBounds::of(class, sweep, &sweep.u[..n], &sweep.v[..n]).filter(|b| b.size == box_size(&b.bbox))
     }
 
-    /// Were these bounds made from this box, for this class?
+    /// Were these bounds made from this box, for this class? (`==` of
+    /// each coordinate, as `BoundingBox`'s, joined by `&`: asked of every
+    /// ray, without a branch for each.)
+    #[inline(always)]
     pub(super) fn holds(&self, class: PrimitiveClass, bbox: &BoundingBox) -> bool {
-        self.class == class && self.bbox == *bbox
+        let (a, b) = (&self.bbox, bbox);
+        self.class == class
+            && (a.xmin == b.xmin)
+                & (a.xmax == b.xmax)
+                & (a.ymin == b.ymin)
+                & (a.ymax == b.ymax)
+                & (a.zmin == b.zmin)
+                & (a.zmax == b.zmax)
     }
 }
 

@@ -3,8 +3,8 @@
 
 use super::contour::{inside_contour, tangent};
 use super::probe::{Best, Candidates, Probe, CAP};
-use super::{asc, norm2, PARALLEL_TOL, RESIDUAL_TOL};
-use crate::types::{DVec3, LocalHit};
+use super::{asc, finite, norm2, PARALLEL_TOL, RESIDUAL_TOL};
+use crate::types::{DVec3, LocalHit, MAXSEGMENTS};
 
 /// Translation and conic sweeps.
 ///
@@ -64,7 +64,7 @@ impl Extrusion {
     fn new(p: &Probe, conic: bool) -> Option<Extrusion> {
         let (sw, size) = (p.sweep, p.size);
         let len = sw.length;
-        if !(len > 0.0 && len.is_finite()) || (conic && !sw.scale.is_finite()) {
+        if !(len > 0.0 && finite(len)) || (conic && !finite(sw.scale)) {
             return None;
         }
         let (o, d) = (p.ray.origin, p.ray.dir);
@@ -105,16 +105,29 @@ impl Extrusion {
         if self.nrm <= PARALLEL_TOL * (self.k0.abs() * self.dn + self.k1.abs() * oxy) {
             return self.caps_only(p);
         }
+        // A conic sweep whose segments' boxes bound their hits: its own
+        // order (D69, D91).
+        if self.conic && p.boxes_hold() && !p.counted() {
+            if let Some(order) = self.conic_order(p) {
+                let found = order.candidates(self, p);
+                return self.with_caps(p, |p| order.sides(self, p, found));
+            }
+        }
         // Filled where it stands: returned, its arrays would be copied.
         let mut candidates = Candidates::new();
         self.candidates(p, &mut candidates);
-        // The caps, where the ray's point lies inside the (scaled)
-        // contour. The near cap is tried first: the ray reaches no side
-        // before it (the sides lie between the caps' planes), so when it is
-        // hit it is the nearest hit but for a side at the rim, and the
-        // sides beyond it are skipped. Whatever the order, the hit kept is
-        // the least (t, segment).
-        let caps: &[(f64, f64)] = match d.z {
+        self.with_caps(p, |p| self.sides(p, &candidates));
+    }
+
+    /// The caps around the sides (`sides`, true when a hit is an answer at
+    /// once), where the ray's point lies inside the (scaled) contour. The
+    /// near cap is tried first: the ray reaches no side before it (the
+    /// sides lie between the caps' planes), so when it is hit it is the
+    /// nearest hit but for a side at the rim, and the sides beyond it are
+    /// skipped. Whatever the order, the hit kept is the least (t, segment).
+    #[inline(always)]
+    fn with_caps(&self, p: &mut Probe, sides: impl FnOnce(&mut Probe) -> bool) {
+        let caps: &[(f64, f64)] = match self.d.z {
             z if z > 0.0 => &[(0.0, -1.0), (self.len, 1.0)],
             z if z < 0.0 => &[(self.len, 1.0), (0.0, -1.0)],
             _ => &[],
@@ -124,7 +137,7 @@ impl Extrusion {
                 return;
             }
         }
-        if self.sides(p, &candidates) {
+        if sides(p) {
             return;
         }
         // The far cap, if it is nearer than what the sides gave.
@@ -193,12 +206,11 @@ impl Extrusion {
         // of the two products, as a `min` of both would pick), and the
         // choice is the ray's, made once instead of per segment.
         let (a_pos, b_pos) = (self.alpha > 0.0, self.beta > 0.0);
-        let counted = p.counted();
+        // A conic sweep's span (D69) is taken by `ConicOrder` where it is
+        // known; here it is not.
         let span = match (boxes_hold, self.conic) {
-            (false, _) => None,
             (true, false) => self.span(p, slab),
-            (true, true) if !counted => self.conic_span(p, slab),
-            (true, true) => None,
+            _ => None,
         };
         for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
             if let Some(span) = &span {
@@ -248,9 +260,15 @@ impl Extrusion {
             (f64::NEG_INFINITY, f64::INFINITY)
         } else {
             let (a, b) = ((-zpad - o.z) / d.z, (self.len + zpad - o.z) / d.z);
-            (a.min(b), a.max(b))
+            // Of finite numbers over one that is not 0: no NaN, so the
+            // lesser by a comparison (`f64::min`'s care for NaN costs more).
+            if a < b {
+                (a, b)
+            } else {
+                (b, a)
+            }
         };
-        (za.max(p.tmin), zb)
+        (if za > p.tmin { za } else { p.tmin }, zb)
     }
 
     /// Where the ray runs between the caps' planes (`slab`), its projection
@@ -261,7 +279,7 @@ impl Extrusion {
     #[inline(always)]
     fn span(&self, p: &Probe, slab: (f64, f64)) -> Option<[f64; 4]> {
         let (o, d) = (self.o, self.d);
-        (slab.0.is_finite() && slab.1.is_finite()).then(|| {
+        (finite(slab.0) & finite(slab.1)).then(|| {
             let (ax, ay) = (o.x + slab.0 * d.x, o.y + slab.0 * d.y);
             let (bx, by) = (o.x + slab.1 * d.x, o.y + slab.1 * d.y);
             let pad = 1e-6 * p.size;
@@ -276,22 +294,50 @@ impl Extrusion {
     /// plane not between the caps): a segment whose box keeps away from
     /// that piece's box has no hit to keep (D69). Padded as the
     /// translation sweep's, over the least k (a hit's contour point stands
-    /// within its residual over k of the projection). `None` where k
-    /// reaches 0 between the caps or the piece is not finite.
+    /// within its residual over k of the projection), which pad it gives
+    /// too. `None` where k reaches 0 between the caps or the piece is not
+    /// finite.
     #[inline(always)]
-    fn conic_span(&self, p: &Probe, slab: (f64, f64)) -> Option<[f64; 4]> {
+    fn conic_span(&self, p: &Probe, slab: (f64, f64)) -> Option<([f64; 4], f64)> {
         let (o, d) = (self.o, self.d);
         let k_at = |t: f64| self.k0 + self.k1 * t;
         let (ka, kb) = (k_at(slab.0), k_at(slab.1));
-        let least = ka.min(kb);
-        if !(least > 1e-6 && slab.0.is_finite() && slab.1.is_finite()) {
+        // The lesser and the greater by a comparison: past the test below
+        // the numbers are finite, k above 0, so none is NaN (`f64::min`'s
+        // care for NaN costs more).
+        let order = |a: f64, b: f64| if a < b { (a, b) } else { (b, a) };
+        let least = order(ka, kb).0;
+        if !(least > 1e-6 && finite(slab.0) & finite(slab.1)) {
             return None;
         }
         let (ax, ay) = ((o.x + slab.0 * d.x) / ka, (o.y + slab.0 * d.y) / ka);
         let (bx, by) = ((o.x + slab.1 * d.x) / kb, (o.y + slab.1 * d.y) / kb);
         let pad = 1e-6 * p.size / least;
-        let span = [ax.min(bx) - pad, ax.max(bx) + pad, ay.min(by) - pad, ay.max(by) + pad];
-        span.iter().all(|v| v.is_finite()).then_some(span)
+        let ((x0, x1), (y0, y1)) = (order(ax, bx), order(ay, by));
+        let span = [x0 - pad, x1 + pad, y0 - pad, y1 + pad];
+        span.iter().all(|&v| finite(v)).then_some((span, pad))
+    }
+
+    /// The order of a conic sweep's segments where its span is known
+    /// ([`Extrusion::conic_span`]); `None` where it is not.
+    #[inline(always)]
+    fn conic_order(&self, p: &Probe) -> Option<ConicOrder> {
+        let (span, pad) = self.conic_span(p, self.between_caps(p))?;
+        let (o, d) = (self.o, self.d);
+        let (wx, wy) = (-self.beta, self.alpha);
+        Some(ConicOrder {
+            span,
+            wx,
+            wy,
+            a: wx * o.x + wy * o.y,
+            b: wx * d.x + wy * d.y,
+            // A hit's contour point stands within 10⁻⁹ of the size of its
+            // segment's box, and its projection within its residual over k
+            // of the point: a thousand times both (the span's pad the
+            // second), along w.
+            pad: self.nrm * (1e-6 * p.size + pad),
+            gpad: 1e-12 * self.fscale,
+        })
     }
 
     /// The cap in the plane z = `zc` (outward normal z = `nz`), kept where
@@ -334,17 +380,24 @@ impl Extrusion {
             if p.past(t_lo) {
                 break;
             }
-            let (pu, pv) = (asc(&p.u[i]), asc(&p.v[i]));
-            let mut f = [0.0; 7];
-            for k in 0..4 {
-                f[k] = self.alpha * pu[k] + self.beta * pv[k];
-            }
-            f[0] += self.gamma;
-            if p.roots(3, &f, self.fscale, |p, s| self.side(p, i, s)) {
+            if self.segment(p, i) {
                 return true;
             }
         }
         false
+    }
+
+    /// Segment i's cubic α U + β V + γ solved, each root's hit tried
+    /// ([`Extrusion::side`]); true when a hit is an answer at once.
+    #[inline(always)]
+    fn segment(&self, p: &mut Probe, i: usize) -> bool {
+        let (pu, pv) = (asc(&p.u[i]), asc(&p.v[i]));
+        let mut f = [0.0; 7];
+        for k in 0..4 {
+            f[k] = self.alpha * pu[k] + self.beta * pv[k];
+        }
+        f[0] += self.gamma;
+        p.roots(3, &f, self.fscale, |p, s| self.side(p, i, s))
     }
 
     /// The hit of root s of segment i's cubic, kept if it lies on the
@@ -369,6 +422,105 @@ impl Extrusion {
             let (tu, tv) = tangent(cu, cv, s, p.size);
             let normal = DVec3::new(tv, -tu, self.kappa * (tu * vv - tv * uu)) * k.signum();
             return p.keep(t, normal, i);
+        }
+        false
+    }
+}
+
+// A conic sweep's candidates are kept as bits of a word.
+const _: () = assert!(MAXSEGMENTS <= u64::BITS as usize);
+
+/// A conic sweep's segments in the order of the ray's central projection
+/// (D91). Where the ray runs between the caps' planes, k stays above 0
+/// and its projection P(t) = (x, y)/k moves along the line
+/// α X + β Y + γ = 0 in the direction w = (−β, α): λ(t) = w·P(t) =
+/// (a + b t)/(k0 + k1 t) grows with t (dλ/dt = |w|²/k²). A segment's box
+/// bounds λ at its hits from below (its corner least along w), so the
+/// segments are tried by that bound and the rest skipped once it passes
+/// λ at the nearest hit so far: the same nearest hit as trying them all
+/// (D69's candidates, in segment order), as the translation sweep's t
+/// bound does (D32).
+struct ConicOrder {
+    /// The box of the piece of the line where the ray is between the caps
+    /// (D69).
+    span: [f64; 4],
+    wx: f64,
+    wy: f64,
+    /// λ's numerator a + b t.
+    a: f64,
+    b: f64,
+    /// Slack on a segment's bound on λ.
+    pad: f64,
+    /// Slack on the line's side of a box.
+    gpad: f64,
+}
+
+impl ConicOrder {
+    /// The segments whose boxes meet the piece of the line between the
+    /// caps (D69), as bits.
+    #[inline(always)]
+    fn candidates(&self, x: &Extrusion, p: &Probe) -> u64 {
+        let span = &self.span;
+        // The box's corners where α X + β Y is least and most, as in
+        // `Extrusion::candidates`.
+        let (a_pos, b_pos) = (x.alpha > 0.0, x.beta > 0.0);
+        let mut found = 0u64;
+        for (i, (cu, cv)) in p.u.iter().zip(p.v).enumerate() {
+            // The four sides at once (`|`, not `||`): one branch, not four.
+            if (cu.max < span[0]) | (cu.min > span[1]) | (cv.max < span[2]) | (cv.min > span[3]) {
+                continue;
+            }
+            let (x_lo, x_hi) = if a_pos { (cu.min, cu.max) } else { (cu.max, cu.min) };
+            let (y_lo, y_hi) = if b_pos { (cv.min, cv.max) } else { (cv.max, cv.min) };
+            let gmin = x.gamma + x.alpha * x_lo + x.beta * y_lo;
+            let gmax = x.gamma + x.alpha * x_hi + x.beta * y_hi;
+            if gmin > self.gpad || gmax < -self.gpad {
+                continue;
+            }
+            found |= 1 << i;
+        }
+        found
+    }
+
+    /// The least λ over segment i's box.
+    #[inline(always)]
+    fn lambda_lo(&self, p: &Probe, i: usize) -> f64 {
+        let (cu, cv) = (&p.u[i], &p.v[i]);
+        let x = if self.wx > 0.0 { cu.min } else { cu.max };
+        let y = if self.wy > 0.0 { cv.min } else { cv.max };
+        self.wx * x + self.wy * y
+    }
+
+    /// The candidates `left`, least λ bound first (of equal ones the lower
+    /// segment), until the bound passes λ at the nearest hit so far; true
+    /// when a hit is an answer at once.
+    #[inline(always)]
+    fn sides(&self, x: &Extrusion, p: &mut Probe, mut left: u64) -> bool {
+        while left != 0 {
+            let mut bits = left;
+            let mut k = bits.trailing_zeros() as usize;
+            let mut least = self.lambda_lo(p, k);
+            bits &= bits - 1;
+            while bits != 0 {
+                let i = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let lambda = self.lambda_lo(p, i);
+                if lambda < least {
+                    (k, least) = (i, lambda);
+                }
+            }
+            if let Some(best) = p.best {
+                // A hit's k is above 0 (it lies between the caps); a NaN
+                // skips nothing.
+                let kb = x.k0 + x.k1 * best.t;
+                if kb > 0.0 && least - self.pad > (self.a + self.b * best.t) / kb {
+                    break;
+                }
+            }
+            left &= !(1 << k);
+            if x.segment(p, k) {
+                return true;
+            }
         }
         false
     }
