@@ -60,6 +60,43 @@ fn ray(class: PrimitiveClass, sw: &SweepShape, k: u64, flat: bool) -> Ray {
     Ray::new(origin, (target - origin).normalize())
 }
 
+/// The options of `solver` with the sweeps' bounds and order in force
+/// (the table sampler's), and without them (`--sampler adaptive`, which
+/// weighs every segment's search).
+fn with_and_without_bounds(solver: Solver) -> (Options, Options) {
+    let with = opts(solver);
+    let without = Options {
+        sampler: TimeSampler::Adaptive,
+        ..with
+    };
+    (with, without)
+}
+
+/// `sweep`'s nearest hit of `ray` and its shadow answers (to half, once
+/// and one and a half times the hit, and far) with a bound in force
+/// (`bounded`) are those of every segment tried (`every`), to the bit;
+/// returns the hit. `what` names the ray; `searched` counts each side's
+/// searches.
+fn same_answers(
+    sweep: &Sweep,
+    ray: &Ray,
+    (bounded, every): (&Options, &Options),
+    searched: (&mut u64, &mut u64),
+    what: &str,
+) -> Option<LocalHit> {
+    let a = sweep.intersect(ray, 1e-9, bounded, searched.0);
+    assert_eq!(a, sweep.intersect(ray, 1e-9, every, searched.1), "{what}");
+    let tmaxes = [0.5, 1.0, 1.5].map(|f| a.map_or(1e9, |h| h.t * f));
+    for tmax in tmaxes.into_iter().chain([1e9]) {
+        assert_eq!(
+            sweep.blocks(ray, 1e-9, tmax, bounded, &mut 0),
+            sweep.blocks(ray, 1e-9, tmax, every, &mut 0),
+            "shadow of {what} to {tmax}"
+        );
+    }
+    a
+}
+
 /// The nearest hit of the whole contour is the nearest of its segments'
 /// own, to the bit: culling by the segments' bounds never skips the one
 /// that holds it. Translation rays are horizontal, so no cap is met and a
@@ -422,11 +459,7 @@ fn a_rotation_sweep_bounds_its_segments_by_their_radius() {
         cache: cache.as_ref(),
     };
     for solver in SOLVERS {
-        let bounded = opts(solver);
-        let every = Options {
-            sampler: TimeSampler::Adaptive,
-            ..bounded
-        };
+        let (bounded, every) = with_and_without_bounds(solver);
         let (mut culled, mut all, mut hits, mut grazed, mut restarts) = (0, 0, 0, 0, 0);
         for k in 0..3000 {
             let mut ray = ray(class, &sw, k, false);
@@ -447,25 +480,20 @@ fn a_rotation_sweep_bounds_its_segments_by_their_radius() {
                 }
                 _ => {}
             }
-            let a = goblet.intersect(&ray, 1e-9, &bounded, &mut culled);
-            let b = goblet.intersect(&ray, 1e-9, &every, &mut all);
-            assert_eq!(a, b, "{solver:?} ray {k}");
-            for tmax in [0.5, 1.0, 1.5].map(|f| a.map_or(1e9, |h| h.t * f)) {
-                assert_eq!(
-                    goblet.blocks(&ray, 1e-9, tmax, &bounded, &mut 0),
-                    goblet.blocks(&ray, 1e-9, tmax, &every, &mut 0),
-                    "{solver:?} shadow ray {k} to {tmax}"
-                );
-            }
+            let both = (&bounded, &every);
+            let a = same_answers(
+                &goblet,
+                &ray,
+                both,
+                (&mut culled, &mut all),
+                &format!("{solver:?} ray {k}"),
+            );
             if let Some(h) = a {
                 hits += 1;
                 // On from the hit, as a ray leaving the surface.
                 let on = Ray::new(h.point, ray.dir);
-                let (c, d) = (
-                    goblet.intersect(&on, 1e-9, &bounded, &mut culled),
-                    goblet.intersect(&on, 1e-9, &every, &mut all),
-                );
-                assert_eq!(c, d, "{solver:?} ray {k} on from its hit");
+                let what = format!("{solver:?} ray {k} on from its hit");
+                let c = same_answers(&goblet, &on, both, (&mut culled, &mut all), &what);
                 restarts += c.is_some() as usize;
             }
         }
@@ -495,39 +523,19 @@ fn a_conic_sweep_tries_its_segments_along_the_rays_projection() {
         cache: cache.as_ref(),
     };
     for solver in SOLVERS {
-        let ordered = opts(solver);
-        let every = Options {
-            sampler: TimeSampler::Adaptive,
-            ..ordered
-        };
+        let (ordered, every) = with_and_without_bounds(solver);
         let (mut hits, mut restarts) = (0, 0);
         for k in 0..3000 {
             let ray = ray(class, &sw, k, k % 3 == 0);
-            let a = conic.intersect(&ray, 1e-9, &ordered, &mut 0);
-            assert_eq!(a, conic.intersect(&ray, 1e-9, &every, &mut 0), "{solver:?} ray {k}");
-            for tmax in [0.5, 1.0, 1.5].map(|f| a.map_or(1e9, |h| h.t * f)) {
-                assert_eq!(
-                    conic.blocks(&ray, 1e-9, tmax, &ordered, &mut 0),
-                    conic.blocks(&ray, 1e-9, tmax, &every, &mut 0),
-                    "{solver:?} shadow ray {k} to {tmax}"
-                );
-            }
+            let both = (&ordered, &every);
+            let a = same_answers(&conic, &ray, both, (&mut 0, &mut 0), &format!("{solver:?} ray {k}"));
             if let Some(h) = a {
                 hits += 1;
                 // On from the hit, and back out toward where it came from.
                 for dir in [ray.dir, -ray.dir] {
                     let on = Ray::new(h.point, dir);
-                    let c = conic.intersect(&on, 1e-9, &ordered, &mut 0);
-                    assert_eq!(
-                        c,
-                        conic.intersect(&on, 1e-9, &every, &mut 0),
-                        "{solver:?} ray {k} from its hit"
-                    );
-                    assert_eq!(
-                        conic.blocks(&on, 1e-9, 1e9, &ordered, &mut 0),
-                        conic.blocks(&on, 1e-9, 1e9, &every, &mut 0),
-                        "{solver:?} shadow ray {k} from its hit"
-                    );
+                    let what = format!("{solver:?} ray {k} from its hit");
+                    let c = same_answers(&conic, &on, both, (&mut 0, &mut 0), &what);
                     restarts += c.is_some() as usize;
                 }
             }
@@ -545,11 +553,8 @@ fn a_conic_sweep_tries_its_segments_along_the_rays_projection() {
         let a = std::f64::consts::TAU * r(1);
         let dir = DVec3::new(a.cos(), a.sin(), 0.1 * (r(2) - 0.5)).normalize();
         let ray = Ray::new(DVec3::new(0.0, 0.0, z) - 6.0 * dir, dir);
-        let every = Options {
-            sampler: TimeSampler::Adaptive,
-            ..opts(Solver::Laguerre)
-        };
-        let hit = conic.intersect(&ray, 1e-9, &opts(Solver::Laguerre), &mut ordered);
+        let (with, every) = with_and_without_bounds(Solver::Laguerre);
+        let hit = conic.intersect(&ray, 1e-9, &with, &mut ordered);
         assert!(hit.is_some(), "ray {k}");
         assert_eq!(hit, conic.intersect(&ray, 1e-9, &every, &mut all), "ray {k}");
         rays += 1;
