@@ -633,6 +633,21 @@ mod tests {
         )
     }
 
+    /// The same scene with every glide that follows a law following `law`
+    /// (`""` for the first, constant speed): `Movers::at` must then find
+    /// that law's fraction alone.
+    fn glides_scene_at_one_law(law: &str) -> Scene {
+        let mut deck = GLIDES_DECK.to_string();
+        for other in [" law accelerate\n", " law decelerate\n", " law smooth\n"] {
+            deck = deck.replace(other, &format!("{law}\n"));
+        }
+        // The two glides at constant speed.
+        for constant in ["motion a to 1.3 0.1 -0.2", "turn 0 -0 0"] {
+            deck = deck.replace(&format!("{constant}\n"), &format!("{constant}{law}\n"));
+        }
+        scene_of(&deck)
+    }
+
     fn scene_of(deck: &str) -> Scene {
         crate::deck::initialize(deck, "glides.deck", std::path::Path::new("."), Fidelity::Thesis).unwrap()
     }
@@ -702,12 +717,19 @@ mod tests {
     /// every moving object's origin, where poses made by the motions
     /// alone put them, to the bit: at times in and past the shutter, for
     /// the loop (all at once) and for a structure (each when asked,
-    /// origins first), the laws of every glide found for each instant.
+    /// origins first), the laws of every glide found for each instant
+    /// (all four laws, all but the first, each alone).
     #[test]
     fn gliding_poses_are_the_motions_own() {
         let (all, without_first) = (glides_scene(), glides_scene_without_the_first_law());
         for (scene, laws) in [(&all, 0b1111), (&without_first, 0b1110)] {
             gliding_poses_match(scene, laws);
+        }
+        for (law, bit) in ["", " law accelerate", " law decelerate", " law smooth"]
+            .into_iter()
+            .zip(0..)
+        {
+            gliding_poses_match(&glides_scene_at_one_law(law), 1 << bit);
         }
     }
 
