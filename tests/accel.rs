@@ -463,8 +463,8 @@ fn listing_times_past_the_shutter_render_as_the_loop() {
 }
 
 /// The boxes over time of `motion::object_bounds`: as many segments as
-/// make the farthest mover go a quarter of its width or less in each (a
-/// power of two, at most 16), runs over which it goes its width or less;
+/// make the farthest mover go its width or less in each (a power of two,
+/// at most 16), and as many runs, a segment a tree;
 /// each moving object's box over a segment holds its bounding sphere at
 /// every time of the segment, and it keeps boxes over the segments only
 /// where they are much smaller than its box over all the times. A
@@ -475,8 +475,9 @@ fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
         (0.0, 1, 1),
         (0.05, 1, 1),
         (0.5, 1, 1),
-        (2.0, 4, 1),
-        (4.6, 16, 4),
+        (2.0, 1, 1),
+        (2.4, 2, 2),
+        (4.6, 4, 4),
         (40.0, 16, 16),
     ] {
         let mut deck = String::from(
@@ -515,9 +516,10 @@ fn bounds_in_time_hold_the_movers_and_are_cut_by_their_reach() {
         assert_eq!(chains, 1, "the deforming star moves");
         for m in moving {
             let timed = &b.timed[m.object];
-            // (The star, wider than a sphere, goes fewer of its widths: at
-            // two radii its boxes over the segments are not small enough.)
-            let far = matches!(m.motion, Motion::Path(_)) || travel > 2.0;
+            // (The star, wider than a sphere, goes fewer of its widths: up
+            // to 4.6 radii its boxes over the segments, cut for the spheres,
+            // are not small enough.)
+            let far = matches!(m.motion, Motion::Path(_)) || travel > 4.6;
             assert_eq!(
                 !timed.is_empty(),
                 count > 1 && far,
