@@ -68,7 +68,8 @@ struct Node {
     /// Bit c set for each lane c with a child.
     lanes: u32,
     /// [`UNTIMED`], or where the node's boxes over each time segment
-    /// start in `Bvh::quads` (one [`Quad`] a segment, in their order).
+    /// start in the build's `Scratch::quads` (one [`Quad`] a segment, in
+    /// their order).
     timed: u32,
 }
 
@@ -92,9 +93,6 @@ pub struct Bvh {
     segments: Segments,
     /// The root's box over each segment (none when it keeps one box).
     root_at: Vec<Aabb>,
-    /// The timed nodes' boxes, a [`Quad`] a segment ([`Node::timed`]),
-    /// while the tree is built (then in [`InTime`]).
-    quads: Vec<Quad>,
     /// The nodes as a walk at one time reads them ([`InTime`]), where
     /// there is more than one segment.
     in_time: InTime,
@@ -141,6 +139,9 @@ struct Scratch {
     binary: Vec<Binary>,
     at: Vec<Aabb>,
     count: usize,
+    /// The timed nodes' boxes, a [`Quad`] a segment ([`Node::timed`]),
+    /// until [`InTime`] lays them out in the nodes.
+    quads: Vec<Quad>,
 }
 
 /// The fraction of the rays through a box of half-area `total` that also
@@ -197,7 +198,6 @@ impl Bvh {
             items: Vec::with_capacity(n),
             segments: boxes.segments.clone(),
             root_at: Vec::new(),
-            quads: Vec::new(),
             in_time: InTime::default(),
             object_at: boxes.per.clone(),
         };
@@ -206,6 +206,7 @@ impl Bvh {
                 binary: Vec::with_capacity(2 * n),
                 at: Vec::new(),
                 count,
+                quads: Vec::new(),
             };
             let top = bvh.node(&mut scratch, &mut prims, 0);
             let root = &scratch.binary[top];
@@ -213,12 +214,12 @@ impl Bvh {
             if root.keep {
                 bvh.root_at = scratch.at[root.at as usize..][..count].to_vec();
             }
-            bvh.root = bvh.wide(&scratch, top);
+            bvh.root = bvh.wide(&mut scratch, top);
             // The walk reads the boxes over the segments from the nodes
-            // made for it; the table they were gathered in is let go.
-            let quads = std::mem::take(&mut bvh.quads);
+            // made for it; the table they were gathered in goes with the
+            // scratch.
             if count > 1 {
-                bvh.in_time = InTime::of(&bvh.nodes, &quads, bvh.root, count);
+                bvh.in_time = InTime::of(&bvh.nodes, &scratch.quads, bvh.root, count);
             }
         }
         bvh
@@ -276,7 +277,7 @@ impl Bvh {
     /// children, each child that is not a leaf replaced by its own two;
     /// returns the child reference. The node keeps its lanes' boxes over
     /// the segments when one of them keeps its own.
-    fn wide(&mut self, scratch: &Scratch, b: usize) -> u32 {
+    fn wide(&mut self, scratch: &mut Scratch, b: usize) -> u32 {
         let binary = &scratch.binary;
         let Some(two) = binary[b].kids else {
             self.leaves.push(binary[b].items);
@@ -302,7 +303,7 @@ impl Bvh {
         }
         let mut timed = UNTIMED;
         if kids[..n].iter().any(|&k| binary[k].keep) {
-            timed = self.quads.len() as u32;
+            timed = scratch.quads.len() as u32;
             for seg in 0..scratch.count {
                 let mut at = boxes;
                 for (a, &k) in at.iter_mut().zip(&kids[..n]) {
@@ -310,7 +311,7 @@ impl Bvh {
                         *a = scratch.at[binary[k].at as usize + seg];
                     }
                 }
-                self.quads.push(Quad::of(&at[..n]));
+                scratch.quads.push(Quad::of(&at[..n]));
             }
         }
         self.nodes.push(Node {
