@@ -28,7 +28,7 @@ pub fn frames(
     Ok(())
 }
 
-/// Where `tools frames DECK` writes without `--out`: raster/<deck name>_frames.png.
+/// Where `tools frames DECK` writes without `--out`: `raster/<deck name>_frames.png`.
 pub fn default_out(deck: &Path) -> PathBuf {
     let stem = deck.file_stem().map(|s| s.to_string_lossy()).unwrap_or("deck".into());
     Path::new("raster").join(format!("{stem}_frames.png"))

@@ -80,7 +80,7 @@ pub fn parse_irefs(report: &str) -> Option<u64> {
     digits.parse().ok()
 }
 
-/// Counts every scene of [`scenes`]; files go to `tmp`.
+/// Counts every scene of [`scenes()`]; files go to `tmp`.
 pub fn measure(set: &Settings, tmp: &Path) -> Result<Vec<Row>, String> {
     let exe = std::env::current_exe().map_err(|e| format!("this program's path: {e}"))?;
     let samples = ((SIDE * SIDE - 1) * set.mask * set.mask) as f64;
