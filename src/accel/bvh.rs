@@ -76,6 +76,12 @@ struct Node {
 /// A child that is a leaf: its index in `leaves`, with this bit.
 const LEAF: u32 = 1 << 31;
 
+/// A leaf of one object: the object's index itself with this bit and
+/// [`LEAF`], so that the walk reaches the object without looking up the
+/// leaf and its item (two loads, one after the other); below it, an
+/// object that fits.
+const ONE: u32 = 1 << 30;
+
 /// A lane without a child.
 const NO_CHILD: u32 = u32::MAX;
 
@@ -280,7 +286,14 @@ impl Bvh {
     fn wide(&mut self, scratch: &mut Scratch, b: usize) -> u32 {
         let binary = &scratch.binary;
         let Some(two) = binary[b].kids else {
+            let (start, count) = binary[b].items;
+            let object = self.items[start as usize].object;
+            // (`ONE - 1` too would make the leaf `NO_CHILD`.)
+            if count == 1 && object < ONE - 1 {
+                return LEAF | ONE | object;
+            }
             self.leaves.push(binary[b].items);
+            debug_assert!(self.leaves.len() <= ONE as usize);
             return LEAF | (self.leaves.len() - 1) as u32;
         };
         let (mut kids, mut n) = ([0usize; 4], 0);
@@ -388,7 +401,12 @@ impl Bvh {
         let (mut at, mut enter) = (root, quad.start());
         loop {
             if enter <= t1 {
-                if at & LEAF != 0 {
+                // (A node's reference may carry `ONE`'s bit as `InTime`'s
+                // mark, never with `LEAF`.)
+                if at & (LEAF | ONE) == LEAF | ONE {
+                    limit = visit((at & !(LEAF | ONE)) as usize)?;
+                    t1 = quad.limit(limit);
+                } else if at & LEAF != 0 {
                     let (start, count) = self.leaves[(at & !LEAF) as usize];
                     let items = &self.items[start as usize..(start + count) as usize];
                     if let [one] = items {
@@ -733,10 +751,7 @@ mod tests {
         let root = &bvh.nodes[bvh.root as usize];
         let alone = |c: usize| {
             let child = root.child[c];
-            child != NO_CHILD && child & LEAF != 0 && {
-                let (start, count) = bvh.leaves[(child & !LEAF) as usize];
-                count == 1 && bvh.items[start as usize].object == 0
-            }
+            child != NO_CHILD && child == LEAF | ONE
         };
         assert_eq!((0..4).filter(|&c| alone(c)).count(), 1);
         // The root holds its children's boxes: the floor's own is one.
