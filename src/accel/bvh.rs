@@ -408,19 +408,17 @@ impl Bvh {
                     t1 = quad.limit(limit);
                 } else if at & LEAF != 0 {
                     let (start, count) = self.leaves[(at & !LEAF) as usize];
+                    // (A leaf of one object is one of these only past
+                    // `ONE`'s objects: its box is then tested again.)
                     let items = &self.items[start as usize..(start + count) as usize];
-                    if let [one] = items {
-                        limit = visit(one.object as usize)?;
-                    } else {
-                        let objects = items.iter().map(|item| {
-                            let b = match item.at {
-                                at if TIMED && at != UNTIMED => &self.object_at[at as usize + segment],
-                                _ => &item.bounds,
-                            };
-                            (item.object as usize, b)
-                        });
-                        visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
-                    }
+                    let objects = items.iter().map(|item| {
+                        let b = match item.at {
+                            at if TIMED && at != UNTIMED => &self.object_at[at as usize + segment],
+                            _ => &item.bounds,
+                        };
+                        (item.object as usize, b)
+                    });
+                    visit_each(ray, tmin, &mut limit, objects, &mut visit)?;
                     t1 = quad.limit(limit);
                 } else {
                     let node = &nodes[InTime::index(at, offset)];
