@@ -287,10 +287,12 @@ impl Bvh {
         let binary = &scratch.binary;
         let Some(two) = binary[b].kids else {
             let (start, count) = binary[b].items;
-            let object = self.items[start as usize].object;
-            // (`ONE - 1` too would make the leaf `NO_CHILD`.)
-            if count == 1 && object < ONE - 1 {
-                return LEAF | ONE | object;
+            if count == 1 {
+                let object = self.items[start as usize].object;
+                // (`ONE - 1` too would make the leaf `NO_CHILD`.)
+                if object < ONE - 1 {
+                    return LEAF | ONE | object;
+                }
             }
             self.leaves.push(binary[b].items);
             debug_assert!(self.leaves.len() <= ONE as usize);
@@ -747,10 +749,7 @@ mod tests {
         let bvh = Bvh::build(&boxes);
         // The root's children, and whether each is a leaf of the floor.
         let root = &bvh.nodes[bvh.root as usize];
-        let alone = |c: usize| {
-            let child = root.child[c];
-            child != NO_CHILD && child == LEAF | ONE
-        };
+        let alone = |c: usize| root.child[c] == LEAF | ONE;
         assert_eq!((0..4).filter(|&c| alone(c)).count(), 1);
         // The root holds its children's boxes: the floor's own is one.
         let floor = Quad::of(&[boxes[0]; 4]);
